@@ -1,0 +1,202 @@
+"""Serial chains of links joined by spherical joints (Juang, Jhuang, Chen 2023, Fig. 4).
+
+Link 1 is the ground. Its unit vector x_1 points up, against gravity, and the
+plane through the base joint normal to x_1 is the zero of gravity energy
+(000 Section 2.2). springlab's world frame is the ground link's frame, so
+``UP = x_1 = [1, 0, 0]``::
+
+        x_1 (up)             joint j-1          joint j
+         ^                      o-----*-----------o
+         |                      |<-d_j->|          |
+    base o (joint 1)            |<------ r_j ----->|
+                                 x_j: from the proximal to the distal joint
+
+Each moving link j = 2..n has a length r_j (m), a centre of mass at distance
+d_j (m) from its proximal joint along x_j, and a mass m_j (kg).
+
+A pose is the set of link directions, ``X`` with shape (N, n, 3): X[:, 0] is
+x_1 = UP and X[:, j-1] is x_j. Every function is vectorised over the N poses.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab.errors import SpringlabError
+from springlab.rotations import chain_directions
+
+UP = np.array([1.0, 0.0, 0.0])
+"""x_1, the ground link's direction: vertical, up. Gravity acts along -UP."""
+
+STANDARD_GRAVITY = 9.81
+"""m/s^2. Papers that use another value say so in their data module."""
+
+
+def _positive_vector(name: str, values, *, allow_zero: bool = False) -> tuple[float, ...]:
+    arr = np.asarray(values, dtype=float)
+    if arr.ndim != 1 or arr.size == 0:
+        raise SpringlabError(f"{name} must be a non-empty 1-D sequence, got shape {arr.shape}")
+    for idx, v in enumerate(arr):
+        link = idx + 2
+        if not np.isfinite(v):
+            raise SpringlabError(f"{name}_{link} must be finite, got {v}")
+        if v < 0 or (v == 0 and not allow_zero):
+            bound = ">= 0" if allow_zero else "> 0"
+            raise SpringlabError(f"{name}_{link} must be {bound}, got {v}")
+    return tuple(float(v) for v in arr)
+
+
+@dataclass(frozen=True)
+class Chain:
+    """A serial chain with spherical joints; link 1 is the ground.
+
+    Build it with :func:`serial_chain`, which validates the data.
+
+    :ivar r: lengths r_2..r_n (m)
+    :ivar d: COM distances d_2..d_n from each link's proximal joint (m)
+    :ivar m: masses m_2..m_n (kg)
+    :ivar g: gravitational acceleration (m/s^2), acting along -x_1
+    """
+
+    r: tuple[float, ...]
+    d: tuple[float, ...]
+    m: tuple[float, ...]
+    g: float = STANDARD_GRAVITY
+
+    @property
+    def n(self) -> int:
+        """Number of links, the ground included."""
+        return len(self.r) + 1
+
+    def length(self, j: int) -> float:
+        """r_j (m) for a moving link j = 2..n."""
+        self._check_moving(j)
+        return self.r[j - 2]
+
+    def _check_moving(self, j: int) -> None:
+        if not (2 <= j <= self.n):
+            raise SpringlabError(f"link index must be in 2..{self.n}, got {j}")
+
+    # --- poses ---------------------------------------------------------------
+    def directions(self, angles) -> np.ndarray:
+        """Link directions from relative angles (see :mod:`springlab.rotations`).
+
+        :param angles: ndarray(N, n-1, 3) of (theta, phi, psi) in rad
+        :returns: ndarray(N, n, 3)
+        """
+        angles = np.asarray(angles, dtype=float)
+        if angles.ndim == 2:
+            angles = angles[None]
+        if angles.ndim != 3 or angles.shape[1:] != (self.n - 1, 3):
+            raise SpringlabError(
+                f"angles must have shape (N, {self.n - 1}, 3) for a {self.n}-link chain, "
+                f"got {angles.shape}"
+            )
+        return chain_directions(angles)
+
+    def check_directions(self, X) -> np.ndarray:
+        """Validate a batch of poses and return it as a float array of shape (N, n, 3).
+
+        Raises :class:`SpringlabError` on a wrong shape, NaN, a non-unit vector or
+        a ground link that does not point up.
+        """
+        X = np.asarray(X, dtype=float)
+        if X.ndim == 2:
+            X = X[None]
+        if X.ndim != 3 or X.shape[1:] != (self.n, 3):
+            raise SpringlabError(
+                f"poses X must have shape (N, {self.n}, 3) for a {self.n}-link chain, "
+                f"got {X.shape}"
+            )
+        if not np.all(np.isfinite(X)):
+            raise SpringlabError("poses X contain NaN or infinity")
+        norms = np.linalg.norm(X, axis=2)
+        worst = float(np.max(np.abs(norms - 1.0)))
+        if worst > 1e-9:
+            raise SpringlabError(f"link directions must be unit vectors; |x| - 1 reaches {worst:.3g}")
+        if np.max(np.abs(X[:, 0] - UP)) > 1e-12:
+            raise SpringlabError("X[:, 0] is the ground link x_1 and must equal UP = [1, 0, 0]")
+        return X
+
+    def joint_positions(self, X) -> np.ndarray:
+        """Positions of joints 1..n (m): joint 1 is the base at the origin, joint j
+        the distal joint of link j (joint n is the tip). ndarray(N, n, 3)."""
+        X = self.check_directions(X)
+        out = np.zeros(X.shape)
+        out[:, 1:] = np.cumsum(np.asarray(self.r)[None, :, None] * X[:, 1:], axis=1)
+        return out
+
+    def com_positions(self, X) -> np.ndarray:
+        """Centres of mass of links 2..n (m), ndarray(N, n-1, 3)."""
+        X = self.check_directions(X)
+        joints = self.joint_positions(X)
+        return joints[:, :-1] + np.asarray(self.d)[None, :, None] * X[:, 1:]
+
+    def tip_position(self, X) -> np.ndarray:
+        """Position of the end link's distal joint (m), ndarray(N, 3)."""
+        return self.joint_positions(X)[:, -1]
+
+
+def serial_chain(r, d, m, g: float = STANDARD_GRAVITY, *, com_off_link: bool = False) -> Chain:
+    """Build and validate a serial chain; link 1 is the ground.
+
+    :param r: lengths r_2..r_n (m), each > 0
+    :param d: COM distances d_2..d_n (m), each in [0, r_j] (unless ``com_off_link``)
+    :param m: masses m_2..m_n (kg), each > 0
+    :param g: gravitational acceleration (m/s^2), > 0
+    :param com_off_link: allow d_j < 0 or d_j > r_j (a COM on the link's line but
+        beyond a joint, e.g. with a counter-mass)
+
+    >>> arm = serial_chain(r=[0.30, 0.24, 0.20], d=[0.15, 0.12, 0.10], m=[4.0, 3.2, 2.8], g=9.8)
+    >>> arm.n
+    4
+    >>> serial_chain(r=[0.3], d=[0.4], m=[1.0])
+    Traceback (most recent call last):
+    ...
+    springlab.errors.SpringlabError: d_2 = 0.4 m puts the centre of mass off link 2 (r_2 = 0.3 m); d must lie in [0, r], or pass com_off_link=True
+    """
+    r_t = _positive_vector("r", r)
+    m_t = _positive_vector("m", m)
+    d_arr = np.asarray(d, dtype=float)
+    if d_arr.ndim != 1:
+        raise SpringlabError(f"d must be a 1-D sequence, got shape {d_arr.shape}")
+    if not (len(r_t) == len(d_arr) == len(m_t)):
+        raise SpringlabError(
+            f"r, d and m must have one entry per moving link; got {len(r_t)}, {len(d_arr)}, {len(m_t)}"
+        )
+    for idx, (dj, rj) in enumerate(zip(d_arr, r_t)):
+        link = idx + 2
+        if not np.isfinite(dj):
+            raise SpringlabError(f"d_{link} must be finite, got {dj}")
+        if not com_off_link and not (0.0 <= dj <= rj):
+            raise SpringlabError(
+                f"d_{link} = {dj:g} m puts the centre of mass off link {link} (r_{link} = {rj:g} m); "
+                "d must lie in [0, r], or pass com_off_link=True"
+            )
+    if not (np.isfinite(g) and g > 0):
+        raise SpringlabError(f"g must be a finite positive acceleration in m/s^2, got {g}")
+    return Chain(r=r_t, d=tuple(float(v) for v in d_arr), m=m_t, g=float(g))
+
+
+def random_directions(n: int, size: int, rng=None) -> np.ndarray:
+    """Random poses of an n-link spherical chain: each moving link's direction is
+    uniform on the sphere (a spherical joint reaches every direction).
+
+    :param n: number of links, the ground included (>= 2)
+    :param size: number of poses N
+    :param rng: a ``numpy.random.Generator`` or a seed
+    :returns: ndarray(N, n, 3), X[:, 0] = UP
+    """
+    if int(n) != n or n < 2:
+        raise SpringlabError(f"n must be an integer >= 2, got {n}")
+    if int(size) != size or size < 0:
+        raise SpringlabError(f"size must be a non-negative integer, got {size}")
+    rng = np.random.default_rng(rng)
+    v = rng.standard_normal((int(size), int(n) - 1, 3))
+    v /= np.linalg.norm(v, axis=2, keepdims=True)
+    out = np.empty((int(size), int(n), 3))
+    out[:, 0] = UP
+    out[:, 1:] = v
+    return out

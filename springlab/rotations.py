@@ -1,0 +1,90 @@
+"""Rotation conventions used by the papers, vectorised over poses.
+
+Juang, Jhuang, Chen (2023) give each link's posture as three angles
+(theta_i, phi_i, psi_i), "the angular displacement of the links with respect to
+the x_{i-1}, y_{i-1} and z_{i-1} coordinates" (Section 4, Tables 4-5). The paper
+does not state the order. springlab uses intrinsic x-y-z (Cardan) angles::
+
+    R_i = R_{i-1} @ Rx(theta_i) @ Ry(phi_i) @ Rz(psi_i)
+
+first a twist about the previous link's own axis x_{i-1}, then a swing about the
+new y, then about the new z. The link's direction is the first column,
+x_i = R_i @ [1, 0, 0]. For planar motion (phi only, Table 5) every order gives
+the same pose; a balanced arm's total energy does not depend on the order at all.
+
+All angles are in radians.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def _basic(angle, axis: int) -> np.ndarray:
+    angle = np.asarray(angle, dtype=float)
+    c, s = np.cos(angle), np.sin(angle)
+    out = np.zeros(angle.shape + (3, 3))
+    i, j = [(1, 2), (2, 0), (0, 1)][axis]
+    out[..., axis, axis] = 1.0
+    out[..., i, i] = c
+    out[..., j, j] = c
+    out[..., i, j] = -s
+    out[..., j, i] = s
+    return out
+
+
+def rot_x(angle) -> np.ndarray:
+    """Rotation matrices about x, shape ``angle.shape + (3, 3)``; angle in rad.
+
+    >>> import numpy as np
+    >>> np.round(rot_x(np.pi / 2) @ [0, 1, 0], 12)
+    array([0., 0., 1.])
+    """
+    return _basic(angle, 0)
+
+
+def rot_y(angle) -> np.ndarray:
+    """Rotation matrices about y, shape ``angle.shape + (3, 3)``; angle in rad.
+
+    >>> import numpy as np
+    >>> np.round(rot_y(np.pi / 2) @ [1, 0, 0], 12)
+    array([ 0.,  0., -1.])
+    """
+    return _basic(angle, 1)
+
+
+def rot_z(angle) -> np.ndarray:
+    """Rotation matrices about z, shape ``angle.shape + (3, 3)``; angle in rad."""
+    return _basic(angle, 2)
+
+
+def rot_xyz(theta, phi, psi) -> np.ndarray:
+    """Intrinsic x-y-z rotation ``Rx(theta) @ Ry(phi) @ Rz(psi)``; angles in rad.
+
+    Broadcasts over the angle arrays; returns shape ``broadcast.shape + (3, 3)``.
+    """
+    return rot_x(theta) @ rot_y(phi) @ rot_z(psi)
+
+
+def chain_directions(angles) -> np.ndarray:
+    """Link directions of a serial chain from relative angles.
+
+    :param angles: ndarray(N, n-1, 3), (theta, phi, psi) of links 2..n in rad,
+        each relative to the previous link's frame; link 1 (the ground) has the
+        identity frame.
+    :returns: ndarray(N, n, 3), the unit vectors x_1..x_n (x_1 = [1, 0, 0]).
+    """
+    angles = np.asarray(angles, dtype=float)
+    if angles.ndim != 3 or angles.shape[2] != 3:
+        raise ValueError(f"angles must have shape (N, n-1, 3), got {angles.shape}")
+    if not np.all(np.isfinite(angles)):
+        raise ValueError("angles contain NaN or infinity")
+    rel = rot_xyz(angles[..., 0], angles[..., 1], angles[..., 2])  # (N, n-1, 3, 3)
+    n_pose, n_moving = angles.shape[:2]
+    out = np.empty((n_pose, n_moving + 1, 3))
+    out[:, 0] = (1.0, 0.0, 0.0)
+    frame = np.broadcast_to(np.eye(3), (n_pose, 3, 3))
+    for j in range(n_moving):
+        frame = frame @ rel[:, j]
+        out[:, j + 1] = frame[:, :, 0]
+    return out

@@ -1,0 +1,115 @@
+"""Springs attached on the joint lines (Juang, Jhuang, Chen 2023, Eq. 19 and Fig. 6).
+
+A spring S(i, j), i < j, joins link i (proximally attached) to link j (distally
+attached). Its ends lie on the links' joint lines (principle P1, Eq. 38):
+
+* end A on link i, at signed distance ``a`` from link i's **distal** joint,
+  measured along x_i: A = J_i + a x_i;
+* end B on link j, at signed distance ``b`` from link j's **proximal** joint,
+  measured along x_j: B = J_{j-1} + b x_j.
+
+So the spring vector is B - A = -a x_i + b x_j + sum_{t=i+1}^{j-1} r_t x_t
+(Eq. 19), and the paper's sign patterns read::
+
+             link i                         link j
+    o----------------o~ ~ ~ ~ ~ ~ ~ ~ o----------------o
+    prox.       J_i (distal)     J_{j-1} (prox.)       distal
+          a < 0  |  a > 0                 b < 0  |  b > 0
+     A on link i | A on an extension       B on an | B on link j
+                 | of link i past J_i      extension of link j behind J_{j-1}
+
+    ground link 1: J_1 is the base joint and x_1 points up, so a > 0 is above it.
+
+A pattern is written (sign a, sign b): the example arm of 000 uses S(1,4) (+,+)
+and S(3,4) (-,-). Stiffness k is in N/m; a, b in m. Springs are zero-free-length
+unless ``free_length`` (m) is given; the quadratic form of 000 holds only for
+zero-free-length springs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab.errors import SpringlabError
+
+
+def sign_char(value: float) -> str:
+    """'+' for a positive number, '-' for a negative one, '0' for zero."""
+    return "+" if value > 0 else "-" if value < 0 else "0"
+
+
+@dataclass(frozen=True)
+class Spring:
+    """A spring S(i, j) on the joint lines of links i < j.
+
+    :ivar i: proximally attached link (1 = ground)
+    :ivar j: distally attached link
+    :ivar a: signed distance of end A from link i's distal joint along x_i (m)
+    :ivar b: signed distance of end B from link j's proximal joint along x_j (m)
+    :ivar k: stiffness (N/m), > 0
+    :ivar free_length: free length (m), >= 0; 0 is an ideal zero-free-length spring
+
+    >>> Spring(1, 2, a=0.15, b=0.24, k=294.0).pattern
+    '(+,+)'
+    >>> Spring(1, 2, a=0.15, b=0.24, k=0.0)
+    Traceback (most recent call last):
+    ...
+    springlab.errors.SpringlabError: k of S(1,2) must be a finite stiffness > 0 N/m, got 0.0
+    """
+
+    i: int
+    j: int
+    a: float
+    b: float
+    k: float
+    free_length: float = 0.0
+
+    def __post_init__(self):
+        for name in ("i", "j"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or int(v) != v:
+                raise SpringlabError(f"spring link index {name} must be an integer, got {v!r}")
+        if not (1 <= self.i < self.j):
+            raise SpringlabError(
+                f"a spring S(i,j) needs 1 <= i < j (link 1 is the ground), got i={self.i}, j={self.j}"
+            )
+        for name in ("a", "b"):
+            v = getattr(self, name)
+            if not np.isfinite(v):
+                raise SpringlabError(f"{name} of {self.label} must be finite, got {v}")
+        if not (np.isfinite(self.k) and self.k > 0):
+            raise SpringlabError(
+                f"k of {self.label} must be a finite stiffness > 0 N/m, got {self.k}"
+            )
+        if not (np.isfinite(self.free_length) and self.free_length >= 0):
+            raise SpringlabError(
+                f"free_length of {self.label} must be >= 0 m, got {self.free_length}"
+            )
+
+    @property
+    def label(self) -> str:
+        return f"S({self.i},{self.j})"
+
+    @property
+    def pattern(self) -> str:
+        """The sign pattern '(sign a, sign b)' of 000 Section 3.2."""
+        return f"({sign_char(self.a)},{sign_char(self.b)})"
+
+    def scaled(self, factor: float) -> "Spring":
+        """The same spring with its stiffness multiplied by ``factor``."""
+        return Spring(self.i, self.j, self.a, self.b, self.k * factor, self.free_length)
+
+
+def check_springs(chain, springs) -> tuple[Spring, ...]:
+    """Validate that every spring fits the chain (j <= n); return them as a tuple."""
+    springs = tuple(springs)
+    for s in springs:
+        if not isinstance(s, Spring):
+            raise SpringlabError(f"expected Spring objects, got {type(s).__name__}")
+        if s.j > chain.n:
+            raise SpringlabError(
+                f"{s.label} attaches to link {s.j}, but the chain has only {chain.n} links"
+            )
+    return springs
