@@ -1,0 +1,283 @@
+"""Spring configurations: attachment criteria, rules R1-R6, and their enumeration
+(Juang, Jhuang, Chen 2023, Sections 3.2-3.3, Table 1).
+
+A configuration is a set of springs S(i,j), each with a sign pattern
+(sign a, sign b) (see :mod:`springlab.springs` for the sketch). Two springs may
+join the same pair of links with different patterns (the paper's S and S').
+
+Each spring contributes to the entries (u, v), u < v, of the balance matrix
+M = G + sum K_S with known signs (Eqs. 23a-d)::
+
+    (i, j): -k a b -> sign -(sa sb)     (i, t): -r_t k a -> sign -sa
+    (t, j):  r_t k b -> sign  sb        (t, v):  r_t r_v k -> always +
+
+Gravity fills row 1 with positive G_{1,j}. The paper's rules say which springs
+must be present so that every positive entry has a negative partner; they are
+implemented here word for word (:func:`rule_violations`). Whether Eqs. (39)
+really have a solution with k > 0 and the stated signs is a separate, plain
+check (:func:`springlab.design.feasibility`), and the two are compared in the
+paper-000 notebook.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+from springlab.errors import SpringlabError
+
+PATTERNS = ("(+,+)", "(-,-)", "(+,-)", "(-,+)")
+_SIGN = {"+": 1, "-": -1}
+
+
+@dataclass(frozen=True, order=True)
+class SpringSlot:
+    """A spring S(i,j) with a sign pattern, before any numbers are chosen."""
+
+    i: int
+    j: int
+    pattern: str = "(+,+)"
+
+    def __post_init__(self):
+        if not (1 <= self.i < self.j):
+            raise SpringlabError(f"a spring S(i,j) needs 1 <= i < j, got i={self.i}, j={self.j}")
+        if self.pattern not in PATTERNS:
+            raise SpringlabError(f"pattern of S({self.i},{self.j}) must be one of {PATTERNS}, got {self.pattern!r}")
+
+    @property
+    def sa(self) -> int:
+        return _SIGN[self.pattern[1]]
+
+    @property
+    def sb(self) -> int:
+        return _SIGN[self.pattern[3]]
+
+    @property
+    def ground(self) -> bool:
+        return self.i == 1
+
+    def __str__(self) -> str:
+        return f"S({self.i},{self.j}){self.pattern}"
+
+
+def slot(text: str) -> SpringSlot:
+    """Parse 'S(2,4)(+,-)' (the pattern may be omitted for (+,+))."""
+    body = text.strip().replace(" ", "")
+    if not body.startswith("S("):
+        raise SpringlabError(f"cannot read a spring from {text!r}; write e.g. 'S(2,4)(+,-)'")
+    close = body.index(")")
+    i, j = (int(v) for v in body[2:close].split(","))
+    pattern = body[close + 1 :] or "(+,+)"
+    return SpringSlot(i, j, pattern)
+
+
+def contributions(s: SpringSlot) -> dict[tuple[int, int], int]:
+    """Signs of the off-diagonal entries a spring contributes to M (Eqs. 23a-d)."""
+    out = {(s.i, s.j): -s.sa * s.sb}
+    for t in range(s.i + 1, s.j):
+        out[(s.i, t)] = -s.sa
+        out[(t, s.j)] = s.sb
+        for v in range(t + 1, s.j):
+            out[(t, v)] = 1
+    return out
+
+
+def entry_signs(slots) -> dict[tuple[int, int], set[int]]:
+    """For each entry (u, v) of rows >= 2, the set of signs the springs put there."""
+    out: dict[tuple[int, int], set[int]] = {}
+    for s in slots:
+        for key, sign in contributions(s).items():
+            if key[0] >= 2:
+                out.setdefault(key, set()).add(sign)
+    return out
+
+
+@dataclass(frozen=True)
+class Violation:
+    rule: str
+    message: str
+
+    def __str__(self) -> str:
+        return f"{self.rule}: {self.message}"
+
+
+def _has(slots, i, j, patterns) -> bool:
+    return any(s.i == i and s.j == j and s.pattern in patterns for s in slots)
+
+
+def rule_candidates(u: int, v: int, n: int) -> tuple[str, list[SpringSlot]]:
+    """The rule that governs entry (u, v), u >= 2, and the springs it allows there.
+
+    R3 (2, n); R4 (2, j), 2 < j < n; R5 (i, n), i > 2; R6 (i, j), i > 2, j < n,
+    each as the paper words it.
+    """
+    same = [SpringSlot(u, v, "(+,+)"), SpringSlot(u, v, "(-,-)")]
+    longer = [SpringSlot(u, v + 1, "(+,+)"), SpringSlot(u, v + 1, "(+,-)")] if v < n else []
+    lower = [SpringSlot(t, v, p) for t in range(2, u) for p in ("(-,-)", "(+,-)")]
+    if u == 2 and v == n:
+        return "R3", same
+    if u == 2:
+        return "R4", same + longer
+    if v == n:
+        return "R5", same + lower
+    return "R6", same + longer + lower
+
+
+def rule_violations(n: int, slots) -> list[Violation]:
+    """Every attachment criterion and rule R1-R6 the configuration breaks (empty: admissible).
+
+    :param n: number of links, the ground included
+    :param slots: iterable of :class:`SpringSlot` (or strings for :func:`slot`)
+    """
+    slots = [slot(s) if isinstance(s, str) else s for s in slots]
+    out: list[Violation] = []
+    if n < 2:
+        raise SpringlabError(f"n must be >= 2, got {n}")
+    seen = set()
+    for s in slots:
+        if s.j > n:
+            out.append(Violation("range", f"{s} attaches to link {s.j} but the arm has {n} links"))
+        if s in seen:
+            out.append(Violation("duplicate", f"{s} is listed twice"))
+        seen.add(s)
+        if s.ground:
+            allowed = ("(+,+)", "(-,-)") if s.j == 2 else ("(+,+)",)
+            if s.pattern not in allowed:
+                out.append(Violation(
+                    "Eq. (41)",
+                    f"ground-connected {s} must be (+,+)" + (" or (-,-)" if s.j == 2 else "")
+                    + ", or its first-row components add to gravity instead of cancelling it"))
+        elif s.pattern == "(-,+)":
+            out.append(Violation(
+                "Fig. 10", f"{s}: a (-,+) spring contributes only positive components"))
+    if out:
+        return out
+    if not _has(slots, 1, n, ("(+,+)", "(-,-)") if n == 2 else ("(+,+)",)):
+        out.append(Violation("R1", f"no ground-connected spring S(1,{n}) to the end link"))
+    for j in range(2, n):
+        if not (_has(slots, 1, j, PATTERNS) or _has(slots, 1, j + 1, PATTERNS)):
+            out.append(Violation(
+                "R2", f"neither S(1,{j}) nor S(1,{j + 1}): G_1,{j} cannot be offset"))
+    for (u, v), signs in sorted(entry_signs(slots).items()):
+        if 1 in signs:
+            rule, candidates = rule_candidates(u, v, n)
+            if not any(c in slots for c in candidates):
+                names = ", ".join(str(c) for c in candidates) or "none exists"
+                out.append(Violation(
+                    rule, f"component ({u},{v}) is unbalanced; install one of {names}"))
+    return out
+
+
+def is_admissible(n: int, slots) -> bool:
+    """True when the configuration breaks no criterion and no rule R1-R6."""
+    return not rule_violations(n, slots)
+
+
+def _ground_sets(n: int):
+    """Minimal sets of ground springs under R1 and R2, with S(1,2)'s two patterns."""
+    middle = list(range(2, n))
+    for size in range(len(middle) + 1):
+        for chosen in itertools.combinations(middle, size):
+            have = set(chosen) | {n}
+            if not all(j in have or j + 1 in have for j in middle):
+                continue
+            if any(all(j in have - {c} or j + 1 in have - {c} for j in middle) for c in chosen):
+                continue  # a spring could be dropped: not minimal
+            base = [SpringSlot(1, j) for j in sorted(have) if j != 2]
+            if 2 in have:
+                yield base + [SpringSlot(1, 2, "(+,+)")]
+                yield base + [SpringSlot(1, 2, "(-,-)")]
+            else:
+                yield base
+
+
+def iter_configurations(n: int, *, max_springs: int | None = None):
+    """Yield the admissible configurations with necessary springs only, for n links,
+    in a deterministic order (see :func:`enumerate_configurations`)."""
+    if int(n) != n or n < 2:
+        raise SpringlabError(f"n must be an integer >= 2, got {n}")
+    max_springs = max_springs or n * (n - 1)
+    seen: set[frozenset] = set()
+    stack = [frozenset(g) for g in reversed(list(_ground_sets(n)))]
+    while stack:
+        current = stack.pop()
+        if current in seen or len(current) > max_springs:
+            continue
+        seen.add(current)
+        branch = None
+        for (u, v), signs in sorted(entry_signs(current).items()):
+            if 1 in signs:
+                _, candidates = rule_candidates(u, v, n)
+                if not any(c in current for c in candidates):
+                    branch = candidates
+                    break
+        if branch is not None:
+            stack.extend(current | {c} for c in reversed(branch))
+        elif is_admissible(n, current) and not any(
+            is_admissible(n, current - {s}) for s in current
+        ):
+            yield tuple(sorted(current))
+
+
+def enumerate_configurations(n: int, *, max_springs: int | None = None) -> list[tuple[SpringSlot, ...]]:
+    """All admissible configurations with necessary springs only, for n links.
+
+    Built as the paper builds them: R1 and R2 choose the ground springs, then
+    each unbalanced component is offset by one of the springs its rule (R3-R6)
+    allows, branching on every choice. A configuration is kept when it is
+    admissible and no single spring can be removed from it with the rest still
+    admissible.
+
+    :returns: sorted tuples of :class:`SpringSlot`, in a deterministic order
+    """
+    return sorted(set(iter_configurations(n, max_springs=max_springs)))
+
+
+def configuration_key(slots) -> tuple:
+    """A hashable, order-free key of a configuration."""
+    return tuple(sorted(slot(s) if isinstance(s, str) else s for s in slots))
+
+
+def group_alternatives(configs) -> list[dict[tuple[int, int], frozenset]]:
+    """Merge configurations that differ only in one pair's springs, as Table 1
+    writes '1^(+,+)/(-,-)'. Returns, per group, {(i, j): set of alternatives},
+    each alternative a sorted tuple of patterns on that pair."""
+    groups = []
+    for cfg in configs:
+        per_pair: dict[tuple[int, int], list[str]] = {}
+        for s in cfg:
+            per_pair.setdefault((s.i, s.j), []).append(s.pattern)
+        groups.append({k: frozenset([tuple(sorted(v))]) for k, v in per_pair.items()})
+    merged = True
+    while merged:
+        merged = False
+        for x, y in itertools.combinations(range(len(groups)), 2):
+            gx, gy = groups[x], groups[y]
+            if gx.keys() != gy.keys():
+                continue
+            diff = [k for k in gx if gx[k] != gy[k]]
+            if len(diff) == 1:
+                k = diff[0]
+                new = dict(gx)
+                new[k] = gx[k] | gy[k]
+                groups = [g for idx, g in enumerate(groups) if idx not in (x, y)] + [new]
+                merged = True
+                break
+    return sorted(groups, key=lambda g: sorted((k, sorted(v)) for k, v in g.items()))
+
+
+def format_group(group, n: int) -> str:
+    """One grouped configuration as the paper's matrix: rows i = 1..n-1, columns j = 2..n."""
+    rows = []
+    for i in range(1, n):
+        cells = []
+        for j in range(2, n + 1):
+            if j <= i:
+                cells.append("-")
+            elif (i, j) in group:
+                alts = ["+".join(f"1{p}" for p in alt) for alt in sorted(group[(i, j)])]
+                cells.append("/".join(alts))
+            else:
+                cells.append("0")
+        rows.append(" ".join(f"{c:>16}" for c in cells))
+    return "\n".join(rows)
