@@ -1,0 +1,116 @@
+"""Reproduction claims: every number a notebook reproduces, beside the paper's.
+
+A notebook records each reproduced quantity with :meth:`Claims.compare`, which
+classifies it and asserts the expected status, shows the records as a table,
+and writes them to ``figures/<notebook-stem>/claims.json`` for the report.
+
+Statuses:
+
+* ``reproduced``: |ours - paper| <= tolerance;
+* ``rounding``: not within the tolerance, but within half a unit of the paper's
+  last printed digit: the paper printed a rounded value;
+* ``discrepancy``: further off than the printed rounding explains;
+* ``not reproducible``: the paper gives too little to recompute it.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+STATUSES = ("reproduced", "rounding", "discrepancy", "not reproducible")
+
+
+@dataclass(frozen=True)
+class Claim:
+    quantity: str
+    where: str
+    paper: float | None
+    ours: float | None
+    unit: str
+    tolerance: float
+    status: str
+    note: str = ""
+
+    @property
+    def difference(self) -> float | None:
+        if self.paper is None or self.ours is None:
+            return None
+        return self.ours - self.paper
+
+
+def half_unit(decimals: int) -> float:
+    """Half a unit of the last printed digit, with a hair for binary floats."""
+    return 0.5 * 10.0 ** (-decimals) * (1 + 1e-9)
+
+
+class Claims:
+    """The list of a notebook's claims."""
+
+    def __init__(self, source: str):
+        self.source = source
+        self.records: list[Claim] = []
+
+    def compare(self, quantity: str, where: str, paper: float, ours: float, *, unit: str,
+                tolerance: float, decimals: int | None = None, expect: str = "reproduced",
+                note: str = "") -> Claim:
+        """Record ours against the paper's printed value and assert the status.
+
+        :param tolerance: absolute tolerance for 'reproduced', in ``unit``
+        :param decimals: the paper's printed decimals, for the 'rounding' status
+        :param expect: the status this claim must have; anything else raises AssertionError
+        """
+        diff = abs(float(ours) - float(paper))
+        if diff <= tolerance:
+            status = "reproduced"
+        elif decimals is not None and diff <= half_unit(decimals):
+            status = "rounding"
+        else:
+            status = "discrepancy"
+        claim = Claim(quantity, where, float(paper), float(ours), unit, float(tolerance), status, note)
+        self.records.append(claim)
+        assert status == expect, (
+            f"{quantity} ({where}): paper {paper}, ours {ours:.10g}, |difference| {diff:.3g} {unit}: "
+            f"status {status}, expected {expect} (tolerance {tolerance:g})")
+        return claim
+
+    def not_reproducible(self, quantity: str, where: str, paper: float | None, *, unit: str,
+                         note: str) -> Claim:
+        claim = Claim(quantity, where, paper, None, unit, math.nan, "not reproducible", note)
+        self.records.append(claim)
+        return claim
+
+    def markdown(self) -> str:
+        """The records as a Markdown table (paper, ours, difference, status)."""
+        def fmt(v):
+            return "" if v is None else f"{v:.6g}"
+
+        lines = ["| quantity | where | paper | ours | difference | unit | tolerance | status | note |",
+                 "|---|---|---|---|---|---|---|---|---|"]
+        for c in self.records:
+            lines.append(f"| {c.quantity} | {c.where} | {fmt(c.paper)} | {fmt(c.ours)} | "
+                         f"{fmt(c.difference)} | {c.unit} | {c.tolerance:g} | **{c.status}** | {c.note} |")
+        return "\n".join(lines)
+
+    def _repr_markdown_(self) -> str:
+        return self.markdown()
+
+    def to_records(self) -> list[dict]:
+        out = []
+        for c in self.records:
+            rec = asdict(c)
+            rec["difference"] = c.difference
+            rec["source"] = self.source
+            if isinstance(rec["tolerance"], float) and math.isnan(rec["tolerance"]):
+                rec["tolerance"] = None
+            out.append(rec)
+        return out
+
+    def write(self, directory) -> Path:
+        """Write ``directory/claims.json`` (deterministic: fixed key order and formatting)."""
+        path = Path(directory) / "claims.json"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(self.to_records(), indent=1, sort_keys=True) + "\n")
+        return path

@@ -1,0 +1,130 @@
+"""Data of Juang, Jhuang, Chen (2023), *A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links*, Mechanism and Machine
+Theory 191, 105497, doi:10.1016/j.mechmachtheory.2023.105497.
+
+SI units: m, kg, N/m, rad (the tables print degrees; converted here).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab.chain import serial_chain
+from springlab.configurations import SpringSlot
+from springlab.springs import Spring
+
+G = 9.8
+"""m/s^2. The paper does not print g; Table 3's k_S(1,2) = 294.00 N/m follows
+from Eq. (48c) with g = 9.8 exactly (with 9.81 it would be 294.30)."""
+
+# Table 2: dimension and mass of the example arm (links 2..4; link 1 is the ground).
+R = (0.30, 0.24, 0.20)  # r_2, r_3, r_4 (m)
+D = (0.15, 0.12, 0.10)  # d_2, d_3, d_4 (m)
+M = (4.0, 3.2, 2.8)  # m_2, m_3, m_4 (kg)
+
+
+def example_arm():
+    """The four-link spatial arm of Table 2 (spherical joints)."""
+    return serial_chain(R, D, M, g=G)
+
+
+# Eq. (46): the configuration of the example.
+EXAMPLE_CONFIGURATION = (
+    SpringSlot(1, 2, "(+,+)"),
+    SpringSlot(1, 4, "(+,+)"),
+    SpringSlot(2, 4, "(+,+)"),
+    SpringSlot(3, 4, "(-,-)"),
+)
+
+# The free choices the paper made: the values of Table 3 that Eqs. (48a-f) do
+# not determine (six equations, twelve parameters).
+FREE_CHOICES = {
+    (1, 4): {"a": 0.060},
+    (1, 2): {"a": 0.150, "b": 0.240},
+    (2, 4): {"a": 0.100},
+    (3, 4): {"a": -0.200, "b": -0.100},
+}
+
+
+@dataclass(frozen=True)
+class PrintedSpring:
+    """One row of Table 3 as printed: a (m), b (m), k (N/m), and the printed decimals."""
+
+    i: int
+    j: int
+    a: float
+    b: float
+    k: float
+    decimals_ab: int = 3
+    decimals_k: int = 2
+
+    def spring(self) -> Spring:
+        return Spring(self.i, self.j, self.a, self.b, self.k)
+
+
+# Table 3: spring parameters to achieve gravity balance, as printed.
+TABLE_3 = (
+    PrintedSpring(1, 4, a=0.060, b=0.064, k=718.67),
+    PrintedSpring(1, 2, a=0.150, b=0.240, k=294.00),
+    PrintedSpring(2, 4, a=0.100, b=0.064, k=2156.00),
+    PrintedSpring(3, 4, a=-0.200, b=-0.100, k=2195.20),
+)
+
+
+def table3_springs() -> tuple[Spring, ...]:
+    """Table 3's springs with the printed (rounded) values."""
+    return tuple(p.spring() for p in TABLE_3)
+
+
+def _deg(rows):
+    return np.radians(np.asarray(rows, dtype=float))
+
+
+# Table 4: initial posture and rotation of the links, (theta, phi, psi) for i = 2, 3, 4.
+TABLE_4_INITIAL = _deg([[0, -50, -20], [0, 20, -20], [90, -2, -50]])
+TABLE_4_ROTATION = _deg([[21, 60, 36], [0, 96, 30], [-75, -30, 30]])
+
+# Table 5: the planar trajectory (rotation about y only).
+TABLE_5_INITIAL = _deg([[0, -40, 0], [0, -30, 0], [0, -30, 0]])
+TABLE_5_ROTATION = _deg([[0, 120, 0], [0, 15, 0], [0, 15, 0]])
+
+DURATION = 30.0
+"""s: 'the manipulator's end effector can be seen to move from the starting point
+to the end point in 30 seconds' (Section 4)."""
+
+# Table 1: acceptable configurations with necessary springs, n = 3 and n = 4.
+# Each row maps a link pair to its alternatives; an alternative is a tuple of
+# patterns installed together on that pair ('1^(+,-), 1^(+,+)' is two springs).
+_PM = (("(+,+)",), ("(-,-)",))
+_PP = (("(+,+)",),)
+TABLE_1 = {
+    3: [
+        {(1, 3): _PP, (2, 3): _PM},
+    ],
+    4: [
+        {(1, 2): _PM, (1, 4): _PP, (2, 3): _PM, (2, 4): (("(-,-)",),)},
+        {(1, 3): _PP, (1, 4): _PP, (2, 3): _PM, (2, 4): (("(-,-)",),)},
+        {(1, 2): _PM, (1, 4): _PP, (2, 4): _PP, (3, 4): _PM},
+        {(1, 3): _PP, (1, 4): _PP, (2, 4): _PP, (3, 4): _PM},
+        {(1, 2): _PM, (1, 4): _PP, (2, 4): (("(+,+)", "(+,-)"),)},
+        {(1, 3): _PP, (1, 4): _PP, (2, 4): (("(+,+)", "(+,-)"),)},
+    ],
+}
+"""The extracted text of Table 1 garbles some cells of rows 2-3 (a spring printed in
+column 2 of row 2); they are read here as the paper's own text describes the
+configurations (Section 3.3 and Eq. 46)."""
+
+
+def table1_configurations(n: int) -> list[tuple[SpringSlot, ...]]:
+    """Table 1's rows for n links expanded into concrete configurations."""
+    import itertools
+
+    out = set()
+    for row in TABLE_1[n]:
+        pairs = sorted(row)
+        for choice in itertools.product(*(row[p] for p in pairs)):
+            slots = [SpringSlot(i, j, pat) for (i, j), alt in zip(pairs, choice) for pat in alt]
+            out.add(tuple(sorted(slots)))
+    return sorted(out)
