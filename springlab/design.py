@@ -323,3 +323,50 @@ def feasibility(chain: Chain, slots, *, seed=0, restarts: int = 30) -> Feasibili
     except UnbalanceableError:
         return Feasibility("unknown", margin)
     return Feasibility("feasible", margin, springs)
+
+
+def candidate_slots(n: int) -> list[SpringSlot]:
+    """Every spring slot the attachment criteria allow on an n-link arm: ground
+    springs (+,+) (and S(1,2) (-,-)), non-ground springs (+,+), (-,-), (+,-)."""
+    out = [SpringSlot(1, 2, "(+,+)"), SpringSlot(1, 2, "(-,-)")]
+    out += [SpringSlot(1, j) for j in range(3, n + 1)]
+    out += [SpringSlot(i, j, p) for i in range(2, n) for j in range(i + 1, n + 1)
+            for p in ("(+,+)", "(-,-)", "(+,-)")]
+    return out
+
+
+def compare_rules_with_feasibility(chain: Chain, configurations, *, restarts: int = 4,
+                                   progress: bool = False) -> list[tuple[tuple, bool, str]]:
+    """For each configuration: (configuration, admissible by R1-R6, plain-criterion status).
+
+    :param progress: show a progress bar (tqdm) on long sweeps
+    """
+    from tqdm import tqdm
+
+    from springlab.configurations import is_admissible
+
+    configurations = list(configurations)
+    out = []
+    for cfg in tqdm(configurations, disable=not progress, mininterval=2.0, desc="configurations"):
+        out.append((tuple(cfg), is_admissible(chain.n, cfg),
+                    feasibility(chain, cfg, restarts=restarts).status))
+    return out
+
+
+def design_for(chain: Chain, *, seed=0, restarts: int = 30):
+    """Springs that balance ``chain``: the first configuration from the enumerator
+    (rules R1-R6) that the plain criterion confirms, with a design found for it.
+
+    :returns: (configuration, springs)
+    :raises UnbalanceableError: when no enumerated configuration yields a design
+    """
+    from springlab.configurations import iter_configurations
+
+    for cfg in iter_configurations(chain.n):
+        if relaxation_margin(chain, cfg) <= 1e-9:
+            continue
+        try:
+            return cfg, find_design(chain, cfg, seed=seed, restarts=restarts)
+        except UnbalanceableError:
+            continue
+    raise UnbalanceableError(f"no configuration of the enumerator balances this {chain.n}-link arm")

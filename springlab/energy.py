@@ -96,3 +96,10 @@ def spring_energy(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) -> np
 def total_energy(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) -> np.ndarray:
     """Gravity plus elastic energy (J) at each pose, ndarray(N,)."""
     return _evaluate(chain, springs, X, chunk, gravity=True, elastic=True)
+
+
+def energy_breakdown(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) -> dict[str, np.ndarray]:
+    """Gravity, spring and total energy (J) at each pose: {'gravity', 'springs', 'total'}."""
+    gravity = gravity_energy(chain, X, chunk=chunk)
+    elastic = spring_energy(chain, springs, X, chunk=chunk)
+    return {"gravity": gravity, "springs": elastic, "total": gravity + elastic}

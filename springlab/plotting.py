@@ -34,18 +34,72 @@ def save_figure(fig, name: str, directory) -> list[Path]:
 def energy_figure(t, gravity, springs, total, *, title: str, reference=None, reference_label=None):
     """Gravity, spring and total energy over time, the look of 000 Figs. 16-17.
 
+    With a ``reference`` total (e.g. with the paper's rounded springs) a lower
+    panel shows both totals' deviation from their initial value in mJ, which
+    the upper panel's scale cannot show.
+
     :param t: time (s); the energies in J
-    :param reference: optional second total-energy curve (e.g. with printed springs)
     """
-    fig, ax = plt.subplots()
+    import numpy as np
+
+    if reference is None:
+        fig, ax = plt.subplots()
+        axes = [ax]
+    else:
+        fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.4, 4.8),
+                                 gridspec_kw={"height_ratios": [2.2, 1]})
+        ax = axes[0]
     ax.plot(t, gravity, label="gravitational energy $U_g$")
     ax.plot(t, springs, label=r"spring elastic energy $\sum U_S$")
     ax.plot(t, total, color="k", label="total energy")
-    if reference is not None:
-        ax.plot(t, reference, color="k", linestyle="--", linewidth=1.0, label=reference_label)
-    ax.set_xlabel("time t (s)")
     ax.set_ylabel("energy (J)")
     ax.set_title(title)
-    ax.set_xlim(t[0], t[-1])
-    ax.legend(loc="best")
+    ax.legend(loc="center right")
+    if reference is not None:
+        low = axes[1]
+        low.plot(t, 1e3 * (np.asarray(total) - total[0]), color="k", label="total, exact springs")
+        low.plot(t, 1e3 * (np.asarray(reference) - reference[0]), color="k", linestyle="--",
+                 linewidth=1.0, label=reference_label)
+        low.set_ylabel("total - initial (mJ)")
+        low.legend(loc="best")
+    axes[-1].set_xlabel("time t (s)")
+    axes[-1].set_xlim(t[0], t[-1])
+    return fig
+
+
+def arm_figure(chain, springs, X_frames, tip_path=None, *, title: str = ""):
+    """The arm drawn in 3-D at a few poses, with its springs and the tip's path.
+
+    Drawn with x_1 (up) as the vertical axis, like 000 Fig. 15.
+    :param X_frames: poses (F, n, 3) to draw
+    :param tip_path: optional (T, 3) tip positions (m)
+    """
+    import numpy as np
+
+    from springlab.energy import attachment_points
+
+    def view(p):  # world (x up, y, z) -> plot (y, z, x up)
+        p = np.asarray(p)
+        return p[..., 1], p[..., 2], p[..., 0]
+
+    fig = plt.figure(figsize=(5.2, 4.6))
+    ax = fig.add_subplot(projection="3d")
+    joints = chain.joint_positions(X_frames)
+    shades = np.linspace(0.75, 0.0, len(joints))
+    for f, (pose, shade) in enumerate(zip(joints, shades)):
+        colour = (shade, shade, shade)
+        ax.plot(*view(pose), "-o", color=colour, markersize=3, linewidth=2.2,
+                label="links" if f == len(joints) - 1 else None)
+        for s in springs:
+            A, B = attachment_points(chain, s, X_frames[f : f + 1])
+            ax.plot(*view(np.vstack([A, B])), color="tab:red", linewidth=0.8, alpha=0.4 + 0.6 * (1 - shade),
+                    label="springs" if (f == len(joints) - 1 and s is springs[0]) else None)
+    if tip_path is not None:
+        ax.plot(*view(tip_path), color="tab:blue", linewidth=1.0, label="end-point path")
+    ax.set_xlabel("y (m)")
+    ax.set_ylabel("z (m)")
+    ax.set_zlabel("x$_1$, up (m)")
+    ax.set_title(title)
+    ax.legend(loc="upper left")
+    ax.set_box_aspect((1, 1, 1))
     return fig
