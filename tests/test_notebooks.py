@@ -1,0 +1,42 @@
+"""The notebooks are tests: each runs with quick=True, and each has a parameters cell."""
+
+import json
+from pathlib import Path
+
+import papermill as pm
+import pytest
+
+from springlab.claims import STATUSES
+from springlab.notebooks import notebook_paths, run_notebook
+
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOKS = notebook_paths(ROOT / "notebooks")
+
+
+def test_there_are_notebooks():
+    assert NOTEBOOKS
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_notebook_has_a_tagged_parameters_cell_with_quick(path):
+    params = pm.inspect_notebook(str(path))
+    assert "quick" in params, f"{path.name}: no tagged 'parameters' cell defining quick"
+    assert "figures_dir" in params
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_notebook_is_committed_without_outputs(path):
+    nb = json.loads(path.read_text())
+    for cell in nb["cells"]:
+        if cell["cell_type"] == "code":
+            assert not cell.get("outputs") and cell.get("execution_count") is None
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_notebook_runs_quick(path, tmp_path):
+    figures = tmp_path / "figures"
+    run_notebook(path, tmp_path / path.name, {"quick": True, "figures_dir": str(figures)})
+    claims = json.loads((figures / "claims.json").read_text())
+    assert claims and all(c["status"] in STATUSES for c in claims)
+    assert all(c["status"] != "discrepancy" or c["note"] for c in claims), "a discrepancy needs a note"
+    assert list(figures.glob("*.png")) and list(figures.glob("*.svg"))

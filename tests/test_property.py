@@ -1,0 +1,55 @@
+"""Property test: random arms, n = 2..6, springs from the enumerator and the solver.
+
+At 1,000 random spatial poses the total energy must vary by less than 1e-10 of
+the gravity energy's range, by route 1 and by route 2.
+"""
+
+import itertools
+
+import numpy as np
+from hypothesis import HealthCheck, given, settings, strategies as st
+
+from springlab import energy, quadratic, random_directions, serial_chain
+from springlab.configurations import iter_configurations
+from springlab.design import find_design, relaxation_margin
+from springlab.errors import UnbalanceableError
+
+
+@st.composite
+def arms(draw):
+    n = draw(st.integers(2, 6))
+    r = [draw(st.floats(0.05, 1.0)) for _ in range(n - 1)]
+    d = [ri * draw(st.floats(0.05, 1.0)) for ri in r]
+    m = [draw(st.floats(0.1, 20.0)) for _ in range(n - 1)]
+    g = draw(st.sampled_from([9.8, 9.81, 1.62]))
+    skip = draw(st.integers(0, 5))
+    return serial_chain(r, d, m, g=g), skip
+
+
+def balanced_springs(chain, skip):
+    """The (skip+1)-th configuration of the enumerator that the solver can balance."""
+    found = 0
+    for cfg in itertools.islice(iter_configurations(chain.n), 60):
+        if relaxation_margin(chain, cfg) <= 1e-9:
+            continue
+        try:
+            springs = find_design(chain, cfg, seed=found)
+        except UnbalanceableError:
+            continue
+        if found == skip:
+            return springs
+        found += 1
+    return springs
+
+
+@settings(max_examples=25, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.too_slow])
+@given(arms())
+def test_enumerated_and_solved_springs_balance_random_arms(arm_and_skip):
+    chain, skip = arm_and_skip
+    springs = balanced_springs(chain, skip)
+    X = random_directions(chain.n, 1000, np.random.default_rng(skip))
+    gravity_range = np.ptp(energy.gravity_energy(chain, X))
+    for route in (quadratic.quadratic_energy, energy.total_energy):
+        total = route(chain, springs, X)
+        assert np.ptp(total) < 1e-10 * gravity_range, (route.__name__, np.ptp(total) / gravity_range)
