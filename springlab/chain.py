@@ -120,6 +120,44 @@ class Chain:
             raise SpringlabError("X[:, 0] is the ground link x_1 and must equal UP = [1, 0, 0]")
         return X
 
+    def component_major_chunks(self, X, chunk: int = 8192):
+        """Iterate over a batch of poses in chunks, each validated and copied into
+        component-major layout: yields ``(start, stop, xt)`` with ``xt`` of shape
+        (n, 3, stop - start) (link, coordinate, pose), so that the energy kernels
+        multiply contiguous rows. ``xt`` is a reused buffer: consume it before
+        the next step. Memory stays bounded by the chunk, whatever N is.
+
+        Raises :class:`SpringlabError` on a wrong shape, NaN, a non-unit vector or
+        a ground link that does not point up.
+        """
+        X = np.asarray(X, dtype=float)
+        if X.ndim == 2:
+            X = X[None]
+        if X.ndim != 3 or X.shape[1:] != (self.n, 3):
+            raise SpringlabError(
+                f"poses X must have shape (N, {self.n}, 3) for a {self.n}-link chain, got {X.shape}")
+        if int(chunk) != chunk or chunk < 1:
+            raise SpringlabError(f"chunk must be a positive integer, got {chunk}")
+        buf = np.empty((self.n, 3, min(int(chunk), max(X.shape[0], 1))))
+        sq = np.empty((self.n, buf.shape[2]))
+        for start in range(0, X.shape[0], buf.shape[2]):
+            stop = min(start + buf.shape[2], X.shape[0])
+            xt = buf[:, :, : stop - start]
+            np.copyto(xt.reshape(3 * self.n, -1), X[start:stop].reshape(stop - start, -1).T)
+            s = sq[:, : stop - start]
+            np.einsum("lcp,lcp->lp", xt, xt, out=s)
+            s -= 1.0
+            worst = float(np.max(np.abs(s)))
+            if not worst <= 2e-9:  # also catches NaN
+                if not np.all(np.isfinite(xt)):
+                    raise SpringlabError("poses X contain NaN or infinity")
+                raise SpringlabError(f"link directions must be unit vectors; |x|^2 - 1 reaches {worst:.3g}")
+            ground = xt[0]
+            if not (np.all(ground[0] == 1.0) and not np.any(ground[1:])):
+                if np.max(np.abs(ground - UP[:, None])) > 1e-12:
+                    raise SpringlabError("X[:, 0] is the ground link x_1 and must equal UP = [1, 0, 0]")
+            yield start, stop, xt
+
     def joint_positions(self, X) -> np.ndarray:
         """Positions of joints 1..n (m): joint 1 is the base at the origin, joint j
         the distal joint of link j (joint n is the tip). ndarray(N, n, 3)."""

@@ -20,11 +20,6 @@ from springlab.springs import Spring, check_springs
 DEFAULT_CHUNK = 8192
 
 
-def _chunks(n_pose: int, chunk: int):
-    for start in range(0, n_pose, chunk):
-        yield start, min(start + chunk, n_pose)
-
-
 def _joints(chain: Chain, X: np.ndarray) -> np.ndarray:
     """Joint positions 1..n for a chunk (no validation): J_1 = 0, J_j = J_{j-1} + r_j x_j."""
     joints = np.zeros(X.shape)
@@ -46,37 +41,53 @@ def attachment_points(chain: Chain, spring: Spring, X) -> tuple[np.ndarray, np.n
     return A, B
 
 
-def _gravity_chunk(chain: Chain, X: np.ndarray, joints: np.ndarray) -> np.ndarray:
-    com = joints[:, :-1] + np.asarray(chain.d)[None, :, None] * X[:, 1:]
-    heights = com @ UP
-    return chain.g * (heights @ np.asarray(chain.m))
+def _energy_chunk(chain: Chain, springs, xt: np.ndarray, out: np.ndarray,
+                  gravity: bool, elastic: bool) -> None:
+    """Energies of one component-major chunk ``xt`` (n, 3, m) into ``out`` (m,).
 
-
-def _springs_chunk(springs, X: np.ndarray, joints: np.ndarray) -> np.ndarray:
-    out = np.zeros(X.shape[0])
-    for s in springs:
-        A = joints[:, s.i - 1] + s.a * X[:, s.i - 1]
-        B = joints[:, s.j - 2] + s.b * X[:, s.j - 1]
-        diff = B - A
-        length_sq = np.einsum("nc,nc->n", diff, diff)
-        if s.free_length:
-            out += 0.5 * s.k * (np.sqrt(length_sq) - s.free_length) ** 2
-        else:
-            out += 0.5 * s.k * length_sq
-    return out
+    Joints: J_1 = 0, J_j = J_{j-1} + r_j x_j. COM of link j: J_{j-1} + d_j x_j,
+    its height the first coordinate (x_1 = UP). Spring ends: A = J_i + a x_i,
+    B = J_{j-1} + b x_j.
+    """
+    n, _, m = xt.shape
+    joints = np.empty((n, 3, m))  # joints[j - 1] = J_j
+    joints[0] = 0.0
+    for j in range(2, n + 1):
+        np.multiply(xt[j - 1], chain.r[j - 2], out=joints[j - 1])
+        joints[j - 1] += joints[j - 2]
+    out.fill(0.0)
+    tmp = np.empty(m)
+    if gravity:
+        for j in range(2, n + 1):  # m_j g h_j, h_j = (J_{j-1} + d_j x_j) . UP
+            np.multiply(xt[j - 1, 0], chain.d[j - 2], out=tmp)
+            tmp += joints[j - 2, 0]
+            tmp *= chain.m[j - 2] * chain.g
+            out += tmp
+    if elastic:
+        diff = np.empty((3, m))
+        part = np.empty((3, m))
+        for s in springs:
+            np.subtract(joints[s.j - 2], joints[s.i - 1], out=diff)  # J_{j-1} - J_i
+            np.multiply(xt[s.j - 1], s.b, out=part)
+            diff += part
+            np.multiply(xt[s.i - 1], s.a, out=part)
+            diff -= part  # B - A
+            np.multiply(diff, diff, out=diff)
+            np.sum(diff, axis=0, out=tmp)  # l^2
+            if s.free_length:
+                np.sqrt(tmp, out=tmp)
+                tmp -= s.free_length
+                tmp *= tmp
+            tmp *= 0.5 * s.k
+            out += tmp
 
 
 def _evaluate(chain, springs, X, chunk, gravity: bool, elastic: bool) -> np.ndarray:
-    X = chain.check_directions(X)
     springs = check_springs(chain, springs)
-    out = np.zeros(X.shape[0])
-    for start, stop in _chunks(X.shape[0], chunk):
-        x = X[start:stop]
-        joints = _joints(chain, x)
-        if gravity:
-            out[start:stop] += _gravity_chunk(chain, x, joints)
-        if elastic:
-            out[start:stop] += _springs_chunk(springs, x, joints)
+    X = np.asarray(X, dtype=float)
+    out = np.empty(X.shape[0] if X.ndim == 3 else 1)
+    for start, stop, xt in chain.component_major_chunks(X, chunk):
+        _energy_chunk(chain, springs, xt, out[start:stop], gravity, elastic)
     return out
 
 

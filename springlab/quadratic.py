@@ -158,14 +158,10 @@ def quadratic_energy(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) ->
     U = X^T (G + sum K_S) X at each pose of ``X`` (N, n, 3). Exact for any
     springs on the joint lines, balanced or not.
     """
-    X = chain.check_directions(X)
     M = energy_matrix(chain, springs)
-    out = np.empty(X.shape[0])
-    buf = np.empty((chain.n, 3, chunk))
-    for start in range(0, X.shape[0], chunk):
-        stop = min(start + chunk, X.shape[0])
-        xt = buf[:, :, : stop - start]
-        xt[...] = X[start:stop].transpose(1, 2, 0)
+    X = np.asarray(X, dtype=float)
+    out = np.empty(X.shape[0] if X.ndim == 3 else 1)
+    for start, stop, xt in chain.component_major_chunks(X, chunk):
         quadratic_energy_component_major(M, xt, out=out[start:stop], chunk=chunk)
     return out
 
