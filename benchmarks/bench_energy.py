@@ -26,7 +26,6 @@ import numpy as np  # noqa: E402
 from springlab import energy, quadratic  # noqa: E402
 from springlab.design import SpringSpec, solve_design  # noqa: E402
 from springlab.papers import juang2023 as paper  # noqa: E402
-from springlab.rotations import chain_directions  # noqa: E402
 
 
 def best_of(fn, repeat: int) -> float:
@@ -72,7 +71,7 @@ def pinocchio_model(arm):
     model = pin.Model()
     model.gravity.linear = np.array([-arm.g, 0.0, 0.0])  # gravity along -x_1
     parent, placement = 0, pin.SE3.Identity()
-    for idx, (r, d, m) in enumerate(zip(arm.r, arm.d, arm.m)):
+    for idx, (r, d, m) in enumerate(zip(arm.r, arm.d, arm.m, strict=True)):
         jid = model.addJoint(parent, pin.JointModelSpherical(), placement, f"joint{idx + 1}")
         model.appendBodyToJoint(jid, pin.Inertia(m, np.array([d, 0.0, 0.0]), np.diag([1e-3, 1e-2, 1e-2])),
                                 pin.SE3.Identity())

@@ -11,9 +11,9 @@ The library is built around one quantity, the total potential energy of an arm
 Units are SI throughout: metres, kilograms, newtons, joules, radians.
 """
 
-from springlab.chain import Chain, serial_chain, random_directions, UP
-from springlab.springs import Spring
+from springlab.chain import UP, Chain, random_directions, serial_chain
 from springlab.errors import SpringlabError, UnbalanceableError
+from springlab.springs import Spring
 
 __all__ = [
     "Chain",

@@ -204,7 +204,7 @@ def serial_chain(r, d, m, g: float = STANDARD_GRAVITY, *, com_off_link: bool = F
         raise SpringlabError(
             f"r, d and m must have one entry per moving link; got {len(r_t)}, {len(d_arr)}, {len(m_t)}"
         )
-    for idx, (dj, rj) in enumerate(zip(d_arr, r_t)):
+    for idx, (dj, rj) in enumerate(zip(d_arr, r_t, strict=True)):
         link = idx + 2
         if not np.isfinite(dj):
             raise SpringlabError(f"d_{link} must be finite, got {dj}")

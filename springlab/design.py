@@ -21,9 +21,10 @@ import sympy as sp
 from scipy.optimize import least_squares, linprog
 
 from springlab.chain import Chain
-from springlab.configurations import SpringSlot, slot as parse_slot
+from springlab.configurations import SpringSlot
+from springlab.configurations import slot as parse_slot
 from springlab.errors import SpringlabError, UnbalanceableError
-from springlab.quadratic import gravity_entries, spring_entries, balance_residual
+from springlab.quadratic import balance_residual, gravity_entries, spring_entries
 from springlab.springs import Spring, sign_char
 
 
@@ -152,7 +153,7 @@ def solve_design(chain: Chain, specs, *, max_extension: float | None = None) -> 
                 "Eqs. (39a-b) leave " + ", ".join(str(u) for u in missing) +
                 " undetermined: fix that many more of a, b, k")
         exact, springs, ok = {}, [], True
-        for s, (tag, values) in zip(specs, params):
+        for s, (tag, values) in zip(specs, params, strict=True):
             val = {name: sp.nsimplify(v.subs(sol)) for name, v in values.items()}
             for name in ("a", "b", "k"):
                 if not val[name].is_real:
@@ -196,14 +197,17 @@ def _residual_entries(chain: Chain, slots) -> list[tuple[int, int]]:
     return sorted(keys)
 
 
-def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30,
-                tol: float = 1e-13) -> tuple[Spring, ...]:
+def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float = 1e-13,
+                within_links: bool = True, max_extension: float | None = None) -> tuple[Spring, ...]:
     """A balanced design of the configuration ``slots``, found numerically.
 
     Least squares over (log k, log|a|, log|b|) of every spring, with the signs
     of the slots' patterns, from random starts. Succeeds when every entry of
     Eqs. (39) is below ``tol`` times the largest G_1,j.
 
+    :param within_links: keep every end on its link (see :func:`check_attachments`)
+        and every bracket (an end beyond a joint) no longer than ``max_extension``
+        (m; default the longest link). ``False`` asks for the signs only.
     :raises UnbalanceableError: when no start converges
     """
     slots = _slots(slots)
@@ -219,13 +223,21 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30,
     scale_k = scale_u / length**2
     signs = np.array([(s.sa, s.sb) for s in slots], dtype=float)
     keys = _residual_entries(chain, slots)
+    upper = np.full(3 * len(slots), 20.0)
+    if within_links:
+        reach = max_extension if max_extension is not None else max(chain.r)
+        for idx, s in enumerate(slots):
+            on_link_a = s.i >= 2 and s.sa < 0  # a < 0 lies on link i
+            upper[3 * idx + 1] = np.log((chain.length(s.i) if on_link_a else reach) / length)
+            upper[3 * idx + 2] = np.log((chain.length(s.j) if s.sb > 0 else reach) / length)
+    lower = np.full_like(upper, -20.0)
 
     def springs_of(z):
         z = z.reshape(-1, 3)
         k = scale_k * np.exp(z[:, 0])
         a = signs[:, 0] * length * np.exp(z[:, 1])
         b = signs[:, 1] * length * np.exp(z[:, 2])
-        return [Spring(s.i, s.j, float(ai), float(bi), float(ki)) for s, ai, bi, ki in zip(slots, a, b, k)]
+        return [Spring(s.i, s.j, float(ai), float(bi), float(ki)) for s, ai, bi, ki in zip(slots, a, b, k, strict=True)]
 
     def residual(z):
         R = balance_residual(chain, springs_of(z))
@@ -233,17 +245,20 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30,
 
     best = None
     for _ in range(restarts):
-        z0 = rng.uniform(-1.5, 0.5, size=3 * len(slots))
+        z0 = np.minimum(rng.uniform(-1.5, 0.5, size=3 * len(slots)), upper - 0.05)
         try:
             sol = least_squares(residual, z0, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                                bounds=(-20, 20), max_nfev=2000)
+                                bounds=(lower, upper), max_nfev=2000)
         except (ValueError, FloatingPointError):
             continue
         worst = float(np.max(np.abs(sol.fun)))
         if best is None or worst < best[0]:
             best = (worst, sol.x)
         if worst < tol:
-            return tuple(springs_of(sol.x))
+            springs = tuple(springs_of(sol.x))
+            if within_links:
+                check_attachments(chain, springs, max_extension=reach * (1 + 1e-9))
+            return springs
     raise UnbalanceableError(
         f"no balanced design found for {' '.join(map(str, slots))} after {restarts} starts "
         f"(best relative residual {best[0] if best else float('nan'):.3g})")
@@ -319,7 +334,7 @@ def feasibility(chain: Chain, slots, *, seed=0, restarts: int = 30) -> Feasibili
     if margin <= 1e-9:
         return Feasibility("infeasible", margin)
     try:
-        springs = find_design(chain, slots, seed=seed, restarts=restarts)
+        springs = find_design(chain, slots, seed=seed, restarts=restarts, within_links=False)
     except UnbalanceableError:
         return Feasibility("unknown", margin)
     return Feasibility("feasible", margin, springs)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from springlab.chain import UP, Chain
+from springlab.chain import Chain
 from springlab.springs import Spring, check_springs
 
 DEFAULT_CHUNK = 8192

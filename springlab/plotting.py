@@ -86,7 +86,7 @@ def arm_figure(chain, springs, X_frames, tip_path=None, *, title: str = ""):
     ax = fig.add_subplot(projection="3d")
     joints = chain.joint_positions(X_frames)
     shades = np.linspace(0.75, 0.0, len(joints))
-    for f, (pose, shade) in enumerate(zip(joints, shades)):
+    for f, (pose, shade) in enumerate(zip(joints, shades, strict=True)):
         colour = (shade, shade, shade)
         ax.plot(*view(pose), "-o", color=colour, markersize=3, linewidth=2.2,
                 label="links" if f == len(joints) - 1 else None)

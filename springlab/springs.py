@@ -97,7 +97,7 @@ class Spring:
         """The sign pattern '(sign a, sign b)' of 000 Section 3.2."""
         return f"({sign_char(self.a)},{sign_char(self.b)})"
 
-    def scaled(self, factor: float) -> "Spring":
+    def scaled(self, factor: float) -> Spring:
         """The same spring with its stiffness multiplied by ``factor``."""
         return Spring(self.i, self.j, self.a, self.b, self.k * factor, self.free_length)
 

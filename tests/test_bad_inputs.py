@@ -3,8 +3,15 @@
 import numpy as np
 import pytest
 
-from springlab import Spring, SpringlabError, UnbalanceableError, random_directions, serial_chain
-from springlab import energy, quadratic
+from springlab import (
+    Spring,
+    SpringlabError,
+    UnbalanceableError,
+    energy,
+    quadratic,
+    random_directions,
+    serial_chain,
+)
 from springlab.configurations import SpringSlot, rule_violations
 from springlab.design import SpringSpec, solve_design
 from springlab.trajectories import linear_sweep

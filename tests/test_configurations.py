@@ -4,9 +4,8 @@ import itertools
 
 import pytest
 
-from springlab import serial_chain
 from springlab import configurations as cfgs
-from springlab import design
+from springlab import design, serial_chain
 from springlab.papers import juang2023 as paper
 
 

@@ -1,8 +1,7 @@
 import numpy as np
 import sympy as sp
 
-from springlab import serial_chain, random_directions, energy
-from springlab import design, quadratic
+from springlab import design, energy, quadratic, random_directions, serial_chain
 from springlab.papers import juang2023 as paper
 
 

@@ -7,7 +7,8 @@ the gravity energy's range, by route 1 and by route 2.
 import itertools
 
 import numpy as np
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from springlab import energy, quadratic, random_directions, serial_chain
 from springlab.configurations import iter_configurations

@@ -3,8 +3,7 @@
 import numpy as np
 import pytest
 
-from springlab import Spring, random_directions, serial_chain
-from springlab import energy, quadratic
+from springlab import Spring, energy, quadratic, random_directions, serial_chain
 from springlab.papers import juang2023 as paper
 
 

@@ -125,6 +125,6 @@ def table1_configurations(n: int) -> list[tuple[SpringSlot, ...]]:
     for row in TABLE_1[n]:
         pairs = sorted(row)
         for choice in itertools.product(*(row[p] for p in pairs)):
-            slots = [SpringSlot(i, j, pat) for (i, j), alt in zip(pairs, choice) for pat in alt]
+            slots = [SpringSlot(i, j, pat) for (i, j), alt in zip(pairs, choice, strict=True) for pat in alt]
             out.add(tuple(sorted(slots)))
     return sorted(out)
