@@ -368,6 +368,15 @@ def compare_rules_with_feasibility(chain: Chain, configurations, *, restarts: in
     return out
 
 
+def tally_comparison(results) -> dict[str, int]:
+    """Count the outcomes of :func:`compare_rules_with_feasibility` in five classes."""
+    classes = {"admitted, solvable": (True, "feasible"), "rejected, no solution": (False, "infeasible"),
+               "admitted, no solution": (True, "infeasible"), "rejected, solvable": (False, "feasible")}
+    out = {name: sum(1 for _, ok, st in results if (ok, st) == key) for name, key in classes.items()}
+    out["undecided"] = sum(1 for _, _, st in results if st == "unknown")
+    return out
+
+
 def design_for(chain: Chain, *, seed=0, restarts: int = 30):
     """Springs that balance ``chain``: the first configuration from the enumerator
     (rules R1-R6) that the plain criterion confirms, with a design found for it.
