@@ -26,6 +26,7 @@ import numpy as np  # noqa: E402
 from springlab import energy, quadratic  # noqa: E402
 from springlab.design import SpringSpec, solve_design  # noqa: E402
 from springlab.papers import juang2023 as paper  # noqa: E402
+from springlab.rotations import directions_from_relative  # noqa: E402
 
 
 def best_of(fn, repeat: int) -> float:
@@ -54,15 +55,7 @@ def quaternion_matrices(q):
 
 def directions_from_quaternions(q):
     """Link directions x_1..x_n (N, n, 3) of a chain whose joint j rotates by q[:, j]."""
-    R = quaternion_matrices(q)
-    n_pose, n_moving = q.shape[:2]
-    X = np.empty((n_pose, n_moving + 1, 3))
-    X[:, 0] = (1.0, 0.0, 0.0)
-    frame = np.broadcast_to(np.eye(3), (n_pose, 3, 3))
-    for j in range(n_moving):
-        frame = frame @ R[:, j]
-        X[:, j + 1] = frame[:, :, 0]
-    return X
+    return directions_from_relative(quaternion_matrices(q))
 
 
 def pinocchio_model(arm):

@@ -96,28 +96,26 @@ class Chain:
             )
         return chain_directions(angles)
 
+    def as_poses(self, X) -> np.ndarray:
+        """A batch of poses as a float array of shape (N, n, 3) (a single pose
+        (n, 3) becomes N = 1); checks the shape only."""
+        X = np.asarray(X, dtype=float)
+        if X.ndim == 2:
+            X = X[None]
+        if X.ndim != 3 or X.shape[1:] != (self.n, 3):
+            raise SpringlabError(
+                f"poses X must have shape (N, {self.n}, 3) for a {self.n}-link chain, got {X.shape}")
+        return X
+
     def check_directions(self, X) -> np.ndarray:
         """Validate a batch of poses and return it as a float array of shape (N, n, 3).
 
         Raises :class:`SpringlabError` on a wrong shape, NaN, a non-unit vector or
         a ground link that does not point up.
         """
-        X = np.asarray(X, dtype=float)
-        if X.ndim == 2:
-            X = X[None]
-        if X.ndim != 3 or X.shape[1:] != (self.n, 3):
-            raise SpringlabError(
-                f"poses X must have shape (N, {self.n}, 3) for a {self.n}-link chain, "
-                f"got {X.shape}"
-            )
-        if not np.all(np.isfinite(X)):
-            raise SpringlabError("poses X contain NaN or infinity")
-        norms = np.linalg.norm(X, axis=2)
-        worst = float(np.max(np.abs(norms - 1.0)))
-        if worst > 1e-9:
-            raise SpringlabError(f"link directions must be unit vectors; |x| - 1 reaches {worst:.3g}")
-        if np.max(np.abs(X[:, 0] - UP)) > 1e-12:
-            raise SpringlabError("X[:, 0] is the ground link x_1 and must equal UP = [1, 0, 0]")
+        X = self.as_poses(X)
+        for _ in self.component_major_chunks(X):
+            pass
         return X
 
     def component_major_chunks(self, X, chunk: int = 8192):
@@ -127,15 +125,10 @@ class Chain:
         multiply contiguous rows. ``xt`` is a reused buffer: consume it before
         the next step. Memory stays bounded by the chunk, whatever N is.
 
-        Raises :class:`SpringlabError` on a wrong shape, NaN, a non-unit vector or
-        a ground link that does not point up.
+        Raises :class:`SpringlabError` on a wrong shape, NaN, a non-unit vector
+        (|x|^2 off 1 by more than 2e-9) or a ground link that does not point up.
         """
-        X = np.asarray(X, dtype=float)
-        if X.ndim == 2:
-            X = X[None]
-        if X.ndim != 3 or X.shape[1:] != (self.n, 3):
-            raise SpringlabError(
-                f"poses X must have shape (N, {self.n}, 3) for a {self.n}-link chain, got {X.shape}")
+        X = self.as_poses(X)
         if int(chunk) != chunk or chunk < 1:
             raise SpringlabError(f"chunk must be a positive integer, got {chunk}")
         buf = np.empty((self.n, 3, min(int(chunk), max(X.shape[0], 1))))

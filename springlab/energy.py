@@ -84,8 +84,8 @@ def _energy_chunk(chain: Chain, springs, xt: np.ndarray, out: np.ndarray,
 
 def _evaluate(chain, springs, X, chunk, gravity: bool, elastic: bool) -> np.ndarray:
     springs = check_springs(chain, springs)
-    X = np.asarray(X, dtype=float)
-    out = np.empty(X.shape[0] if X.ndim == 3 else 1)
+    X = chain.as_poses(X)
+    out = np.empty(X.shape[0])
     for start, stop, xt in chain.component_major_chunks(X, chunk):
         _energy_chunk(chain, springs, xt, out[start:stop], gravity, elastic)
     return out

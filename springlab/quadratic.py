@@ -159,8 +159,8 @@ def quadratic_energy(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) ->
     springs on the joint lines, balanced or not.
     """
     M = energy_matrix(chain, springs)
-    X = np.asarray(X, dtype=float)
-    out = np.empty(X.shape[0] if X.ndim == 3 else 1)
+    X = chain.as_poses(X)
+    out = np.empty(X.shape[0])
     for start, stop, xt in chain.component_major_chunks(X, chunk):
         quadratic_energy_component_major(M, xt, out=out[start:stop], chunk=chunk)
     return out

@@ -79,8 +79,18 @@ def chain_directions(angles) -> np.ndarray:
         raise ValueError(f"angles must have shape (N, n-1, 3), got {angles.shape}")
     if not np.all(np.isfinite(angles)):
         raise ValueError("angles contain NaN or infinity")
-    rel = rot_xyz(angles[..., 0], angles[..., 1], angles[..., 2])  # (N, n-1, 3, 3)
-    n_pose, n_moving = angles.shape[:2]
+    return directions_from_relative(rot_xyz(angles[..., 0], angles[..., 1], angles[..., 2]))
+
+
+def directions_from_relative(rel) -> np.ndarray:
+    """Link directions of a serial chain from each joint's relative rotation.
+
+    :param rel: ndarray(N, n-1, 3, 3), R_{i-1}^T R_i for links 2..n (link 1's
+        frame is the identity)
+    :returns: ndarray(N, n, 3), x_i = R_i [1, 0, 0] with R_i = R_{i-1} rel_i
+    """
+    rel = np.asarray(rel, dtype=float)
+    n_pose, n_moving = rel.shape[:2]
     out = np.empty((n_pose, n_moving + 1, 3))
     out[:, 0] = (1.0, 0.0, 0.0)
     frame = np.broadcast_to(np.eye(3), (n_pose, 3, 3))
