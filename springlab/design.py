@@ -152,37 +152,37 @@ def solve_design(chain: Chain, specs, *, max_extension: float | None = None) -> 
             raise SpringlabError(
                 "Eqs. (39a-b) leave " + ", ".join(str(u) for u in missing) +
                 " undetermined: fix that many more of a, b, k")
-        exact, springs, ok = {}, [], True
-        for s, (tag, values) in zip(specs, params, strict=True):
-            val = {name: sp.nsimplify(v.subs(sol)) for name, v in values.items()}
-            for name in ("a", "b", "k"):
-                if not val[name].is_real:
-                    ok = False
-                    reasons.append(f"{name}_{tag} = {val[name]} is not real")
-                exact[f"{name}_{tag}"] = val[name]
-            if not ok:
-                break
-            a, b, k = (float(val[x]) for x in ("a", "b", "k"))
-            if k <= 0:
-                reasons.append(f"k_{tag} = {k:.6g} N/m: a negative stiffness")
-                ok = False
-                break
-            if s.pattern and (sign_char(a), sign_char(b)) != (s.pattern[1], s.pattern[3]):
-                reasons.append(f"{tag} comes out ({sign_char(a)},{sign_char(b)}), not {s.pattern} "
-                               f"(a = {a:.6g} m, b = {b:.6g} m)")
-                ok = False
-                break
-            springs.append(Spring(s.i, s.j, a, b, k))
-        if ok:
-            try:
-                check_attachments(chain, springs, max_extension=max_extension)
-            except UnbalanceableError as err:
-                reasons.append(str(err))
-                continue
-            designs.append(Design(tuple(springs), exact, equations))
+        try:
+            exact, springs = _springs_of_solution(chain, specs, params, sol, max_extension)
+        except UnbalanceableError as err:
+            reasons.append(str(err))
+            continue
+        designs.append(Design(springs, exact, equations))
     if not designs:
         raise UnbalanceableError("no admissible solution of Eqs. (39a-b): " + "; ".join(reasons))
     return designs[0]
+
+
+def _springs_of_solution(chain, specs, params, sol, max_extension):
+    """The springs of one exact solution of Eqs. (39), or UnbalanceableError saying
+    what is wrong with it (not real, a negative stiffness, a sign against the
+    pattern, an attachment off the link)."""
+    exact, springs = {}, []
+    for s, (tag, values) in zip(specs, params, strict=True):
+        for name, v in values.items():
+            val = v.subs(sol)
+            if not val.is_real:
+                raise UnbalanceableError(f"{name}_{tag} = {val} is not real")
+            exact[f"{name}_{tag}"] = val
+        a, b, k = (float(exact[f"{x}_{tag}"]) for x in ("a", "b", "k"))
+        if k <= 0:
+            raise UnbalanceableError(f"k_{tag} = {k:.6g} N/m: a negative stiffness")
+        if s.pattern and (sign_char(a), sign_char(b)) != (s.pattern[1], s.pattern[3]):
+            raise UnbalanceableError(f"{tag} comes out ({sign_char(a)},{sign_char(b)}), not {s.pattern} "
+                                     f"(a = {a:.6g} m, b = {b:.6g} m)")
+        springs.append(Spring(s.i, s.j, a, b, k))
+    check_attachments(chain, springs, max_extension=max_extension)
+    return exact, tuple(springs)
 
 
 # --- numeric search and the plain feasibility criterion -------------------------
