@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from springlab.chain import Chain
+from springlab.chain import UP, Chain
 from springlab.springs import Spring, check_springs
 
 DEFAULT_CHUNK = 8192
@@ -114,3 +114,40 @@ def energy_breakdown(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) ->
     gravity = gravity_energy(chain, X, chunk=chunk)
     elastic = spring_energy(chain, springs, X, chunk=chunk)
     return {"gravity": gravity, "springs": elastic, "total": gravity + elastic}
+
+
+def holding_torques(chain: Chain, springs, X) -> np.ndarray:
+    """Joint torques (N m) that hold each pose against gravity and the springs.
+
+    For the joint between links j-1 and j (at J_{j-1}), the torque the joint
+    must apply to the links j..n is minus the moment of the loads on them about
+    the joint: gravity at their centres of mass, and the forces of the springs
+    that cross the joint (one end on a link before j, the other on j or after)::
+
+        tau_j = sum_{t>=j} (c_t - J_{j-1}) x (m_t g UP) + sum_S k_eff (B - J_{j-1}) x (B - A)
+
+    with k_eff = k (1 - l0 / l). It equals the gradient of the total energy with
+    respect to a small rotation of links j..n about the joint; zero everywhere
+    means the arm is balanced.
+
+    :returns: ndarray(N, n-1, 3) in the world frame; row j-2 is joint j's torque
+    """
+    X = chain.check_directions(X)
+    springs = check_springs(chain, springs)
+    joints = _joints(chain, X)
+    com = joints[:, :-1] + np.asarray(chain.d)[None, :, None] * X[:, 1:]  # links 2..n
+    weight = chain.g * np.asarray(chain.m)[None, :, None] * UP  # m_t g UP
+    out = np.zeros((X.shape[0], chain.n - 1, 3))
+    for j in range(2, chain.n + 1):
+        pivot = joints[:, j - 2]
+        out[:, j - 2] = np.cross(com[:, j - 2:] - pivot[:, None], weight[:, j - 2:]).sum(axis=1)
+    for s in springs:
+        A = joints[:, s.i - 1] + s.a * X[:, s.i - 1]
+        B = joints[:, s.j - 2] + s.b * X[:, s.j - 1]
+        pull = B - A
+        if s.free_length:
+            length = np.linalg.norm(pull, axis=1, keepdims=True)
+            pull = pull * (1.0 - s.free_length / length)
+        for j in range(s.i + 1, s.j + 1):  # joints crossed by the spring
+            out[:, j - 2] += s.k * np.cross(B - joints[:, j - 2], pull)
+    return out

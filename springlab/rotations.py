@@ -74,27 +74,50 @@ def chain_directions(angles) -> np.ndarray:
         identity frame.
     :returns: ndarray(N, n, 3), the unit vectors x_1..x_n (x_1 = [1, 0, 0]).
     """
+    return chain_frames(angles)[..., 0]
+
+
+def chain_frames(angles) -> np.ndarray:
+    """Link frames R_1..R_n of a serial chain from relative angles.
+
+    :param angles: ndarray(N, n-1, 3), (theta, phi, psi) of links 2..n in rad
+    :returns: ndarray(N, n, 3, 3) with R_1 = I and R_i = R_{i-1} Rx Ry Rz; the
+        first column of R_i is the link direction x_i
+    """
     angles = np.asarray(angles, dtype=float)
     if angles.ndim != 3 or angles.shape[2] != 3:
         raise ValueError(f"angles must have shape (N, n-1, 3), got {angles.shape}")
     if not np.all(np.isfinite(angles)):
         raise ValueError("angles contain NaN or infinity")
-    return directions_from_relative(rot_xyz(angles[..., 0], angles[..., 1], angles[..., 2]))
+    return frames_from_relative(rot_xyz(angles[..., 0], angles[..., 1], angles[..., 2]))
 
 
-def directions_from_relative(rel) -> np.ndarray:
-    """Link directions of a serial chain from each joint's relative rotation.
-
-    :param rel: ndarray(N, n-1, 3, 3), R_{i-1}^T R_i for links 2..n (link 1's
-        frame is the identity)
-    :returns: ndarray(N, n, 3), x_i = R_i [1, 0, 0] with R_i = R_{i-1} rel_i
-    """
+def frames_from_relative(rel) -> np.ndarray:
+    """Link frames (N, n, 3, 3) from each joint's relative rotation (N, n-1, 3, 3):
+    R_1 = I (the ground), R_i = R_{i-1} rel_i."""
     rel = np.asarray(rel, dtype=float)
     n_pose, n_moving = rel.shape[:2]
-    out = np.empty((n_pose, n_moving + 1, 3))
-    out[:, 0] = (1.0, 0.0, 0.0)
-    frame = np.broadcast_to(np.eye(3), (n_pose, 3, 3))
+    out = np.empty((n_pose, n_moving + 1, 3, 3))
+    out[:, 0] = np.eye(3)
     for j in range(n_moving):
-        frame = frame @ rel[:, j]
-        out[:, j + 1] = frame[:, :, 0]
+        out[:, j + 1] = out[:, j] @ rel[:, j]
     return out
+
+
+def frames_from_directions(X) -> np.ndarray:
+    """A right-handed orthonormal frame for each link direction: R with
+    R @ [1, 0, 0] = x, shape (N, n, 3, 3).
+
+    The second axis is normal to x and to z (or to y when x is nearly along z);
+    the spin about the link's own axis is a free choice for links on
+    spherical joints.
+    """
+    X = np.asarray(X, dtype=float)
+    helper = np.zeros(X.shape)
+    along_z = np.abs(X[..., 2]) > 0.9
+    helper[..., 2] = np.where(along_z, 0.0, 1.0)
+    helper[..., 1] = np.where(along_z, 1.0, 0.0)
+    y = np.cross(helper, X)
+    y /= np.linalg.norm(y, axis=-1, keepdims=True)
+    z = np.cross(X, y)
+    return np.stack([X, y, z], axis=-1)

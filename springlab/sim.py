@@ -1,0 +1,351 @@
+"""Route 3: the multibody simulation of a springlab arm in exudyn.
+
+The model is built from the same :class:`~springlab.chain.Chain` and
+:class:`~springlab.springs.Spring` objects as the algebra: nothing is described
+twice. Each moving link is a rigid body with its mass at the COM (on the joint
+line, d_j from the proximal joint) and the inertia of a slender rod about the
+COM (m r^2 / 12 transverse, a small axial part so the spin about the link axis
+is not singular). Joints are spherical; springs are exudyn spring-dampers with
+``referenceLength`` = the spring's free length (0: a true zero-free-length
+spring, F = k (B - A)). Gravity acts along -x_1 (-UP). Nothing is drawn and no
+file is written.
+
+Three checks, each returning a result with the numbers:
+
+* :func:`hold_test`: release at rest at each pose, report the largest drift,
+  always beside the negative control (springs scaled by 0.9);
+* :func:`holding_torques`: lock every joint, solve the statics, read the joint
+  torques, and compare them with route 2 (:func:`springlab.energy.holding_torques`);
+* :func:`follow`: drive the joints along a :class:`~springlab.trajectories.Sweep`
+  that starts and ends at rest, recording gravity, spring and total energy and
+  the joint torques.
+
+Facts about exudyn 1.13.6 this relies on (measured): a locked generic joint's
+``TorqueLocal`` reads diag(-1, 1, 1) R^T M, where M is the moment of the loads
+on the child side and R the joint axes; ``SolveStatic`` converging says nothing
+about balance; sensors are stored internally.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab.chain import UP, Chain
+from springlab.design import check_attachments
+from springlab.energy import energy_breakdown
+from springlab.energy import holding_torques as route2_holding_torques
+from springlab.errors import SpringlabError
+from springlab.rotations import chain_frames, frames_from_directions
+from springlab.springs import check_springs
+from springlab.trajectories import Sweep
+
+JOINT_KINDS = ("spherical", "locked", "prescribed")
+_TORQUE_SIGN = np.diag([1.0, -1.0, -1.0])  # holding torque = R @ _TORQUE_SIGN @ TorqueLocal
+
+
+@dataclass(frozen=True)
+class SimSettings:
+    """Solver settings.
+
+    :ivar step: time step (s)
+    :ivar relative_tolerance, absolute_tolerance: Newton tolerances
+    :ivar damping: damping of every spring along its line (N s/m); light damping
+        does not change the statics
+    :ivar axial_inertia: axial moment of inertia as a fraction of the transverse one
+    """
+
+    step: float = 1e-3
+    relative_tolerance: float = 1e-12
+    absolute_tolerance: float = 1e-14
+    damping: float = 0.0
+    axial_inertia: float = 1e-2
+
+
+class Model:
+    """An exudyn system built from a chain and its springs (see :func:`build_model`)."""
+
+    def __init__(self, SC, mbs, bodies, joints, spring_objects, chain, springs, kind):
+        self.SC, self.mbs = SC, mbs
+        self.bodies, self.joints, self.spring_objects = bodies, joints, spring_objects
+        self.chain, self.springs, self.kind = chain, springs, kind
+
+
+def _local_x(value: float) -> list[float]:
+    return [float(value), 0.0, 0.0]
+
+
+def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spherical",
+                initial_frames=None, sweep: Sweep | None = None,
+                settings: SimSettings = SimSettings()) -> Model:
+    """Build the exudyn system of an arm.
+
+    :param reference_frames: (n, 3, 3) link frames of the reference configuration
+        (the first column of each is the link direction; frame 1 is the ground's, I)
+    :param joints: 'spherical' (free), 'locked' (every joint fully constrained in
+        the reference configuration) or 'prescribed' (locked to follow ``sweep``;
+        the reference configuration must then be the zero-angle one)
+    :param initial_frames: (n, 3, 3) frames at t = 0 if not the reference ones
+    """
+    import exudyn as exu
+    from exudyn.utilities import MarkerBodyPosition, ObjectConnectorSpringDamper, RigidBodyInertia
+
+    if joints not in JOINT_KINDS:
+        raise SpringlabError(f"joints must be one of {JOINT_KINDS}, got {joints!r}")
+    springs = check_springs(chain, springs)
+    check_attachments(chain, springs)
+    reference_frames = np.asarray(reference_frames, dtype=float)
+    initial_frames = reference_frames if initial_frames is None else np.asarray(initial_frames, dtype=float)
+    for name, frames in (("reference_frames", reference_frames), ("initial_frames", initial_frames)):
+        if frames.shape != (chain.n, 3, 3) or not np.all(np.isfinite(frames)):
+            raise SpringlabError(f"{name} must be finite with shape ({chain.n}, 3, 3), got {frames.shape}")
+    ref_joints = chain.joint_positions(reference_frames[None, :, :, 0])[0]
+    init_joints = chain.joint_positions(initial_frames[None, :, :, 0])[0]
+
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    bodies = [mbs.CreateGround(referencePosition=[0.0, 0.0, 0.0])]
+    for j in range(2, chain.n + 1):
+        r, d, m = chain.r[j - 2], chain.d[j - 2], chain.m[j - 2]
+        transverse = m * r**2 / 12.0
+        inertia = RigidBodyInertia(m, np.diag([settings.axial_inertia * transverse, transverse, transverse]))
+        com_ref = ref_joints[j - 2] + d * reference_frames[j - 1][:, 0]
+        com_init = init_joints[j - 2] + d * initial_frames[j - 1][:, 0]
+        bodies.append(mbs.CreateRigidBody(
+            inertia=inertia, referencePosition=list(com_ref),
+            referenceRotationMatrix=reference_frames[j - 1],
+            initialDisplacement=list(com_init - com_ref),
+            initialRotationMatrix=reference_frames[j - 1].T @ initial_frames[j - 1],  # superimposed on the reference
+            gravity=list(-chain.g * UP)))
+    joint_items = []
+    for j in range(2, chain.n + 1):
+        items, position = [bodies[j - 2], bodies[j - 1]], list(ref_joints[j - 2])
+        if joints == "spherical":
+            joint_items.append(mbs.CreateSphericalJoint(itemNumbers=items, position=position))
+            continue
+        offset = 0
+        if joints == "prescribed":
+            if sweep is None:
+                raise SpringlabError("joints='prescribed' needs a sweep")
+
+            def offset(mbs_, t, item, values, _k=j - 2):  # frame 1 = frame 0 @ RotXYZ(angles)
+                a = sweep.angles(t)[_k]
+                return [0.0, 0.0, 0.0, float(a[0]), float(a[1]), float(a[2])]
+
+        joint_items.append(mbs.CreateGenericJoint(
+            itemNumbers=items, position=position, rotationMatrixAxes=reference_frames[j - 2],
+            constrainedAxes=[1] * 6, offsetUserFunction=offset))
+    spring_items = []
+    for s in springs:
+        local_a = s.a if s.i == 1 else chain.r[s.i - 2] - chain.d[s.i - 2] + s.a  # A = J_i + a x_i
+        local_b = s.b - chain.d[s.j - 2]  # B = J_{j-1} + b x_j
+        mA = mbs.AddMarker(MarkerBodyPosition(bodyNumber=bodies[s.i - 1], localPosition=_local_x(local_a)))
+        mB = mbs.AddMarker(MarkerBodyPosition(bodyNumber=bodies[s.j - 1], localPosition=_local_x(local_b)))
+        spring_items.append(mbs.AddObject(ObjectConnectorSpringDamper(
+            markerNumbers=[mA, mB], referenceLength=float(s.free_length), stiffness=float(s.k),
+            damping=float(settings.damping))))
+    return Model(SC, mbs, bodies, joint_items, spring_items, chain, springs, joints)
+
+
+def _settings(model: Model, settings: SimSettings, end_time: float = 0.0, write_period: float = 0.01):
+    import exudyn as exu
+
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False  # no solution/ folder in the working directory
+    ss.solution.sensors.writePeriod = write_period
+    ss.timeIntegration.verboseMode = 0
+    ss.staticSolver.verboseMode = 0
+    ss.displayStatistics = False
+    ss.displayComputationTime = False
+    for newton in (ss.timeIntegration.newton, ss.staticSolver.newton):
+        newton.relativeTolerance = settings.relative_tolerance
+        newton.absoluteTolerance = settings.absolute_tolerance
+    if end_time:
+        ss.timeIntegration.endTime = end_time
+        ss.timeIntegration.numberOfSteps = max(1, int(round(end_time / settings.step)))
+    return ss
+
+
+def _sensor(model: Model, **kwargs):
+    import exudyn as exu
+
+    kind = kwargs.pop("kind")
+    if "bodyNumber" in kwargs:
+        from exudyn.utilities import SensorBody as make
+    else:
+        from exudyn.utilities import SensorObject as make
+    return model.mbs.AddSensor(make(storeInternal=True, writeToFile=False,
+                                    outputVariableType=getattr(exu.OutputVariableType, kind), **kwargs))
+
+
+def _rotation_angle(R: np.ndarray) -> np.ndarray:
+    """Rotation angles (rad) of rotation matrices (..., 3, 3), accurate near 0."""
+    skew = np.stack([R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], -1)
+    return np.arctan2(0.5 * np.linalg.norm(skew, axis=-1), 0.5 * (np.trace(R, axis1=-2, axis2=-1) - 1.0))
+
+
+def _check_poses(chain: Chain, X) -> np.ndarray:
+    return chain.check_directions(X)
+
+
+# --- 1. hold test ------------------------------------------------------------------
+@dataclass(frozen=True)
+class HoldRun:
+    """Drifts of one set of springs released at rest at each pose.
+
+    tip_drift: (N,) largest distance of the end link's distal joint from its start (m);
+    angle_drift: (N,) largest rotation of any link from its start orientation (rad).
+    """
+
+    springs_scale: float
+    tip_drift: np.ndarray
+    angle_drift: np.ndarray
+    cpu_seconds: float
+    simulated_seconds: float
+
+    @property
+    def max_tip_drift(self) -> float:
+        return float(np.max(self.tip_drift))
+
+    @property
+    def max_angle_drift(self) -> float:
+        return float(np.max(self.angle_drift))
+
+
+@dataclass(frozen=True)
+class HoldResult:
+    balanced: HoldRun
+    control: HoldRun  # springs scaled by ``control_scale``: must move
+
+    def summary(self) -> str:
+        return (f"max tip drift {self.balanced.max_tip_drift:.2e} m with the springs, "
+                f"{self.control.max_tip_drift:.2e} m with them scaled by {self.control.springs_scale}")
+
+
+def _hold_run(chain, springs, X, duration, settings, scale) -> HoldRun:
+    tip_local = _local_x(chain.r[-1] - chain.d[-1])
+    tip_drift, angle_drift = np.zeros(len(X)), np.zeros(len(X))
+    cpu, scaled = 0.0, [s.scaled(scale) for s in springs]
+    frames = frames_from_directions(X)
+    for p in range(len(X)):
+        model = build_model(chain, scaled, frames[p], settings=settings)
+        tip = _sensor(model, bodyNumber=model.bodies[-1], localPosition=tip_local, kind="Position")
+        rot = [_sensor(model, bodyNumber=b, kind="RotationMatrix") for b in model.bodies[1:]]
+        model.mbs.Assemble()
+        t0 = time.process_time()
+        model.mbs.SolveDynamic(_settings(model, settings, duration))
+        cpu += time.process_time() - t0
+        path = model.mbs.GetSensorStoredData(tip)[:, 1:]
+        tip_drift[p] = np.max(np.linalg.norm(path - path[0], axis=1))
+        for sensor in rot:
+            R = model.mbs.GetSensorStoredData(sensor)[:, 1:].reshape(-1, 3, 3)
+            angle_drift[p] = max(angle_drift[p], float(np.max(_rotation_angle(R[0].T @ R))))
+    return HoldRun(scale, tip_drift, angle_drift, cpu, duration * len(X))
+
+
+def hold_test(chain: Chain, springs, X, duration: float = 2.0, *, control_scale: float = 0.9,
+              settings: SimSettings = SimSettings()) -> HoldResult:
+    """Release the arm at rest at each pose and measure how far it drifts.
+
+    A balanced arm is neutrally stable: it stays put, its drift set by the
+    Newton tolerance alone. The negative control, the same springs scaled by
+    ``control_scale``, always runs beside it and must move.
+
+    :param X: poses (N, n, 3)
+    :param duration: simulated time per pose (s)
+    """
+    X = _check_poses(chain, X)
+    if not (np.isfinite(duration) and duration > 0):
+        raise SpringlabError(f"duration must be > 0 s, got {duration}")
+    springs = check_springs(chain, springs)
+    return HoldResult(_hold_run(chain, springs, X, duration, settings, 1.0),
+                      _hold_run(chain, springs, X, duration, settings, control_scale))
+
+
+# --- 2. holding torques ------------------------------------------------------------
+@dataclass(frozen=True)
+class TorqueResult:
+    """Joint torques (N m, world frame) that hold each pose, shape (N, n-1, 3):
+    ``simulated`` by exudyn's statics with locked joints, ``analytic`` by route 2."""
+
+    simulated: np.ndarray
+    analytic: np.ndarray
+
+    @property
+    def max_difference(self) -> float:
+        return float(np.max(np.abs(self.simulated - self.analytic)))
+
+
+def holding_torques(chain: Chain, springs, X, *, settings: SimSettings = SimSettings()) -> TorqueResult:
+    """The joint torques needed to hold each pose, from a statics solve with every
+    joint locked, beside route 2's analytic torques."""
+    import exudyn as exu
+
+    X = _check_poses(chain, X)
+    springs = check_springs(chain, springs)
+    frames = frames_from_directions(X)
+    out = np.zeros((len(X), chain.n - 1, 3))
+    for p in range(len(X)):
+        model = build_model(chain, springs, frames[p], joints="locked", settings=settings)
+        model.mbs.Assemble()
+        model.mbs.SolveStatic(_settings(model, settings))
+        for k, joint in enumerate(model.joints):
+            local = np.asarray(model.mbs.GetObjectOutput(joint, exu.OutputVariableType.TorqueLocal))
+            out[p, k] = frames[p, k] @ _TORQUE_SIGN @ local
+    return TorqueResult(out, route2_holding_torques(chain, springs, X))
+
+
+# --- 3. following a trajectory ---------------------------------------------------
+@dataclass(frozen=True)
+class FollowResult:
+    """Energies (J) and joint torques (N m) along a prescribed motion.
+
+    t: (T,) s; gravity, springs, total: (T,) J from exudyn's body positions and
+    spring connectors; torques: (T, n-1, 3) joint torques in each joint's parent
+    frame; route2: the same energies by route 2 at the same angles.
+    """
+
+    t: np.ndarray
+    gravity: np.ndarray
+    springs: np.ndarray
+    total: np.ndarray
+    torques: np.ndarray
+    route2: dict
+    cpu_seconds: float
+
+
+def follow(chain: Chain, springs, sweep: Sweep, *, samples: int = 301,
+           settings: SimSettings = SimSettings(step=1e-2)) -> FollowResult:
+    """Drive the joints along ``sweep`` (which must start and end at rest) and record
+    the potential energies and the joint torques at ``samples`` times."""
+    if not isinstance(sweep, Sweep):
+        raise SpringlabError(f"sweep must be a springlab.trajectories.Sweep, got {type(sweep).__name__}")
+    if sweep.initial.shape != (chain.n - 1, 3):
+        raise SpringlabError(f"the sweep has {sweep.initial.shape[0]} joints, the chain {chain.n - 1}")
+    if int(samples) != samples or samples < 2:
+        raise SpringlabError(f"samples must be an integer >= 2, got {samples}")
+    sweep.check_at_rest()
+    springs = check_springs(chain, springs)
+    upright = np.broadcast_to(np.eye(3), (chain.n, 3, 3))
+    initial = chain_frames(sweep.angles(0.0)[None])[0]
+    model = build_model(chain, springs, upright, joints="prescribed", initial_frames=initial,
+                        sweep=sweep, settings=settings)
+    com = [_sensor(model, bodyNumber=b, kind="Position") for b in model.bodies[1:]]
+    pot = [_sensor(model, objectNumber=o, kind="PotentialEnergy") for o in model.spring_objects]
+    tq = [_sensor(model, objectNumber=o, kind="TorqueLocal") for o in model.joints]
+    model.mbs.Assemble()
+    period = sweep.duration / (samples - 1)
+    steps_per_sample = max(1, int(np.ceil(period / settings.step)))
+    run = SimSettings(**{**settings.__dict__, "step": period / steps_per_sample})
+    t0 = time.process_time()
+    model.mbs.SolveDynamic(_settings(model, run, sweep.duration, write_period=period))
+    cpu = time.process_time() - t0
+    data = [model.mbs.GetSensorStoredData(s) for s in com]
+    t = data[0][:, 0]
+    gravity = sum(chain.g * m * d[:, 1:] @ UP for m, d in zip(chain.m, data, strict=True))
+    elastic = sum((model.mbs.GetSensorStoredData(s)[:, 1] for s in pot), np.zeros_like(t))
+    torques = np.stack([model.mbs.GetSensorStoredData(s)[:, 1:] @ _TORQUE_SIGN for s in tq], axis=1)
+    route2 = energy_breakdown(chain, springs, chain.directions(sweep.angles(t)))
+    return FollowResult(t, gravity, elastic, gravity + elastic, torques, route2, cpu)
