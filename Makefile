@@ -28,6 +28,7 @@ $(VENV)/.bench-installed: $(STAMP)
 
 bench: $(VENV)/.bench-installed
 	$(BIN)/python benchmarks/bench_energy.py
+	$(BIN)/python benchmarks/bench_sim.py
 
 lab: $(STAMP)
 	$(BIN)/jupyter lab notebooks/

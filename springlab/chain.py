@@ -75,6 +75,12 @@ class Chain:
         self._check_moving(j)
         return self.r[j - 2]
 
+    def with_payload(self, mass: float) -> Chain:
+        """The same chain with a payload (kg) at the end link's centre of mass."""
+        if not (np.isfinite(mass) and mass >= 0):
+            raise SpringlabError(f"payload mass must be >= 0 kg, got {mass}")
+        return Chain(self.r, self.d, self.m[:-1] + (self.m[-1] + float(mass),), self.g)
+
     def _check_moving(self, j: int) -> None:
         if not (2 <= j <= self.n):
             raise SpringlabError(f"link index must be in 2..{self.n}, got {j}")

@@ -78,7 +78,7 @@ def _local_x(value: float) -> list[float]:
 
 
 def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spherical",
-                initial_frames=None, sweep: Sweep | None = None,
+                initial_frames=None, sweep: Sweep | None = None, payload: float = 0.0,
                 settings: SimSettings = SimSettings()) -> Model:
     """Build the exudyn system of an arm.
 
@@ -88,12 +88,14 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
         the reference configuration) or 'prescribed' (locked to follow ``sweep``;
         the reference configuration must then be the zero-angle one)
     :param initial_frames: (n, 3, 3) frames at t = 0 if not the reference ones
+    :param payload: mass (kg) added at the end link's centre of mass
     """
     import exudyn as exu
     from exudyn.utilities import MarkerBodyPosition, ObjectConnectorSpringDamper, RigidBodyInertia
 
     if joints not in JOINT_KINDS:
         raise SpringlabError(f"joints must be one of {JOINT_KINDS}, got {joints!r}")
+    chain = chain.with_payload(payload)
     springs = check_springs(chain, springs)
     check_attachments(chain, springs)
     reference_frames = np.asarray(reference_frames, dtype=float)
@@ -157,8 +159,8 @@ def _settings(model: Model, settings: SimSettings, end_time: float = 0.0, write_
     ss.solution.sensors.writePeriod = write_period
     ss.timeIntegration.verboseMode = 0
     ss.staticSolver.verboseMode = 0
-    ss.displayStatistics = False
-    ss.displayComputationTime = False
+    ss.show.statistics = False
+    ss.show.computationTime = False
     for newton in (ss.timeIntegration.newton, ss.staticSolver.newton):
         newton.relativeTolerance = settings.relative_tolerance
         newton.absoluteTolerance = settings.absolute_tolerance
@@ -180,12 +182,6 @@ def _sensor(model: Model, **kwargs):
                                     outputVariableType=getattr(exu.OutputVariableType, kind), **kwargs))
 
 
-def _rotation_angle(R: np.ndarray) -> np.ndarray:
-    """Rotation angles (rad) of rotation matrices (..., 3, 3), accurate near 0."""
-    skew = np.stack([R[..., 2, 1] - R[..., 1, 2], R[..., 0, 2] - R[..., 2, 0], R[..., 1, 0] - R[..., 0, 1]], -1)
-    return np.arctan2(0.5 * np.linalg.norm(skew, axis=-1), 0.5 * (np.trace(R, axis1=-2, axis2=-1) - 1.0))
-
-
 def _check_poses(chain: Chain, X) -> np.ndarray:
     return chain.check_directions(X)
 
@@ -196,7 +192,9 @@ class HoldRun:
     """Drifts of one set of springs released at rest at each pose.
 
     tip_drift: (N,) largest distance of the end link's distal joint from its start (m);
-    angle_drift: (N,) largest rotation of any link from its start orientation (rad).
+    angle_drift: (N,) largest angle between any link's direction and its start
+    direction (rad); a link's spin about its own axis (free on spherical joints,
+    and irrelevant to the pose) is not counted.
     """
 
     springs_scale: float
@@ -239,9 +237,10 @@ def _hold_run(chain, springs, X, duration, settings, scale) -> HoldRun:
         cpu += time.process_time() - t0
         path = model.mbs.GetSensorStoredData(tip)[:, 1:]
         tip_drift[p] = np.max(np.linalg.norm(path - path[0], axis=1))
-        for sensor in rot:
-            R = model.mbs.GetSensorStoredData(sensor)[:, 1:].reshape(-1, 3, 3)
-            angle_drift[p] = max(angle_drift[p], float(np.max(_rotation_angle(R[0].T @ R))))
+        for sensor in rot:  # the link's direction x_j is the first column of its rotation matrix
+            x = model.mbs.GetSensorStoredData(sensor)[:, 1:].reshape(-1, 3, 3)[:, :, 0]
+            angle = np.arctan2(np.linalg.norm(np.cross(x[0], x), axis=1), x @ x[0])
+            angle_drift[p] = max(angle_drift[p], float(np.max(angle)))
     return HoldRun(scale, tip_drift, angle_drift, cpu, duration * len(X))
 
 

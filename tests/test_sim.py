@@ -1,0 +1,102 @@
+"""Route 3: the exudyn model against route 2, and its hold, torque and trajectory checks."""
+
+import numpy as np
+import pytest
+
+from springlab import (
+    Spring,
+    SpringlabError,
+    UnbalanceableError,
+    random_directions,
+    serial_chain,
+    sim,
+)
+from springlab.papers import juang2023 as paper
+from springlab.trajectories import Sweep
+
+
+@pytest.fixture(scope="module")
+def poses():
+    return random_directions(4, 20, np.random.default_rng(2024))
+
+
+def test_hold_test_balanced_stays_and_control_falls(arm, exact_springs, poses):
+    result = sim.hold_test(arm, exact_springs, poses, duration=2.0)
+    assert result.balanced.max_tip_drift < 1e-9
+    assert result.balanced.max_angle_drift < 1e-8
+    assert result.control.max_tip_drift > 1e-2
+    assert result.control.springs_scale == 0.9
+
+
+@pytest.mark.parametrize("scale", [1.0, 0.9])
+def test_holding_torques_equal_route_2(arm, exact_springs, poses, scale):
+    springs = [s.scaled(scale) for s in exact_springs]
+    result = sim.holding_torques(arm, springs, poses)
+    assert result.max_difference < 1e-9
+    if scale == 1.0:
+        assert np.abs(result.simulated).max() < 1e-9
+    else:
+        assert np.abs(result.simulated).max() > 0.1
+
+
+def test_holding_torque_sign_against_a_known_load():
+    # one horizontal link along +y, no springs: the joint must hold m g d about -z
+    chain = serial_chain([0.5], [0.2], [3.0], g=9.81)
+    X = np.array([[[1.0, 0, 0], [0, 1.0, 0]]])
+    result = sim.holding_torques(chain, [], X)
+    np.testing.assert_allclose(result.simulated[0, 0], [0, 0, -3.0 * 9.81 * 0.2], atol=1e-12)
+    # a spring from 0.1 m above the base to 0.3 m along the link pulls it up: +z, k a b
+    spring = Spring(1, 2, a=0.1, b=0.3, k=100.0)
+    result = sim.holding_torques(chain, [spring], X)
+    np.testing.assert_allclose(result.simulated[0, 0], [0, 0, -3.0 * 9.81 * 0.2 + 100.0 * 0.1 * 0.3], atol=1e-12)
+
+
+def test_free_length_springs_and_payload_match_route_2(arm, exact_springs, poses):
+    springs = [Spring(s.i, s.j, s.a, s.b, s.k, free_length=0.02) for s in exact_springs]
+    heavy = arm.with_payload(1.5)
+    result = sim.holding_torques(heavy, springs, poses[:5])
+    assert result.max_difference < 1e-9
+    assert np.abs(result.simulated).max() > 0.1
+
+
+def test_follow_table_4_keeps_the_total_energy(arm, exact_springs):
+    sweep = Sweep(paper.TABLE_4_INITIAL, paper.TABLE_4_ROTATION, paper.DURATION, law="quintic")
+    result = sim.follow(arm, exact_springs, sweep, samples=151)
+    gravity_range = np.ptp(result.gravity)
+    assert gravity_range > 1.0
+    assert np.ptp(result.total) < 1e-9 * gravity_range
+    for key, ours in (("gravity", result.gravity), ("springs", result.springs), ("total", result.total)):
+        assert np.abs(ours - result.route2[key]).max() < 1e-9 * gravity_range, key
+    assert result.torques.shape == (151, 3, 3)
+    np.testing.assert_allclose(result.t[[0, -1]], [0.0, paper.DURATION])
+
+
+def test_unbalanced_follow_varies(arm, exact_springs):
+    sweep = Sweep(paper.TABLE_5_INITIAL, paper.TABLE_5_ROTATION, 5.0, law="quintic")
+    result = sim.follow(arm, [s.scaled(0.9) for s in exact_springs], sweep, samples=21)
+    assert np.ptp(result.total) > 0.1
+    assert np.abs(result.total - result.route2["total"]).max() < 1e-9 * np.ptp(result.gravity)
+
+
+def test_model_writes_no_files(arm, exact_springs, poses, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    sim.hold_test(arm, exact_springs, poses[:1], duration=0.1)
+    sim.holding_torques(arm, exact_springs, poses[:1])
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_bad_inputs(arm, exact_springs, poses):
+    off_link = [Spring(1, 2, a=0.1, b=0.5, k=100.0)]  # b beyond link 2's 0.30 m
+    with pytest.raises(UnbalanceableError, match="off the link"):
+        sim.hold_test(arm, off_link, poses[:1], duration=0.1)
+    bad = poses[:2].copy()
+    bad[1, 2, 0] = np.nan
+    with pytest.raises(SpringlabError, match="NaN"):
+        sim.holding_torques(arm, exact_springs, bad)
+    moving = Sweep(paper.TABLE_4_INITIAL, paper.TABLE_4_ROTATION, paper.DURATION, law="linear")
+    with pytest.raises(SpringlabError, match="does not start at rest"):
+        sim.follow(arm, exact_springs, moving)
+    with pytest.raises(SpringlabError, match="duration"):
+        sim.hold_test(arm, exact_springs, poses[:1], duration=0.0)
+    with pytest.raises(SpringlabError, match="payload"):
+        arm.with_payload(-1.0)
