@@ -23,7 +23,7 @@ def arms(draw, n):
     d = [ri * draw(st.floats(0.05, 1.0)) for ri in r]
     m = [draw(st.floats(0.1, 20.0)) for _ in range(n - 1)]
     g = draw(st.sampled_from([9.8, 9.81, 1.62]))
-    skip = draw(st.integers(0, 5))
+    skip = draw(st.integers(0, 2))
     return serial_chain(r, d, m, g=g), skip
 
 
@@ -35,7 +35,7 @@ def balanced_springs(chain, skip):
         if relaxation_margin(chain, cfg) <= 1e-9:
             continue
         try:
-            springs = find_design(chain, cfg, seed=found)
+            springs = find_design(chain, cfg, seed=found, restarts=10)
         except UnbalanceableError:
             continue
         if found == skip:
