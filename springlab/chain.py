@@ -25,10 +25,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab.errors import SpringlabError
-from springlab.rotations import chain_directions
+from springlab.rotations import frames_from_directions, frames_from_relative, rot_axis, rot_xyz
 
 UP = np.array([1.0, 0.0, 0.0])
 """x_1, the ground link's direction: vertical, up. Gravity acts along -UP."""
+
+SPHERICAL = "spherical"
 
 STANDARD_GRAVITY = 9.81
 """m/s^2. Papers that use another value say so in their data module."""
@@ -58,12 +60,24 @@ class Chain:
     :ivar d: COM distances d_2..d_n from each link's proximal joint (m)
     :ivar m: masses m_2..m_n (kg)
     :ivar g: gravitational acceleration (m/s^2), acting along -x_1
+    :ivar joints: per moving link j = 2..n, the joint to link j-1: 'spherical', or
+        a revolute joint's unit axis in link j-1's frame (empty: all spherical)
     """
 
     r: tuple[float, ...]
     d: tuple[float, ...]
     m: tuple[float, ...]
     g: float = STANDARD_GRAVITY
+    joints: tuple = ()
+
+    def joint(self, j: int):
+        """'spherical' or the revolute axis (a 3-tuple in link j-1's frame) of joint j."""
+        self._check_moving(j)
+        return self.joints[j - 2] if self.joints else SPHERICAL
+
+    @property
+    def all_spherical(self) -> bool:
+        return all(self.joint(j) == SPHERICAL for j in range(2, self.n + 1))
 
     @property
     def n(self) -> int:
@@ -79,28 +93,77 @@ class Chain:
         """The same chain with a payload (kg) at the end link's centre of mass."""
         if not (np.isfinite(mass) and mass >= 0):
             raise SpringlabError(f"payload mass must be >= 0 kg, got {mass}")
-        return Chain(self.r, self.d, self.m[:-1] + (self.m[-1] + float(mass),), self.g)
+        return Chain(self.r, self.d, self.m[:-1] + (self.m[-1] + float(mass),), self.g, self.joints)
 
     def _check_moving(self, j: int) -> None:
         if not (2 <= j <= self.n):
             raise SpringlabError(f"link index must be in 2..{self.n}, got {j}")
 
     # --- poses ---------------------------------------------------------------
-    def directions(self, angles) -> np.ndarray:
-        """Link directions from relative angles (see :mod:`springlab.rotations`).
-
-        :param angles: ndarray(N, n-1, 3) of (theta, phi, psi) in rad
-        :returns: ndarray(N, n, 3)
-        """
+    def check_angles(self, angles) -> np.ndarray:
+        """Validate joint angles: shape (N, n-1, 3), finite; for a revolute joint only
+        the first entry (the rotation about its axis) may be nonzero."""
         angles = np.asarray(angles, dtype=float)
         if angles.ndim == 2:
             angles = angles[None]
         if angles.ndim != 3 or angles.shape[1:] != (self.n - 1, 3):
             raise SpringlabError(
                 f"angles must have shape (N, {self.n - 1}, 3) for a {self.n}-link chain, "
-                f"got {angles.shape}"
-            )
-        return chain_directions(angles)
+                f"got {angles.shape}")
+        if not np.all(np.isfinite(angles)):
+            raise SpringlabError("angles contain NaN or infinity")
+        for j in range(2, self.n + 1):
+            if self.joint(j) != SPHERICAL and np.any(angles[:, j - 2, 1:]):
+                raise SpringlabError(
+                    f"joint {j} is revolute: only angles[:, {j - 2}, 0] (the rotation about its axis) may be nonzero")
+        return angles
+
+    def frames(self, angles) -> np.ndarray:
+        """Link frames R_1..R_n (N, n, 3, 3) from joint angles (rad).
+
+        A spherical joint turns link j by Rx(theta) Ry(phi) Rz(psi) relative to
+        link j-1 (see :mod:`springlab.rotations`); a revolute joint by
+        angles[:, j-2, 0] about its axis. R_1 = I; x_j is the first column of R_j.
+        """
+        angles = self.check_angles(angles)
+        rel = rot_xyz(angles[..., 0], angles[..., 1], angles[..., 2])
+        for j in range(2, self.n + 1):
+            axis = self.joint(j)
+            if axis != SPHERICAL:
+                rel[:, j - 2] = rot_axis(axis, angles[:, j - 2, 0])
+        return frames_from_relative(rel)
+
+    def directions(self, angles) -> np.ndarray:
+        """Link directions (N, n, 3) from joint angles (rad), see :meth:`frames`."""
+        return self.frames(angles)[..., 0]
+
+    def pose_frames(self, poses) -> np.ndarray:
+        """Link frames (N, n, 3, 3) of a batch of poses given either as joint angles
+        (N, n-1, 3) or, for a chain of spherical joints, as link directions (N, n, 3)
+        (then each link's spin about its own axis is a free choice)."""
+        poses = np.asarray(poses, dtype=float)
+        if poses.ndim == 3 and poses.shape[1:] == (self.n - 1, 3):
+            return self.frames(poses)
+        X = self.check_directions(poses)
+        if not self.all_spherical:
+            raise SpringlabError(
+                "a chain with revolute joints needs its poses as joint angles (N, n-1, 3), "
+                "not as link directions: directions do not fix the joint axes")
+        return frames_from_directions(X)
+
+    def random_angles(self, size: int, rng=None) -> np.ndarray:
+        """Random joint angles (N, n-1, 3) in rad: theta and psi uniform in
+        [-pi, pi), phi in [-pi/2, pi/2] for spherical joints (not uniform over
+        orientations: :func:`random_directions` is, for spherical chains);
+        revolute joints turn by an angle uniform in [-pi, pi)."""
+        rng = np.random.default_rng(rng)
+        shape = (int(size), self.n - 1)
+        out = np.stack([rng.uniform(-np.pi, np.pi, shape), rng.uniform(-np.pi / 2, np.pi / 2, shape),
+                        rng.uniform(-np.pi, np.pi, shape)], axis=-1)
+        for j in range(2, self.n + 1):
+            if self.joint(j) != SPHERICAL:
+                out[:, j - 2, 1:] = 0.0
+        return out
 
     def as_poses(self, X) -> np.ndarray:
         """A batch of poses as a float array of shape (N, n, 3) (a single pose
@@ -176,13 +239,15 @@ class Chain:
         return self.joint_positions(X)[:, -1]
 
 
-def serial_chain(r, d, m, g: float = STANDARD_GRAVITY, *, com_off_link: bool = False) -> Chain:
+def serial_chain(r, d, m, g: float = STANDARD_GRAVITY, *, joints=None, com_off_link: bool = False) -> Chain:
     """Build and validate a serial chain; link 1 is the ground.
 
     :param r: lengths r_2..r_n (m), each > 0
     :param d: COM distances d_2..d_n (m), each in [0, r_j] (unless ``com_off_link``)
     :param m: masses m_2..m_n (kg), each > 0
     :param g: gravitational acceleration (m/s^2), > 0
+    :param joints: per moving link, 'spherical' (the default for all) or a revolute
+        joint's axis, a 3-vector in the previous link's frame (normalised here)
     :param com_off_link: allow d_j < 0 or d_j > r_j (a COM on the link's line but
         beyond a joint, e.g. with a counter-mass)
 
@@ -214,7 +279,29 @@ def serial_chain(r, d, m, g: float = STANDARD_GRAVITY, *, com_off_link: bool = F
             )
     if not (np.isfinite(g) and g > 0):
         raise SpringlabError(f"g must be a finite positive acceleration in m/s^2, got {g}")
-    return Chain(r=r_t, d=tuple(float(v) for v in d_arr), m=m_t, g=float(g))
+    return Chain(r=r_t, d=tuple(float(v) for v in d_arr), m=m_t, g=float(g),
+                 joints=_joint_spec(joints, len(r_t)))
+
+
+def _joint_spec(joints, n_moving: int) -> tuple:
+    if joints is None:
+        return ()
+    joints = list(joints)
+    if len(joints) != n_moving:
+        raise SpringlabError(f"joints must have one entry per moving link ({n_moving}), got {len(joints)}")
+    out = []
+    for idx, spec in enumerate(joints):
+        if isinstance(spec, str):
+            if spec != SPHERICAL:
+                raise SpringlabError(f"joint {idx + 2} must be 'spherical' or a revolute axis, got {spec!r}")
+            out.append(SPHERICAL)
+            continue
+        axis = np.asarray(spec, dtype=float)
+        norm = np.linalg.norm(axis) if axis.shape == (3,) else 0.0
+        if not (np.all(np.isfinite(axis)) and norm > 1e-12):
+            raise SpringlabError(f"revolute axis of joint {idx + 2} must be a nonzero 3-vector, got {spec!r}")
+        out.append(tuple(float(v) for v in axis / norm))
+    return () if all(j == SPHERICAL for j in out) else tuple(out)
 
 
 def random_directions(n: int, size: int, rng=None) -> np.ndarray:

@@ -58,6 +58,16 @@ def rot_z(angle) -> np.ndarray:
     return _basic(angle, 2)
 
 
+def rot_axis(axis, angle) -> np.ndarray:
+    """Rotations by ``angle`` (rad, any shape) about a fixed unit ``axis`` (Rodrigues),
+    shape ``angle.shape + (3, 3)``."""
+    u = np.asarray(axis, dtype=float)
+    angle = np.asarray(angle, dtype=float)
+    K = np.array([[0.0, -u[2], u[1]], [u[2], 0.0, -u[0]], [-u[1], u[0], 0.0]])
+    s, c = np.sin(angle)[..., None, None], np.cos(angle)[..., None, None]
+    return np.eye(3) + s * K + (1.0 - c) * (K @ K)
+
+
 def rot_xyz(theta, phi, psi) -> np.ndarray:
     """Intrinsic x-y-z rotation ``Rx(theta) @ Ry(phi) @ Rz(psi)``; angles in rad.
 

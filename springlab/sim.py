@@ -33,12 +33,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from springlab.chain import UP, Chain
+from springlab.chain import SPHERICAL, UP, Chain
 from springlab.design import check_attachments
 from springlab.energy import energy_breakdown
 from springlab.energy import holding_torques as route2_holding_torques
 from springlab.errors import SpringlabError
-from springlab.rotations import chain_frames, frames_from_directions
+from springlab.rotations import frames_from_directions
 from springlab.springs import check_springs
 from springlab.trajectories import Sweep
 
@@ -67,10 +67,16 @@ class SimSettings:
 class Model:
     """An exudyn system built from a chain and its springs (see :func:`build_model`)."""
 
-    def __init__(self, SC, mbs, bodies, joints, spring_objects, chain, springs, kind):
+    def __init__(self, SC, mbs, bodies, joints, joint_axes, spring_objects, chain, springs, kind):
         self.SC, self.mbs = SC, mbs
         self.bodies, self.joints, self.spring_objects = bodies, joints, spring_objects
+        self.joint_axes = joint_axes  # (3, 3) per joint: its axes in the world, reference configuration
         self.chain, self.springs, self.kind = chain, springs, kind
+
+
+def _frame_with_z(axis: np.ndarray) -> np.ndarray:
+    """A rotation whose third column is the unit ``axis``."""
+    return frames_from_directions(axis[None])[0][:, [1, 2, 0]]
 
 
 def _local_x(value: float) -> list[float]:
@@ -121,23 +127,34 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
             initialDisplacement=list(com_init - com_ref),
             initialRotationMatrix=reference_frames[j - 1].T @ initial_frames[j - 1],  # superimposed on the reference
             gravity=list(-chain.g * UP)))
-    joint_items = []
+    if joints == "prescribed" and sweep is None:
+        raise SpringlabError("joints='prescribed' needs a sweep")
+    joint_items, joint_axes = [], []
     for j in range(2, chain.n + 1):
         items, position = [bodies[j - 2], bodies[j - 1]], list(ref_joints[j - 2])
+        axis = chain.joint(j)
+        revolute = axis != SPHERICAL
+        axes = reference_frames[j - 2]  # the joint's axes: link j-1's frame
+        if revolute:
+            axes = axes @ _frame_with_z(np.asarray(axis))  # z along the revolute axis
+        joint_axes.append(axes)
         if joints == "spherical":
-            joint_items.append(mbs.CreateSphericalJoint(itemNumbers=items, position=position))
+            if revolute:
+                joint_items.append(mbs.CreateRevoluteJoint(itemNumbers=items, position=position,
+                                                           axis=list(axes[:, 2])))
+            else:
+                joint_items.append(mbs.CreateSphericalJoint(itemNumbers=items, position=position))
             continue
         offset = 0
         if joints == "prescribed":
-            if sweep is None:
-                raise SpringlabError("joints='prescribed' needs a sweep")
-
-            def offset(mbs_, t, item, values, _k=j - 2):  # frame 1 = frame 0 @ RotXYZ(angles)
-                a = sweep.angles(t)[_k]
+            def offset(mbs_, t, item, values, _k=j - 2, _revolute=revolute):
+                a = sweep.angles(t)[_k]  # frame 1 = frame 0 @ RotXYZ(offset)
+                if _revolute:
+                    return [0.0, 0.0, 0.0, 0.0, 0.0, float(a[0])]
                 return [0.0, 0.0, 0.0, float(a[0]), float(a[1]), float(a[2])]
 
         joint_items.append(mbs.CreateGenericJoint(
-            itemNumbers=items, position=position, rotationMatrixAxes=reference_frames[j - 2],
+            itemNumbers=items, position=position, rotationMatrixAxes=axes,
             constrainedAxes=[1] * 6, offsetUserFunction=offset))
     spring_items = []
     for s in springs:
@@ -148,7 +165,7 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
         spring_items.append(mbs.AddObject(ObjectConnectorSpringDamper(
             markerNumbers=[mA, mB], referenceLength=float(s.free_length), stiffness=float(s.k),
             damping=float(settings.damping))))
-    return Model(SC, mbs, bodies, joint_items, spring_items, chain, springs, joints)
+    return Model(SC, mbs, bodies, joint_items, joint_axes, spring_items, chain, springs, joints)
 
 
 def _settings(model: Model, settings: SimSettings, end_time: float = 0.0, write_period: float = 0.01):
@@ -182,8 +199,6 @@ def _sensor(model: Model, **kwargs):
                                     outputVariableType=getattr(exu.OutputVariableType, kind), **kwargs))
 
 
-def _check_poses(chain: Chain, X) -> np.ndarray:
-    return chain.check_directions(X)
 
 
 # --- 1. hold test ------------------------------------------------------------------
@@ -222,12 +237,11 @@ class HoldResult:
                 f"{self.control.max_tip_drift:.2e} m with them scaled by {self.control.springs_scale}")
 
 
-def _hold_run(chain, springs, X, duration, settings, scale) -> HoldRun:
+def _hold_run(chain, springs, frames, duration, settings, scale) -> HoldRun:
     tip_local = _local_x(chain.r[-1] - chain.d[-1])
-    tip_drift, angle_drift = np.zeros(len(X)), np.zeros(len(X))
+    tip_drift, angle_drift = np.zeros(len(frames)), np.zeros(len(frames))
     cpu, scaled = 0.0, [s.scaled(scale) for s in springs]
-    frames = frames_from_directions(X)
-    for p in range(len(X)):
+    for p in range(len(frames)):
         model = build_model(chain, scaled, frames[p], settings=settings)
         tip = _sensor(model, bodyNumber=model.bodies[-1], localPosition=tip_local, kind="Position")
         rot = [_sensor(model, bodyNumber=b, kind="RotationMatrix") for b in model.bodies[1:]]
@@ -241,10 +255,10 @@ def _hold_run(chain, springs, X, duration, settings, scale) -> HoldRun:
             x = model.mbs.GetSensorStoredData(sensor)[:, 1:].reshape(-1, 3, 3)[:, :, 0]
             angle = np.arctan2(np.linalg.norm(np.cross(x[0], x), axis=1), x @ x[0])
             angle_drift[p] = max(angle_drift[p], float(np.max(angle)))
-    return HoldRun(scale, tip_drift, angle_drift, cpu, duration * len(X))
+    return HoldRun(scale, tip_drift, angle_drift, cpu, duration * len(frames))
 
 
-def hold_test(chain: Chain, springs, X, duration: float = 2.0, *, control_scale: float = 0.9,
+def hold_test(chain: Chain, springs, poses, duration: float = 2.0, *, control_scale: float = 0.9,
               settings: SimSettings = SimSettings()) -> HoldResult:
     """Release the arm at rest at each pose and measure how far it drifts.
 
@@ -252,15 +266,16 @@ def hold_test(chain: Chain, springs, X, duration: float = 2.0, *, control_scale:
     Newton tolerance alone. The negative control, the same springs scaled by
     ``control_scale``, always runs beside it and must move.
 
-    :param X: poses (N, n, 3)
+    :param poses: link directions (N, n, 3), or joint angles (N, n-1, 3) (needed
+        for chains with revolute joints)
     :param duration: simulated time per pose (s)
     """
-    X = _check_poses(chain, X)
+    frames = chain.pose_frames(poses)
     if not (np.isfinite(duration) and duration > 0):
         raise SpringlabError(f"duration must be > 0 s, got {duration}")
     springs = check_springs(chain, springs)
-    return HoldResult(_hold_run(chain, springs, X, duration, settings, 1.0),
-                      _hold_run(chain, springs, X, duration, settings, control_scale))
+    return HoldResult(_hold_run(chain, springs, frames, duration, settings, 1.0),
+                      _hold_run(chain, springs, frames, duration, settings, control_scale))
 
 
 # --- 2. holding torques ------------------------------------------------------------
@@ -277,23 +292,28 @@ class TorqueResult:
         return float(np.max(np.abs(self.simulated - self.analytic)))
 
 
-def holding_torques(chain: Chain, springs, X, *, settings: SimSettings = SimSettings()) -> TorqueResult:
+def holding_torques(chain: Chain, springs, poses, *, settings: SimSettings = SimSettings()) -> TorqueResult:
     """The joint torques needed to hold each pose, from a statics solve with every
-    joint locked, beside route 2's analytic torques."""
+    joint locked, beside route 2's analytic torques.
+
+    :param poses: link directions (N, n, 3), or joint angles (N, n-1, 3)
+
+    For a revolute joint the component along its axis is the actuator's share;
+    the bearing carries the rest.
+    """
     import exudyn as exu
 
-    X = _check_poses(chain, X)
+    frames = chain.pose_frames(poses)
     springs = check_springs(chain, springs)
-    frames = frames_from_directions(X)
-    out = np.zeros((len(X), chain.n - 1, 3))
-    for p in range(len(X)):
+    out = np.zeros((len(frames), chain.n - 1, 3))
+    for p in range(len(frames)):
         model = build_model(chain, springs, frames[p], joints="locked", settings=settings)
         model.mbs.Assemble()
         model.mbs.SolveStatic(_settings(model, settings))
         for k, joint in enumerate(model.joints):
             local = np.asarray(model.mbs.GetObjectOutput(joint, exu.OutputVariableType.TorqueLocal))
-            out[p, k] = frames[p, k] @ _TORQUE_SIGN @ local
-    return TorqueResult(out, route2_holding_torques(chain, springs, X))
+            out[p, k] = model.joint_axes[k] @ _TORQUE_SIGN @ local
+    return TorqueResult(out, route2_holding_torques(chain, springs, frames[..., 0]))
 
 
 # --- 3. following a trajectory ---------------------------------------------------
@@ -302,8 +322,9 @@ class FollowResult:
     """Energies (J) and joint torques (N m) along a prescribed motion.
 
     t: (T,) s; gravity, springs, total: (T,) J from exudyn's body positions and
-    spring connectors; torques: (T, n-1, 3) joint torques in each joint's parent
-    frame; route2: the same energies by route 2 at the same angles.
+    spring connectors; torques: (T, n-1, 3) joint torques in each joint's moving
+    axes (link j-1's frame, turned for a revolute joint so that z is its axis);
+    route2: the same energies by route 2 at the same angles.
     """
 
     t: np.ndarray
@@ -326,9 +347,10 @@ def follow(chain: Chain, springs, sweep: Sweep, *, samples: int = 301,
     if int(samples) != samples or samples < 2:
         raise SpringlabError(f"samples must be an integer >= 2, got {samples}")
     sweep.check_at_rest()
+    chain.check_angles(np.stack([sweep.initial, sweep.initial + sweep.rotation]))
     springs = check_springs(chain, springs)
     upright = np.broadcast_to(np.eye(3), (chain.n, 3, 3))
-    initial = chain_frames(sweep.angles(0.0)[None])[0]
+    initial = chain.frames(sweep.angles(0.0)[None])[0]
     model = build_model(chain, springs, upright, joints="prescribed", initial_frames=initial,
                         sweep=sweep, settings=settings)
     com = [_sensor(model, bodyNumber=b, kind="Position") for b in model.bodies[1:]]

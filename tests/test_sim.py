@@ -100,3 +100,57 @@ def test_bad_inputs(arm, exact_springs, poses):
         sim.hold_test(arm, exact_springs, poses[:1], duration=0.0)
     with pytest.raises(SpringlabError, match="payload"):
         arm.with_payload(-1.0)
+
+
+@pytest.fixture(scope="module")
+def planar_arm():
+    """A 3-link arm in the vertical x-y plane: revolute joints about z, balanced by
+    springs solved from the same Eqs. (39) (the planar case of the spatial form)."""
+    from springlab.design import design_for
+
+    chain = serial_chain([0.4, 0.3, 0.25], [0.2, 0.15, 0.1], [3.0, 2.0, 1.0], joints=[(0, 0, 1)] * 3)
+    _, springs = design_for(chain, seed=1)
+    return chain, springs
+
+
+def test_revolute_chain_holds_and_matches_route_2(planar_arm):
+    chain, springs = planar_arm
+    angles = chain.random_angles(6, np.random.default_rng(7))
+    assert np.all(angles[..., 1:] == 0)
+    X = chain.directions(angles)
+    np.testing.assert_allclose(X[..., 2], 0, atol=1e-15)  # the arm stays in the x-y plane
+    hold = sim.hold_test(chain, springs, angles, duration=1.0)
+    assert hold.balanced.max_tip_drift < 1e-9 < 1e-2 < hold.control.max_tip_drift
+    for scale in (1.0, 0.9):
+        torques = sim.holding_torques(chain, [s.scaled(scale) for s in springs], angles)
+        assert torques.max_difference < 1e-9
+    sweep = Sweep(angles[0], angles[1] - angles[0], 4.0)
+    run = sim.follow(chain, springs, sweep, samples=41)
+    assert np.ptp(run.total) < 1e-9 * np.ptp(run.gravity)
+    assert np.abs(run.total - run.route2["total"]).max() < 1e-9 * np.ptp(run.gravity)
+
+
+def test_revolute_chain_needs_angles(planar_arm):
+    chain, springs = planar_arm
+    with pytest.raises(SpringlabError, match="joint angles"):
+        sim.holding_torques(chain, springs, random_directions(4, 2, 0))
+    with pytest.raises(SpringlabError, match="revolute"):
+        chain.frames(np.ones((1, 3, 3)))
+    with pytest.raises(SpringlabError, match="revolute axis"):
+        serial_chain([0.4], [0.2], [3.0], joints=[(0, 0, 0)])
+
+
+def test_mixed_joints_with_an_oblique_axis(exact_springs):
+    chain = serial_chain([0.30, 0.24, 0.20], [0.15, 0.12, 0.10], [4.0, 3.2, 2.8], g=9.8,
+                         joints=["spherical", (0.0, 1.0, 1.0), (0.0, 0.0, 1.0)])
+    angles = chain.random_angles(4, np.random.default_rng(11))
+    hold = sim.hold_test(chain, exact_springs, angles, duration=1.0)
+    assert hold.balanced.max_tip_drift < 1e-9 < 1e-2 < hold.control.max_tip_drift
+    torques = sim.holding_torques(chain, [s.scaled(0.9) for s in exact_springs], angles)
+    assert torques.max_difference < 1e-9
+    run = sim.follow(chain, exact_springs, Sweep(angles[2], angles[3] - angles[2], 3.0), samples=31)
+    assert np.ptp(run.total) < 1e-9 * np.ptp(run.gravity)
+    with pytest.raises(SpringlabError, match="revolute"):
+        bad = np.zeros((3, 3))
+        bad[1, 2] = 0.3  # a psi angle on the revolute joint 3
+        sim.follow(chain, exact_springs, Sweep(np.zeros((3, 3)), bad, 3.0))
