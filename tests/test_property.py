@@ -35,7 +35,8 @@ def balanced_springs(chain, skip):
         if relaxation_margin(chain, cfg) <= 1e-9:
             continue
         try:
-            springs = find_design(chain, cfg, seed=found, restarts=10)
+            # signs only (no bounds on the attachments): the property is the energy's balance
+            springs = find_design(chain, cfg, seed=found, restarts=10, within_links=False)
         except UnbalanceableError:
             continue
         if found == skip:
