@@ -154,3 +154,10 @@ def test_mixed_joints_with_an_oblique_axis(exact_springs):
         bad = np.zeros((3, 3))
         bad[1, 2] = 0.3  # a psi angle on the revolute joint 3
         sim.follow(chain, exact_springs, Sweep(np.zeros((3, 3)), bad, 3.0))
+
+
+def test_light_damping_changes_nothing_at_rest(arm, exact_springs, poses):
+    damped = sim.SimSettings(damping=2.0)
+    hold = sim.hold_test(arm, exact_springs, poses[:3], duration=1.0, settings=damped)
+    assert hold.balanced.max_tip_drift < 1e-9 < 1e-2 < hold.control.max_tip_drift
+    assert sim.holding_torques(arm, exact_springs, poses[:3], settings=damped).max_difference < 1e-9
