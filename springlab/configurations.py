@@ -233,11 +233,6 @@ def enumerate_configurations(n: int, *, max_springs: int | None = None) -> list[
     return sorted(set(iter_configurations(n, max_springs=max_springs)))
 
 
-def configuration_key(slots) -> tuple:
-    """A hashable, order-free key of a configuration."""
-    return tuple(sorted(slot(s) if isinstance(s, str) else s for s in slots))
-
-
 def group_alternatives(configs) -> list[dict[tuple[int, int], frozenset]]:
     """Merge configurations that differ only in one pair's springs, as Table 1
     writes '1^(+,+)/(-,-)'. Returns, per group, {(i, j): set of alternatives},

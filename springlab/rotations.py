@@ -76,32 +76,6 @@ def rot_xyz(theta, phi, psi) -> np.ndarray:
     return rot_x(theta) @ rot_y(phi) @ rot_z(psi)
 
 
-def chain_directions(angles) -> np.ndarray:
-    """Link directions of a serial chain from relative angles.
-
-    :param angles: ndarray(N, n-1, 3), (theta, phi, psi) of links 2..n in rad,
-        each relative to the previous link's frame; link 1 (the ground) has the
-        identity frame.
-    :returns: ndarray(N, n, 3), the unit vectors x_1..x_n (x_1 = [1, 0, 0]).
-    """
-    return chain_frames(angles)[..., 0]
-
-
-def chain_frames(angles) -> np.ndarray:
-    """Link frames R_1..R_n of a serial chain from relative angles.
-
-    :param angles: ndarray(N, n-1, 3), (theta, phi, psi) of links 2..n in rad
-    :returns: ndarray(N, n, 3, 3) with R_1 = I and R_i = R_{i-1} Rx Ry Rz; the
-        first column of R_i is the link direction x_i
-    """
-    angles = np.asarray(angles, dtype=float)
-    if angles.ndim != 3 or angles.shape[2] != 3:
-        raise ValueError(f"angles must have shape (N, n-1, 3), got {angles.shape}")
-    if not np.all(np.isfinite(angles)):
-        raise ValueError("angles contain NaN or infinity")
-    return frames_from_relative(rot_xyz(angles[..., 0], angles[..., 1], angles[..., 2]))
-
-
 def frames_from_relative(rel) -> np.ndarray:
     """Link frames (N, n, 3, 3) from each joint's relative rotation (N, n-1, 3, 3):
     R_1 = I (the ground), R_i = R_{i-1} rel_i."""
@@ -112,6 +86,11 @@ def frames_from_relative(rel) -> np.ndarray:
     for j in range(n_moving):
         out[:, j + 1] = out[:, j] @ rel[:, j]
     return out
+
+
+def directions_from_relative(rel) -> np.ndarray:
+    """Link directions (N, n, 3) from each joint's relative rotation (N, n-1, 3, 3)."""
+    return frames_from_relative(rel)[..., 0]
 
 
 def frames_from_directions(X) -> np.ndarray:

@@ -1,7 +1,7 @@
 import numpy as np
 
 from springlab import UP, random_directions, serial_chain
-from springlab.rotations import chain_directions, rot_xyz
+from springlab.rotations import directions_from_relative, rot_xyz
 
 
 def test_straight_up_pose_places_joints_and_coms_on_the_vertical(arm):
@@ -21,7 +21,8 @@ def test_zero_angles_point_every_link_up(arm):
 def test_relative_angles_compose_along_the_chain():
     # phi = -90 deg about y turns x = up into +z; a second -90 deg turns it to -x (down).
     ang = np.radians([[[0, -90, 0], [0, -90, 0]]])
-    X = chain_directions(ang)
+    X = serial_chain([1.0, 1.0], [0.5, 0.5], [1.0, 1.0]).directions(ang)
+    np.testing.assert_allclose(directions_from_relative(rot_xyz(*np.moveaxis(ang, -1, 0))), X)
     np.testing.assert_allclose(X[0, 1], [0, 0, 1], atol=1e-15)
     np.testing.assert_allclose(X[0, 2], [-1, 0, 0], atol=1e-15)
 
