@@ -301,19 +301,29 @@ def holding_torques(chain: Chain, springs, poses, *, settings: SimSettings = Sim
     For a revolute joint the component along its axis is the actuator's share;
     the bearing carries the rest.
     """
-    import exudyn as exu
-
     frames = chain.pose_frames(poses)
     springs = check_springs(chain, springs)
     out = np.zeros((len(frames), chain.n - 1, 3))
     for p in range(len(frames)):
         model = build_model(chain, springs, frames[p], joints="locked", settings=settings)
         model.mbs.Assemble()
-        model.mbs.SolveStatic(_settings(model, settings))
-        for k, joint in enumerate(model.joints):
-            local = np.asarray(model.mbs.GetObjectOutput(joint, exu.OutputVariableType.TorqueLocal))
-            out[p, k] = model.joint_axes[k] @ _TORQUE_SIGN @ local
+        out[p] = static_joint_torques(model, settings)
     return TorqueResult(out, route2_holding_torques(chain, springs, frames[..., 0]))
+
+
+def static_joint_torques(model: Model, settings: SimSettings = SimSettings()) -> np.ndarray:
+    """Solve the statics of an assembled model with locked joints and return the
+    torque each joint applies to the links beyond it (N m, world frame), (n-1, 3)."""
+    import exudyn as exu
+
+    if model.kind != "locked":
+        raise SpringlabError(f"static joint torques need a model with locked joints, not {model.kind!r}")
+    model.mbs.SolveStatic(_settings(model, settings))
+    out = np.zeros((len(model.joints), 3))
+    for k, joint in enumerate(model.joints):
+        local = np.asarray(model.mbs.GetObjectOutput(joint, exu.OutputVariableType.TorqueLocal))
+        out[k] = model.joint_axes[k] @ _TORQUE_SIGN @ local
+    return out
 
 
 # --- 3. following a trajectory ---------------------------------------------------

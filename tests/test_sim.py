@@ -161,3 +161,19 @@ def test_light_damping_changes_nothing_at_rest(arm, exact_springs, poses):
     hold = sim.hold_test(arm, exact_springs, poses[:3], duration=1.0, settings=damped)
     assert hold.balanced.max_tip_drift < 1e-9 < 1e-2 < hold.control.max_tip_drift
     assert sim.holding_torques(arm, exact_springs, poses[:3], settings=damped).max_difference < 1e-9
+
+
+def test_holding_torque_sign_against_an_applied_torque(arm, poses):
+    # a known torque applied to the end link must be held by every joint: tau_held = route 2 - T
+    from exudyn.utilities import LoadTorqueVector, MarkerBodyRigid
+
+    from springlab.energy import holding_torques as analytic
+    from springlab.rotations import frames_from_directions
+
+    applied = np.array([0.7, -1.3, 2.1])
+    model = sim.build_model(arm, [], frames_from_directions(poses[:1])[0], joints="locked")
+    marker = model.mbs.AddMarker(MarkerBodyRigid(bodyNumber=model.bodies[-1], localPosition=[0.0, 0.0, 0.0]))
+    model.mbs.AddLoad(LoadTorqueVector(markerNumber=marker, loadVector=list(applied), bodyFixed=False))
+    model.mbs.Assemble()
+    held = sim.static_joint_torques(model)
+    np.testing.assert_allclose(held, analytic(arm, [], poses[:1])[0] - applied, atol=1e-10)
