@@ -1,0 +1,355 @@
+"""A rotating link balanced by a non-zero-length spring through a crank-slider dyad
+(Zhang, Arakelian 2023; paper 002).
+
+Geometry (the paper's Fig. 1, as its Eqs. 1, 8 and 24 imply)::
+
+        B  (slider 4 on the vertical line through O, height y above O)
+        |\\
+        | \\  rod 3, length l
+        |  \\
+      y |   A  (on link 2, |OA| = r, at angle phi - beta from the vertical)
+        |  /
+        | / r
+        |/
+        O ---- link 2 (COM at distance s, at angle phi from the upward vertical)
+
+    spring 5: between the frame at O's level and the slider, length y,
+    free length l0, stiffness k; energy k (y - l0)^2 / 2 (Eqs. 2, 7).
+
+Angles in rad (the paper prints degrees), lengths in m, G in N, k in N/m,
+energies in J, moments in N m. phi = 0 is the link pointing up; the gravity
+energy is G s (1 + cos phi) (Eq. 1).
+
+Two unbalanced moments are implemented side by side:
+
+* :func:`unbalanced_moment_paper`: Eqs. (20)-(30) as printed;
+* :func:`unbalanced_moment`: the moment of gravity and spring about O by
+  virtual work, -dP/dphi of the total potential energy (route 2).
+
+They differ in the spring's share by cos^2(theta) (theta = angle OBA): Eq. (26)
+takes the rod's force as F_sp cos(theta), but a slider guided along OB passes the
+spring force F_sp to the rod as F_sp / cos(theta).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab.errors import SpringlabError
+
+
+def _positive(name: str, value: float, *, allow_zero: bool = False) -> float:
+    value = float(value)
+    if not np.isfinite(value) or value < 0 or (value == 0 and not allow_zero):
+        bound = ">= 0" if allow_zero else "> 0"
+        raise SpringlabError(f"{name} must be finite and {bound}, got {value}")
+    return value
+
+
+@dataclass(frozen=True)
+class Compensator:
+    """The link and the spring: weight G (N), COM distance s (m), stiffness k (N/m),
+    free length l0 (m)."""
+
+    G: float
+    s: float
+    k: float
+    l0: float
+
+    def __post_init__(self):
+        for name in ("G", "s", "k"):
+            _positive(name, getattr(self, name))
+        _positive("l0", self.l0, allow_zero=True)
+
+    def gravity_energy(self, phi) -> np.ndarray:
+        """P_G = G s (1 + cos phi) (Eq. 1), J."""
+        return self.G * self.s * (1.0 + np.cos(np.asarray(phi, dtype=float)))
+
+    def gravity_moment(self, phi) -> np.ndarray:
+        """The moment of gravity about O, G s sin(phi) (N m), positive towards larger phi
+        (the paper's Eq. 20 prints it as M_G = -G s sin(phi))."""
+        return self.G * self.s * np.sin(np.asarray(phi, dtype=float))
+
+
+@dataclass(frozen=True)
+class Dyad:
+    """The crank-slider dyad: r = |OA| (m), l = |AB| (m), beta (rad)."""
+
+    r: float
+    l: float  # noqa: E741 - the paper's symbol
+    beta: float
+
+    def __post_init__(self):
+        _positive("r", self.r)
+        _positive("l", self.l)
+        if not np.isfinite(self.beta):
+            raise SpringlabError(f"beta must be finite, got {self.beta}")
+
+
+def slider_positions(comp: Compensator, C: float, phi, *, branch: int = -1) -> np.ndarray:
+    """Slider heights y (m) that keep the total energy at C (J): Eqs. (5)-(7).
+
+    y = l0 + branch * sqrt((2C - 2 G s (1 + cos phi)) / k); ``branch`` = -1 (the
+    spring shorter than free, the paper's examples) or +1.
+
+    :raises SpringlabError: where 2C < 2 G s (1 + cos phi): the root is imaginary
+    """
+    if branch not in (-1, 1):
+        raise SpringlabError(f"branch must be -1 or +1, got {branch}")
+    phi = np.asarray(phi, dtype=float)
+    radicand = (2.0 * C - 2.0 * comp.gravity_energy(phi)) / comp.k  # Eq. (6)
+    if np.any(radicand < 0) or not np.isfinite(C):
+        worst = np.degrees(np.atleast_1d(phi)[np.argmin(np.atleast_1d(radicand))])
+        need = float(np.max(comp.gravity_energy(phi)))
+        raise SpringlabError(
+            f"C = {C} J is below the gravity energy G s (1 + cos phi) = {need:.6g} J at phi = {worst:.6g} deg: "
+            f"the slider position of Eq. (6) is imaginary; choose C >= {need:.6g} J")
+    return comp.l0 + branch * np.sqrt(radicand)  # Eq. (7)
+
+
+@dataclass(frozen=True)
+class Synthesis:
+    """The dyad from Eq. (16) and how well-posed the system was."""
+
+    dyad: Dyad
+    condition_number: float  # of the matrix [a_i, b_i, 1]
+    residual: float  # largest |a z1 + b z2 + z3 - c| (m^2); 0 for 3 positions
+
+
+def synthesise(phi, y) -> Synthesis:
+    """r, l, beta from prescribed positions (phi_i, y_i): Eqs. (12)-(19).
+
+    Exact for 3 positions, least squares for more.
+
+    :raises SpringlabError: fewer than 3 positions, a singular system, or
+        z3 + r^2 < 0 (no real rod length)
+    """
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    y = np.atleast_1d(np.asarray(y, dtype=float))
+    if phi.shape != y.shape or phi.ndim != 1:
+        raise SpringlabError(f"phi and y must be 1-D of one length, got {phi.shape} and {y.shape}")
+    if len(phi) < 3:
+        raise SpringlabError(f"the synthesis needs at least 3 prescribed positions, got {len(phi)}")
+    if not (np.all(np.isfinite(phi)) and np.all(np.isfinite(y))):
+        raise SpringlabError("phi and y must be finite")
+    A = np.stack([2 * y * np.cos(phi), 2 * y * np.sin(phi), np.ones_like(y)], axis=1)  # Eq. (16)
+    c = y**2
+    cond = float(np.linalg.cond(A))
+    if not np.isfinite(cond) or cond > 1e12:
+        raise SpringlabError(f"the positions give a singular system (condition number {cond:.3g})")
+    z, *_ = np.linalg.lstsq(A, c, rcond=None)
+    r = float(np.hypot(z[0], z[1]))  # Eqs. (12)-(13), (18)
+    beta = float(np.arctan2(z[1], z[0]))  # Eq. (17)
+    l_sq = z[2] + r**2  # Eq. (19)
+    if l_sq <= 0:
+        raise SpringlabError(f"z3 + r^2 = {l_sq:.6g} m^2 <= 0: no real rod length l for these positions")
+    return Synthesis(Dyad(r, float(np.sqrt(l_sq)), beta), cond, float(np.max(np.abs(A @ z - c))))
+
+
+def _closing(dyad: Dyad, phi) -> tuple[np.ndarray, np.ndarray]:
+    phi = np.asarray(phi, dtype=float)
+    u = phi - dyad.beta
+    horizontal = dyad.r * np.sin(u)
+    if np.any(np.abs(horizontal) > dyad.l):
+        worst = np.degrees(np.atleast_1d(phi)[np.argmax(np.abs(np.atleast_1d(horizontal)))])
+        raise SpringlabError(
+            f"l = {dyad.l:.6g} m < r |sin(phi - beta)| at phi = {worst:.6g} deg: the dyad cannot close")
+    return u, np.sqrt(dyad.l**2 - horizontal**2)  # l cos(theta)
+
+
+def slider_height(dyad: Dyad, phi) -> np.ndarray:
+    """y = r cos(phi - beta) + sqrt(l^2 - r^2 sin^2(phi - beta)) (Eq. 24), m."""
+    u, l_cos_theta = _closing(dyad, phi)
+    return dyad.r * np.cos(u) + l_cos_theta
+
+
+def potential_energy(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
+    """Total potential energy P = G s (1 + cos phi) + k (y - l0)^2 / 2 (Eqs. 1-3), J,
+    with y from the linkage's geometry (Eq. 24)."""
+    y = slider_height(dyad, phi)
+    return comp.gravity_energy(phi) + 0.5 * comp.k * (y - comp.l0) ** 2
+
+
+def unbalanced_moment(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
+    """The unbalanced moment about O by virtual work: -dP/dphi (N m), the moment
+    of gravity and spring together, positive towards larger phi (as the paper's
+    M_ub of Eq. 30). An actuator holds the link with the opposite torque.
+
+    dy/dphi = -r sin(phi - beta) y / (l cos theta), so
+    M_ub = G s sin(phi) + k (y - l0) r sin(phi - beta) y / (l cos theta).
+    """
+    u, l_cos_theta = _closing(dyad, phi)
+    y = dyad.r * np.cos(u) + l_cos_theta
+    spring_force = comp.k * (y - comp.l0)
+    return comp.gravity_moment(phi) + spring_force * dyad.r * np.sin(u) * y / l_cos_theta
+
+
+def unbalanced_moment_paper(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
+    """M_ub as Eqs. (20)-(30) print it (N m).
+
+    M_G = -G s sin phi (20); y (24); F_sp = k (y - l0) (25); F_ab = F_sp cos theta
+    (26), theta = arccos((y^2 + l^2 - r^2) / (2 y l)) (27); M_sp = F_ab r sin psi
+    (28), psi = arcsin(y sin(phi - beta) / l) (29); M_ub = -(M_sp + M_G) (30).
+    """
+    phi = np.asarray(phi, dtype=float)
+    y = slider_height(dyad, phi)
+    M_G = -comp.G * comp.s * np.sin(phi)  # Eq. (20)
+    F_sp = comp.k * (y - comp.l0)  # Eq. (25)
+    theta = np.arccos(np.clip((y**2 + dyad.l**2 - dyad.r**2) / (2 * y * dyad.l), -1, 1))  # Eq. (27)
+    F_ab = F_sp * np.cos(theta)  # Eq. (26)
+    psi = np.arcsin(np.clip(y * np.sin(phi - dyad.beta) / dyad.l, -1, 1))  # Eq. (29)
+    M_sp = F_ab * dyad.r * np.sin(psi)  # Eq. (28)
+    return -(M_sp + M_G)  # Eq. (30)
+
+
+EQ32_READINGS = ("signed sum", "sum of magnitudes", "sum of squares", "maximum magnitude")
+"""How Eq. (31)'s total of the moments at the prescribed positions can be read."""
+
+
+def eq32_objective(moments: np.ndarray, reading: str) -> float:
+    """Eq. (31)'s total unbalanced moment under one reading of what is summed."""
+    moments = np.asarray(moments, dtype=float)
+    if reading == "signed sum":
+        return float(np.sum(moments))
+    if reading == "sum of magnitudes":
+        return float(np.sum(np.abs(moments)))
+    if reading == "sum of squares":
+        return float(np.sum(moments**2))
+    if reading == "maximum magnitude":
+        return float(np.max(np.abs(moments)))
+    raise SpringlabError(f"reading must be one of {EQ32_READINGS}, got {reading!r}")
+
+
+def unbalanced_moment_paper_sign_corrected(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
+    """Eqs. (20)-(30) with the spring's moment taken with the sign of a moment towards
+    larger phi (as M_G's gravity is): G s sin(phi) + M_sp. As printed, Eq. (30)
+    subtracts a spring moment of the same sign as gravity's and so adds the two."""
+    return 2.0 * comp.gravity_moment(phi) - unbalanced_moment_paper(comp, dyad, phi)
+
+
+MOMENTS = {
+    "virtual work": unbalanced_moment,
+    "Eqs. (20)-(30) as printed": unbalanced_moment_paper,
+    "Eqs. (20)-(30), spring sign corrected": unbalanced_moment_paper_sign_corrected,
+}
+"""The unbalanced-moment definitions compared in the paper-002 notebook."""
+
+C_READINGS = ("signed sum stationary", "smallest |signed sum|", "sum of magnitudes", "sum of squares",
+              "maximum magnitude")
+"""Readings of Eq. (32), dM_total/dC = 0: the first is literal (an extremum of the
+signed sum of Eq. 31); 'smallest |signed sum|' brings the sum closest to zero; the others minimise
+the sum of |M|, of M^2, or the largest |M| over the prescribed positions."""
+
+
+def design_for_C(comp: Compensator, C: float, phi, *, branch: int = -1) -> Dyad:
+    """The dyad that Eqs. (6)-(19) give for an energy constant C and positions phi."""
+    return synthesise(phi, slider_positions(comp, C, phi, branch=branch)).dyad
+
+
+def choose_C(comp: Compensator, phi, reading: str, *, moment: str = "virtual work",
+             C_max: float | None = None, grid: int = 4000, branch: int = -1) -> float:
+    """The energy constant C (J) that one reading of Eq. (32) selects.
+
+    Each C gives slider positions (Eq. 6), a dyad (Eq. 16) and the unbalanced
+    moments at the prescribed positions; the reading turns those into one number
+    (see :data:`C_READINGS`). C is searched on a grid from the smallest value with
+    real slider positions to ``C_max`` (default: that value plus 4 G s), then refined.
+
+    :raises SpringlabError: for an unknown reading or moment, or when no C works
+    """
+    from scipy.optimize import minimize_scalar
+
+    if reading not in C_READINGS:
+        raise SpringlabError(f"reading must be one of {C_READINGS}, got {reading!r}")
+    if moment not in MOMENTS:
+        raise SpringlabError(f"moment must be one of {tuple(MOMENTS)}, got {moment!r}")
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    C_min = float(np.max(comp.gravity_energy(phi)))
+    C_max = C_max if C_max is not None else C_min + 4 * comp.G * comp.s
+    f = MOMENTS[moment]
+
+    def total(C):
+        try:
+            m = f(comp, design_for_C(comp, C, phi, branch=branch), phi)
+        except SpringlabError:
+            return np.nan
+        if reading in ("signed sum stationary", "smallest |signed sum|"):
+            return float(np.sum(m))
+        return eq32_objective(m, reading)
+
+    Cs = np.linspace(C_min, C_max, grid)[1:]
+    values = np.array([total(C) for C in Cs])
+    ok = np.isfinite(values)
+    if not np.any(ok):
+        raise SpringlabError("no C in the search range gives a dyad that closes at every position")
+    if reading == "signed sum stationary":  # Eq. (32) read literally: d(sum M)/dC = 0
+        from scipy.optimize import brentq
+
+        slope = np.gradient(values, Cs)
+        flips = np.where(ok[:-1] & ok[1:] & (np.sign(slope[:-1]) != np.sign(slope[1:])))[0]
+        if not len(flips):
+            raise SpringlabError("the signed sum of Eq. (31) has no stationary point in the search range")
+        h = 1e-4 * (Cs[1] - Cs[0])
+        return float(brentq(lambda C: total(C + h) - total(C - h), Cs[flips[0]], Cs[flips[0] + 1], xtol=1e-10))
+    target = np.abs(values) if reading == "smallest |signed sum|" else values
+    i = int(np.nanargmin(np.where(ok, target, np.nan)))
+    lo, hi = Cs[max(i - 1, 0)], Cs[min(i + 1, len(Cs) - 1)]
+    g = (lambda C: abs(total(C))) if reading == "smallest |signed sum|" else total
+    res = minimize_scalar(lambda C: g(C) if np.isfinite(g(C)) else 1e300, bounds=(lo, hi), method="bounded",
+                          options={"xatol": 1e-9})
+    return float(res.x)
+
+
+@dataclass(frozen=True)
+class Optimum:
+    """The best dyad found: its largest |M_ub| (N m) over the grid, and l0 (m)."""
+
+    dyad: Dyad
+    l0: float
+    max_moment: float
+
+
+def max_unbalanced(comp: Compensator, dyad: Dyad, phi) -> float:
+    """The largest |M_ub| (virtual work) over the angles phi, N m."""
+    return float(np.max(np.abs(unbalanced_moment(comp, dyad, phi))))
+
+
+def optimise(comp: Compensator, phi, start: Dyad, *, free_l0: bool = False,
+             bounds: dict | None = None) -> Optimum:
+    """Minimise the largest |M_ub| (virtual work) over the angles ``phi`` by
+    choosing r, l, beta (and l0 with ``free_l0``), from ``start``.
+
+    The minimax is solved in epigraph form with SLSQP (scipy): minimise t subject
+    to -t <= M_ub(phi_j) <= t. Default bounds: r in [0.01, 1] m, l in [0.05, 2] m,
+    beta in [-pi/2, pi/2], l0 in [0, 3] m.
+    """
+    from scipy.optimize import minimize
+
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    b = {"r": (0.01, 1.0), "l": (0.05, 2.0), "beta": (-np.pi / 2, np.pi / 2), "l0": (0.0, 3.0)}
+    b.update(bounds or {})
+
+    def unpack(x):
+        l0 = x[3] if free_l0 else comp.l0
+        return Dyad(x[0], x[1], x[2]), Compensator(comp.G, comp.s, comp.k, l0)
+
+    def moments(x):
+        d, c = unpack(x)
+        u = phi - d.beta
+        closing = np.maximum(d.l**2 - (d.r * np.sin(u)) ** 2, 1e-12)
+        y = d.r * np.cos(u) + np.sqrt(closing)
+        return c.gravity_moment(phi) + c.k * (y - c.l0) * d.r * np.sin(u) * y / np.sqrt(closing)
+
+    x0 = [start.r, start.l, start.beta] + ([comp.l0] if free_l0 else [])
+    t0 = float(np.max(np.abs(moments(np.array(x0)))))
+    x0 = np.array(x0 + [t0])
+    keys = ["r", "l", "beta"] + (["l0"] if free_l0 else [])
+    cons = [{"type": "ineq", "fun": lambda x: x[-1] - moments(x[:-1])},
+            {"type": "ineq", "fun": lambda x: x[-1] + moments(x[:-1])},
+            {"type": "ineq", "fun": lambda x: x[1] - x[0] * np.abs(np.sin(phi - x[2])) - 1e-6}]
+    res = minimize(lambda x: x[-1], x0, method="SLSQP", constraints=cons,
+                   bounds=[b[k] for k in keys] + [(0, None)], options={"maxiter": 500, "ftol": 1e-12})
+    d, c = unpack(res.x[:-1])
+    return Optimum(d, c.l0, max_unbalanced(c, d, phi))
