@@ -103,3 +103,51 @@ def arm_figure(chain, springs, X_frames, tip_path=None, *, title: str = ""):
     ax.legend(loc="upper left")
     ax.set_box_aspect((1, 1, 1))
     return fig
+
+
+def moment_figure(phi, curves: dict, *, title: str, ylabel: str = "moment (N m)", styles: dict | None = None):
+    """Moments against the link angle, the look of 002 Figs. 2-3.
+
+    :param phi: angles (rad), plotted in degrees
+    :param curves: {label: moments (N m)}
+    """
+    import numpy as np
+
+    fig, ax = plt.subplots()
+    for label, values in curves.items():
+        ax.plot(np.degrees(phi), values, label=label, **(styles or {}).get(label, {}))
+    ax.axhline(0.0, color="0.5", linewidth=0.6)
+    ax.set_xlabel(r"link angle $\varphi$ (deg)")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.set_xlim(np.degrees(phi[0]), np.degrees(phi[-1]))
+    ax.legend(loc="best")
+    return fig
+
+
+def dyad_figure(comp, dyad, phis, *, title: str = ""):
+    """The compensator drawn to scale at a few link angles (rad): link OS, crank OA,
+    rod AB, slider B on the vertical through O, spring from O's level to B."""
+    import numpy as np
+
+    from springlab.dyad import slider_height
+
+    fig, ax = plt.subplots(figsize=(5.0, 4.6))
+    shades = np.linspace(0.7, 0.0, len(phis))
+    for phi, shade in zip(phis, shades, strict=True):
+        colour = (shade, shade, shade)
+        S = comp.s * np.array([np.sin(phi), np.cos(phi)])
+        A = dyad.r * np.array([np.sin(phi - dyad.beta), np.cos(phi - dyad.beta)])
+        B = np.array([0.0, float(slider_height(dyad, phi))])
+        ax.plot([0, S[0]], [0, S[1]], "-", color=colour, linewidth=2.4)
+        ax.plot(*S, "o", color=colour, markersize=6)
+        ax.plot([0, A[0], B[0]], [0, A[1], B[1]], "-o", color="tab:blue", alpha=1 - 0.7 * shade, markersize=3)
+        ax.text(S[0], S[1] + 0.03, f"{np.degrees(phi):.0f} deg", ha="center", fontsize=7)
+    ax.plot([0, 0], [0, comp.l0], color="tab:red", linestyle=":", linewidth=1.0, label=f"spring free length l0 = {comp.l0:g} m")
+    ax.plot(0, 0, "k^", markersize=8)
+    ax.set_aspect("equal")
+    ax.set_xlabel("horizontal (m)")
+    ax.set_ylabel("vertical (m)")
+    ax.set_title(title)
+    ax.legend(loc="lower right")
+    return fig
