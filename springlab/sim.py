@@ -20,9 +20,11 @@ Three checks, each returning a result with the numbers:
   that starts and ends at rest, recording gravity, spring and total energy and
   the joint torques.
 
-Facts about exudyn 1.13.6 this relies on (measured): a locked generic joint's
-``TorqueLocal`` reads diag(-1, 1, 1) R^T M, where M is the moment of the loads
-on the child side and R the joint axes; ``SolveStatic`` converging says nothing
+Facts about exudyn 1.13.6 this relies on (measured, and tested): a locked
+generic joint's ``TorqueLocal`` reads diag(-1, 1, 1) R^T M, where M is the
+moment of the loads on the child side and R the joint axes; the same joint
+driven by an ``offsetUserFunction`` reads the opposite, -diag(-1, 1, 1) R1^T M,
+in the frame of the driven link (R1). ``SolveStatic`` converging says nothing
 about balance; sensors are stored internally.
 """
 
@@ -43,7 +45,8 @@ from springlab.springs import check_springs
 from springlab.trajectories import Sweep
 
 JOINT_KINDS = ("spherical", "locked", "prescribed")
-_TORQUE_SIGN = np.diag([1.0, -1.0, -1.0])  # holding torque = R @ _TORQUE_SIGN @ TorqueLocal
+_TORQUE_SIGN = np.diag([1.0, -1.0, -1.0])  # locked joint: holding torque = R @ _TORQUE_SIGN @ TorqueLocal
+_DRIVEN_TORQUE_SIGN = np.diag([-1.0, 1.0, 1.0])  # joint with an offset function: in the driven link's frame
 
 
 @dataclass(frozen=True)
@@ -332,9 +335,10 @@ class FollowResult:
     """Energies (J) and joint torques (N m) along a prescribed motion.
 
     t: (T,) s; gravity, springs, total: (T,) J from exudyn's body positions and
-    spring connectors; torques: (T, n-1, 3) joint torques in each joint's moving
-    axes (link j-1's frame, turned for a revolute joint so that z is its axis);
-    route2: the same energies by route 2 at the same angles.
+    spring connectors; torques: (T, n-1, 3) the torque each joint applies to the
+    link it drives (link j), in that link's frame (for a revolute joint, in the
+    joint's axes, z along the axis); in a slow motion they approach the holding
+    torques. route2: the same energies by route 2 at the same angles.
     """
 
     t: np.ndarray
@@ -377,6 +381,6 @@ def follow(chain: Chain, springs, sweep: Sweep, *, samples: int = 301,
     t = data[0][:, 0]
     gravity = sum(chain.g * m * d[:, 1:] @ UP for m, d in zip(chain.m, data, strict=True))
     elastic = sum((model.mbs.GetSensorStoredData(s)[:, 1] for s in pot), np.zeros_like(t))
-    torques = np.stack([model.mbs.GetSensorStoredData(s)[:, 1:] @ _TORQUE_SIGN for s in tq], axis=1)
+    torques = np.stack([model.mbs.GetSensorStoredData(s)[:, 1:] @ _DRIVEN_TORQUE_SIGN for s in tq], axis=1)
     route2 = energy_breakdown(chain, springs, chain.directions(sweep.angles(t)))
     return FollowResult(t, gravity, elastic, gravity + elastic, torques, route2, cpu)

@@ -177,3 +177,17 @@ def test_holding_torque_sign_against_an_applied_torque(arm, poses):
     model.mbs.Assemble()
     held = sim.static_joint_torques(model)
     np.testing.assert_allclose(held, analytic(arm, [], poses[:1])[0] - applied, atol=1e-10)
+
+
+def test_follow_torques_approach_the_holding_torques_in_a_slow_motion(arm, exact_springs):
+    # unbalanced springs, a 60 s sweep: the driven joints' torques are the holding torques
+    # (route 2, in the driven link's frame) plus a small inertial part
+    from springlab.energy import holding_torques as analytic
+
+    springs = [s.scaled(0.9) for s in exact_springs]
+    sweep = Sweep(paper.TABLE_4_INITIAL, paper.TABLE_4_ROTATION, 60.0)
+    run = sim.follow(arm, springs, sweep, samples=31)
+    frames = arm.frames(sweep.angles(run.t))
+    expected = np.einsum("tjba,tjb->tja", frames[:, 1:], analytic(arm, springs, frames[..., 0]))
+    assert np.abs(expected).max() > 1.0
+    assert np.abs(run.torques - expected).max() < 0.02
