@@ -265,6 +265,8 @@ def choose_C(comp: Compensator, phi, reading: str, *, moment: str = "virtual wor
         raise SpringlabError(f"reading must be one of {C_READINGS}, got {reading!r}")
     if moment not in MOMENTS:
         raise SpringlabError(f"moment must be one of {tuple(MOMENTS)}, got {moment!r}")
+    if int(grid) != grid or grid < 3:
+        raise SpringlabError(f"grid must be an integer >= 3, got {grid}")
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     C_min = float(np.max(comp.gravity_energy(phi)))
     C_max = C_max if C_max is not None else C_min + 4 * comp.G * comp.s
@@ -292,7 +294,9 @@ def choose_C(comp: Compensator, phi, reading: str, *, moment: str = "virtual wor
         if not len(flips):
             raise SpringlabError("the signed sum of Eq. (31) has no stationary point in the search range")
         h = 1e-4 * (Cs[1] - Cs[0])
-        return float(brentq(lambda C: total(C + h) - total(C - h), Cs[flips[0]], Cs[flips[0] + 1], xtol=1e-10))
+        k = int(flips[0])
+        lo, hi = Cs[max(k - 1, 0)], Cs[min(k + 2, len(Cs) - 1)]  # np.gradient's flip lies within
+        return float(brentq(lambda C: total(C + h) - total(C - h), lo, hi, xtol=1e-10))
     target = np.abs(values) if reading == "smallest |signed sum|" else values
     i = int(np.nanargmin(np.where(ok, target, np.nan)))
     lo, hi = Cs[max(i - 1, 0)], Cs[min(i + 1, len(Cs) - 1)]
