@@ -210,8 +210,9 @@ def dot_symbol(u, v) -> sp.Symbol:
     return sp.Symbol(rf"{name(key[0])} \cdot {name(key[1])}")
 
 
-def _dot(vec1: dict, vec2: dict):
-    """Bilinear dot product of two vectors written as {unit vector: coefficient}."""
+def expand_vectors_dot(vec1: dict, vec2: dict):
+    """Bilinear dot product of two vectors written as {unit vector: coefficient},
+    with x_u . x_u = 1 and the other products as :func:`dot_symbol` symbols."""
     total = 0
     for u, cu in vec1.items():
         for v, cv in vec2.items():
@@ -243,7 +244,7 @@ def expand_gravity_energy(n: int):
         com = {j: d[j - 2]}
         for w in range(2, j):
             com[w] = com.get(w, 0) + r[w - 2]
-        total += m[j - 2] * g * _dot(com, {1: 1})  # 000 Eq. (8)-(9)
+        total += m[j - 2] * g * expand_vectors_dot(com, {1: 1})  # 000 Eq. (8)-(9)
     return sp.expand(total)
 
 
@@ -261,7 +262,7 @@ def expand_spring_energy(i: int, j: int, n: int, *, on_joint_lines: bool = True)
     vec[b_hat] = vec.get(b_hat, 0) + b
     for t in range(i + 1, j):
         vec[t] = vec.get(t, 0) + r[t - 2]
-    return sp.expand(k * _dot(vec, vec) / 2)  # 000 Eq. (20)
+    return sp.expand(k * expand_vectors_dot(vec, vec) / 2)  # 000 Eq. (20)
 
 
 def symbolic_gravity_matrix(n: int) -> sp.Matrix:
