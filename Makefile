@@ -18,6 +18,7 @@ $(STAMP): pyproject.toml constraints.txt
 
 figures: $(STAMP)
 	$(BIN)/python -m springlab.notebooks --out build/notebooks
+	$(BIN)/python -m springlab.site --notebooks build/notebooks --site build/site --figures figures
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q

@@ -1,1 +1,30 @@
-"""Each paper's data as typed constants, with the table it came from."""
+"""Each paper's data as typed constants, with the table it came from, and the
+registry of the notebooks that reproduce them (used by the site and the report)."""
+
+PAPERS = {
+    "juang2023_spatial_balance": {
+        "authors": "C.-W. Juang, C.-S. Jhuang, D.-Z. Chen",
+        "year": 2023,
+        "title": "A novel spring gravity-balance method for spatial articulated manipulators without auxiliary links",
+        "venue": "Mechanism and Machine Theory 191, 105497",
+        "doi": "10.1016/j.mechmachtheory.2023.105497",
+        "key_figure": "fig16_spatial.png",
+    },
+    "zhang2023_dyad": {
+        "authors": "Y. Zhang, V. Arakelian",
+        "year": 2023,
+        "title": "Design and Synthesis of the Gravity Compensator with a Non-zero Length Spring",
+        "venue": "",
+        "doi": None,  # the paper's text gives none
+        "key_figure": "exudyn_drive.png",
+    },
+    "lenzo2017_two_spring_arm": {
+        "authors": "B. Lenzo",
+        "year": 2017,
+        "title": "Gravity balancing of a spatial serial 4-dof arm without auxiliary links using minimum number of springs",
+        "venue": "AIMETA 2017",
+        "doi": None,
+        "key_figure": "fig5_layouts.png",
+    },
+}
+"""Notebook stem -> the paper it reproduces (authors, year, title, venue, DOI) and its key figure."""

@@ -1,0 +1,178 @@
+"""The reader's side: the executed notebooks as a static site, and the reproduction report.
+
+``python -m springlab.site`` (run by ``make figures`` after the notebooks):
+
+* renders every executed notebook in ``build/notebooks/`` to ``build/site/<stem>.html``
+  (nbconvert's lab template), with MathJax served from the site itself (the
+  ``jupyter-server-mathjax`` package) and no script from the internet;
+* copies each notebook's figures beside the pages and writes ``build/site/index.html``:
+  every paper with its authors, year, title, DOI, a thumbnail of its key figure,
+  its run time and its claims counted by status;
+* aggregates every ``figures/<stem>/claims.json`` into ``figures/REPRODUCTION.md``.
+
+:func:`check_links` lists what a page points to that is not there (used in tests).
+"""
+
+from __future__ import annotations
+
+import argparse
+import html
+import json
+import re
+import shutil
+import sys
+from collections import Counter
+from pathlib import Path
+
+from springlab.claims import STATUSES
+from springlab.papers import PAPERS
+
+MATHJAX_URL = "mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe"
+_EXTERNAL_SCRIPT = re.compile(r'<script[^>]*\ssrc="https?://[^"]*"[^>]*>\s*</script>', re.I)
+
+
+def load_claims(figures_dir) -> dict[str, list[dict]]:
+    """{notebook stem: its claims} from every figures/<stem>/claims.json."""
+    out = {}
+    for path in sorted(Path(figures_dir).glob("*/claims.json")):
+        out[path.parent.name] = json.loads(path.read_text())
+    return out
+
+
+def _fmt(value) -> str:
+    return "" if value is None else f"{value:.6g}"
+
+
+def write_report(figures_dir) -> Path:
+    """Aggregate the claims into ``figures/REPRODUCTION.md``: counts per paper and
+    status, then every claim."""
+    claims = load_claims(figures_dir)
+    lines = ["# Reproduction report", "",
+             "Every number the notebooks reproduce, beside the paper's (written by `make figures` "
+             "from `figures/<notebook>/claims.json`).", "",
+             "| notebook | paper | " + " | ".join(STATUSES) + " | total |",
+             "|---|---|" + "---|" * len(STATUSES) + "---|"]
+    for stem, records in claims.items():
+        count = Counter(r["status"] for r in records)
+        paper = PAPERS.get(stem, {})
+        lines.append(f"| {stem} | {paper.get('authors', '')} ({paper.get('year', '')}) | "
+                     + " | ".join(str(count.get(s, 0)) for s in STATUSES) + f" | {len(records)} |")
+    for stem, records in claims.items():
+        lines += ["", f"## {stem}", "",
+                  "| quantity | where | paper | ours | difference | unit | tolerance | status | note |",
+                  "|---|---|---|---|---|---|---|---|---|"]
+        for r in records:
+            lines.append(f"| {r['quantity']} | {r['where']} | {_fmt(r['paper'])} | {_fmt(r['ours'])} | "
+                         f"{_fmt(r['difference'])} | {r['unit']} | {_fmt(r['tolerance'])} | {r['status']} | "
+                         f"{r['note']} |".replace("\n", " "))
+    path = Path(figures_dir) / "REPRODUCTION.md"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _mathjax_dir() -> Path:
+    import jupyter_server_mathjax
+
+    return Path(jupyter_server_mathjax.__file__).parent / "static"
+
+
+def render_notebook(executed: Path, site_dir: Path) -> Path:
+    """One executed notebook to ``site_dir/<stem>.html``, with local MathJax."""
+    import nbformat
+    from nbconvert import HTMLExporter
+
+    exporter = HTMLExporter(template_name="lab")
+    exporter.mathjax_url = MATHJAX_URL
+    body, _ = exporter.from_notebook_node(nbformat.read(executed, as_version=4))
+    body = _EXTERNAL_SCRIPT.sub("", body)  # require.js: only interactive widgets need it
+    out = site_dir / f"{executed.stem}.html"
+    out.write_text(body)
+    return out
+
+
+def _run_time(executed: Path) -> float | None:
+    meta = json.loads(executed.read_text()).get("metadata", {}).get("papermill", {})
+    return meta.get("duration")
+
+
+def build_site(notebooks_dir="build/notebooks", site_dir="build/site", figures_dir="figures") -> Path:
+    """Render the executed notebooks and write the index; returns index.html's path."""
+    notebooks_dir, site_dir, figures_dir = Path(notebooks_dir), Path(site_dir), Path(figures_dir)
+    site_dir.mkdir(parents=True, exist_ok=True)
+    shutil.copytree(_mathjax_dir(), site_dir / "mathjax", dirs_exist_ok=True)
+    claims = load_claims(figures_dir)
+    rows = []
+    for executed in sorted(notebooks_dir.glob("*.ipynb")):
+        stem = executed.stem
+        page = render_notebook(executed, site_dir)
+        if (figures_dir / stem).is_dir():
+            shutil.copytree(figures_dir / stem, site_dir / "figures" / stem, dirs_exist_ok=True)
+        paper = PAPERS.get(stem, {"authors": "", "year": "", "title": stem, "venue": "", "doi": None,
+                                  "key_figure": None})
+        thumb = ""
+        if paper.get("key_figure") and (site_dir / "figures" / stem / paper["key_figure"]).exists():
+            src = f"figures/{stem}/{paper['key_figure']}"
+            thumb = f'<a href="{page.name}"><img src="{src}" alt="key figure of {stem}" width="260"></a>'
+        doi = (f'<a href="https://doi.org/{paper["doi"]}">doi:{html.escape(paper["doi"])}</a>'
+               if paper.get("doi") else "no DOI given")
+        run = _run_time(executed)
+        run_text = f"{run:.1f} s" if run is not None else "unknown"
+        count = Counter(r["status"] for r in claims.get(stem, []))
+        tally = ", ".join(f"{count[s]} {s}" for s in STATUSES if count.get(s))
+        rows.append(
+            f"<tr><td>{thumb}</td><td><b>{html.escape(paper['authors'])} ({paper['year']})</b><br>"
+            f"<i>{html.escape(paper['title'])}</i><br>{html.escape(paper.get('venue') or '')} {doi}<br>"
+            f'<a href="{page.name}">the rendered notebook</a> &middot; run time '
+            f"{run_text}<br>claims: {tally or 'none'}</td></tr>")
+    index = site_dir / "index.html"
+    index.write_text(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>springlab</title>"
+        "<style>body{font-family:sans-serif;max-width:60em;margin:2em auto}td{vertical-align:top;padding:.6em}"
+        "</style></head><body><h1>springlab: spring gravity balancing, reproduced</h1>"
+        "<p>Each paper's derivations, tables and figures, recomputed and checked. The reproduction report "
+        "lists every claim: <code>figures/REPRODUCTION.md</code> in the repository.</p>"
+        f"<table>{''.join(rows)}</table></body></html>\n")
+    return index
+
+
+_REF = re.compile(r'<(img|script|link|a)\b[^>]*?\s(src|href)="([^"]*)"', re.I)
+
+
+def check_links(page) -> list[str]:
+    """Problems with what an HTML page references: a local file that does not exist,
+    or a script, image or stylesheet fetched from the internet. Links (<a>) to other
+    sites are allowed; in-page anchors and data: URIs are fine."""
+    page = Path(page)
+    problems = []
+    for tag, _attr, ref in _REF.findall(page.read_text()):
+        if not ref or ref.startswith(("#", "data:", "mailto:")):
+            if not ref:
+                problems.append(f"<{tag}> with an empty reference")
+            continue
+        if re.match(r"https?://", ref):
+            if tag.lower() != "a":
+                problems.append(f"<{tag}> fetches {ref} from the internet")
+            continue
+        target = (page.parent / ref.split("?")[0].split("#")[0]).resolve()
+        if not target.exists():
+            problems.append(f"<{tag}> points to a missing file: {ref}")
+    return problems
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--notebooks", default="build/notebooks")
+    parser.add_argument("--site", default="build/site")
+    parser.add_argument("--figures", default="figures")
+    args = parser.parse_args(argv)
+    report = write_report(args.figures)
+    index = build_site(args.notebooks, args.site, args.figures)
+    problems = [f"{p.name}: {issue}" for p in sorted(Path(args.site).glob("*.html")) for issue in check_links(p)]
+    for line in problems:
+        print(line, file=sys.stderr)
+    print(f"report: {report}; site: {index}")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
