@@ -176,3 +176,74 @@ def main(argv=None) -> int:
 
 if __name__ == "__main__":
     sys.exit(main())
+
+
+def find_browser() -> tuple[str, str] | None:
+    """(chromium, chromedriver) paths from Debian's packages, or None when absent."""
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    driver = shutil.which("chromedriver")
+    return (chromium, driver) if chromium and driver else None
+
+
+def browser_check(pages, *, screenshot=None, math_timeout: float = 10.0) -> dict[str, list[str]]:
+    """Open each page in headless Chromium and list what a reader would see broken:
+    an image that did not load, a link to a missing local file, a traceback in an
+    output, or TeX left unrendered on a page that has math. Saves a screenshot of
+    the first page to ``screenshot`` if given. Returns {page name: problems}.
+
+    :raises RuntimeError: when Chromium and its driver are not installed
+    """
+    import time
+
+    from selenium import webdriver
+    from selenium.webdriver.chrome.options import Options
+    from selenium.webdriver.chrome.service import Service
+
+    found = find_browser()
+    if found is None:
+        raise RuntimeError("headless Chromium is not installed: apt-get install chromium chromium-driver")
+    options = Options()
+    options.binary_location = found[0]
+    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                "--no-first-run", "--window-size=1200,1600", "--allow-file-access-from-files"):
+        options.add_argument(arg)
+    driver = webdriver.Chrome(service=Service(found[1]), options=options)
+    out = {}
+    try:
+        for k, page in enumerate(Path(p).resolve() for p in pages):
+            driver.get(page.as_uri())
+            problems = list(check_links(page))
+            for src in driver.execute_script(
+                    "return Array.from(document.images).filter(i => !i.complete || i.naturalWidth === 0)"
+                    ".map(i => i.getAttribute('src').slice(0, 120))"):
+                problems.append(f"image did not load: {src}")
+            text = driver.execute_script("return document.body.innerText")
+            if "Traceback (most recent call last)" in text:
+                problems.append("an output shows a traceback")
+            if "MathJax.js" in page.read_text():
+                deadline = time.time() + math_timeout
+                rendered = 0
+                while time.time() < deadline:
+                    rendered = driver.execute_script(
+                        "return document.querySelectorAll('.MathJax, .MathJax_Display, .MathJax_SVG, "
+                        ".MathJax_CHTML, mjx-container').length")
+                    if rendered:
+                        break
+                    time.sleep(0.2)
+                if not rendered:
+                    problems.append("no equation was rendered by MathJax")
+            if k == 0 and screenshot is not None:
+                Path(screenshot).parent.mkdir(parents=True, exist_ok=True)
+                driver.save_screenshot(str(screenshot))
+            out[page.name] = problems
+    finally:
+        driver.quit()
+    return out
+
+
+def executed_errors(notebook) -> list[str]:
+    """The error outputs of an executed notebook (cell index and error name)."""
+    nb = json.loads(Path(notebook).read_text())
+    return [f"cell {i}: {o.get('ename')}: {o.get('evalue')}" for i, cell in enumerate(nb.get("cells", []))
+            for o in cell.get("outputs", []) if o.get("output_type") == "error"]
