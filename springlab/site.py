@@ -70,6 +70,20 @@ def write_report(figures_dir) -> Path:
     return path
 
 
+def write_report_page(figures_dir, site_dir) -> Path:
+    """The reproduction report as ``site_dir/report.html`` (from REPRODUCTION.md)."""
+    import mistune
+
+    text = write_report(figures_dir).read_text()
+    body = mistune.create_markdown(plugins=["table"])(text)
+    page = Path(site_dir) / "report.html"
+    page.write_text('<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>springlab: '
+                    "reproduction report</title><style>body{font-family:sans-serif;margin:2em}"
+                    "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:.2em .4em;"
+                    f'font-size:90%}}</style></head><body><p><a href="index.html">back</a></p>{body}</body></html>\n')
+    return page
+
+
 def _mathjax_dir() -> Path:
     import jupyter_server_mathjax
 
@@ -124,13 +138,15 @@ def build_site(notebooks_dir="build/notebooks", site_dir="build/site", figures_d
             f"<i>{html.escape(paper['title'])}</i><br>{html.escape(paper.get('venue') or '')} {doi}<br>"
             f'<a href="{page.name}">the rendered notebook</a> &middot; run time '
             f"{run_text}<br>claims: {tally or 'none'}</td></tr>")
+    report = write_report_page(figures_dir, site_dir)
     index = site_dir / "index.html"
     index.write_text(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>springlab</title>"
         "<style>body{font-family:sans-serif;max-width:60em;margin:2em auto}td{vertical-align:top;padding:.6em}"
         "</style></head><body><h1>springlab: spring gravity balancing, reproduced</h1>"
-        "<p>Each paper's derivations, tables and figures, recomputed and checked. The reproduction report "
-        "lists every claim: <code>figures/REPRODUCTION.md</code> in the repository.</p>"
+        "<p>Each paper's derivations, tables and figures, recomputed and checked. "
+        f'<a href="{report.name}">The reproduction report</a> lists every claim '
+        "(<code>figures/REPRODUCTION.md</code> in the repository).</p>"
         f"<table>{''.join(rows)}</table></body></html>\n")
     return index
 
@@ -165,8 +181,8 @@ def main(argv=None) -> int:
     parser.add_argument("--site", default="build/site")
     parser.add_argument("--figures", default="figures")
     args = parser.parse_args(argv)
-    report = write_report(args.figures)
     index = build_site(args.notebooks, args.site, args.figures)
+    report = Path(args.figures) / "REPRODUCTION.md"
     problems = [f"{p.name}: {issue}" for p in sorted(Path(args.site).glob("*.html")) for issue in check_links(p)]
     for line in problems:
         print(line, file=sys.stderr)
