@@ -38,6 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab.errors import SpringlabError
+from springlab.trajectories import quintic
 
 
 def _positive(name: str, value: float, *, allow_zero: bool = False) -> float:
@@ -419,8 +420,7 @@ def simulate_drive(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: flo
     slider = mbs.CreateRigidBody(inertia=token, referencePosition=list(B0))
 
     def offset(mbs_, t, item, values):  # the link turns by -(phi - phi_start) about z
-        tau = min(max(t / duration, 0.0), 1.0)
-        return [0.0, 0.0, 0.0, 0.0, 0.0, -span * (10 * tau**3 - 15 * tau**4 + 6 * tau**5)]
+        return [0.0, 0.0, 0.0, 0.0, 0.0, -span * float(quintic(t / duration))]
 
     drive = mbs.CreateGenericJoint(itemNumbers=[ground, link], position=[0.0, 0.0, 0.0],
                                    constrainedAxes=[1] * 6, offsetUserFunction=offset)
@@ -453,8 +453,7 @@ def simulate_drive(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: flo
     cpu = _time.process_time() - t0
     data = mbs.GetSensorStoredData(sensor)
     t = data[:, 0]
-    tau = np.clip(t / duration, 0.0, 1.0)
-    phi = phi_start + span * (10 * tau**3 - 15 * tau**4 + 6 * tau**5)
+    phi = phi_start + span * quintic(t / duration)
     # a joint driven by an offset function holds with diag(-1, 1, 1) @ TorqueLocal (measured, see
     # springlab.sim); z turns the link by -phi, so the drive's torque towards larger phi is -TorqueLocal_z
     return Drive(t, phi, -data[:, 3], cpu)

@@ -39,6 +39,13 @@ def linear_sweep(initial, rotation, duration: float, samples: int):
 _LAWS = ("linear", "quintic")
 
 
+def quintic(tau):
+    """The rest-to-rest law s = 10 tau^3 - 15 tau^4 + 6 tau^5 on tau in [0, 1] (clipped):
+    s(0) = 0, s(1) = 1, zero first and second derivatives at both ends."""
+    tau = np.clip(np.asarray(tau, dtype=float), 0.0, 1.0)
+    return 10 * tau**3 - 15 * tau**4 + 6 * tau**5
+
+
 class Sweep:
     """Each joint angle moves from ``initial`` by ``rotation`` over ``duration`` s.
 
@@ -71,7 +78,7 @@ class Sweep:
         if self.law == "linear":
             value = [tau, np.ones_like(tau), np.zeros_like(tau)][order]
         else:
-            value = [10 * tau**3 - 15 * tau**4 + 6 * tau**5,
+            value = [quintic(tau),
                      30 * tau**2 - 60 * tau**3 + 30 * tau**4,
                      60 * tau - 180 * tau**2 + 120 * tau**3][order]
         return value / self.duration**order
