@@ -393,16 +393,15 @@ def simulate_drive(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: flo
         SensorObject,
     )
 
+    from springlab.rotations import rot_z
+    from springlab.sim import SimSettings, solver_settings
+
     if not (np.isfinite(duration) and duration > 0):
         raise SpringlabError(f"duration must be > 0 s, got {duration}")
     if int(samples) != samples or samples < 2:
         raise SpringlabError(f"samples must be an integer >= 2, got {samples}")
     span = float(phi_end - phi_start)
     _closing(dyad, np.linspace(phi_start, phi_end, 64))  # raises if the dyad cannot close
-
-    def rot_z(a):
-        c, s_ = np.cos(a), np.sin(a)
-        return np.array([[c, -s_, 0.0], [s_, c, 0.0], [0.0, 0.0, 1.0]])
 
     def along(angle, length):  # a point at distance length, angle from +y towards +x
         return np.array([length * np.sin(angle), length * np.cos(angle), 0.0])
@@ -440,14 +439,9 @@ def simulate_drive(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: flo
     if dof["redundantConstraints"]:
         raise RuntimeError(f"the dyad model has redundant constraints: {dof}")
 
-    ss = exu.SimulationSettings()
-    ss.solution.file.write = False
-    ss.solution.sensors.writePeriod = duration / (samples - 1)
-    ss.timeIntegration.verboseMode = 0
-    ss.timeIntegration.endTime = duration
-    ss.timeIntegration.numberOfSteps = max(samples - 1, int(round(duration / step)))
-    ss.timeIntegration.newton.relativeTolerance = 1e-12
-    ss.timeIntegration.newton.absoluteTolerance = 1e-12
+    steps = max(samples - 1, int(round(duration / step)))
+    ss = solver_settings(SimSettings(step=duration / steps, relative_tolerance=1e-12, absolute_tolerance=1e-12),
+                         duration, write_period=duration / (samples - 1))
     t0 = _time.process_time()
     mbs.SolveDynamic(ss)
     cpu = _time.process_time() - t0

@@ -30,6 +30,7 @@ about balance; sensors are stored internally.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from dataclasses import dataclass
 
@@ -171,7 +172,9 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
     return Model(SC, mbs, bodies, joint_items, joint_axes, spring_items, chain, springs, joints)
 
 
-def _settings(model: Model, settings: SimSettings, end_time: float = 0.0, write_period: float = 0.01):
+def solver_settings(settings: SimSettings, end_time: float = 0.0, write_period: float = 0.01):
+    """exudyn SimulationSettings from springlab's: quiet, no files written, sensors
+    stored every ``write_period`` s, Newton tolerances, ``end_time`` / ``step`` steps."""
     import exudyn as exu
 
     ss = exu.SimulationSettings()
@@ -200,8 +203,6 @@ def _sensor(model: Model, **kwargs):
         from exudyn.utilities import SensorObject as make
     return model.mbs.AddSensor(make(storeInternal=True, writeToFile=False,
                                     outputVariableType=getattr(exu.OutputVariableType, kind), **kwargs))
-
-
 
 
 # --- 1. hold test ------------------------------------------------------------------
@@ -250,7 +251,7 @@ def _hold_run(chain, springs, frames, duration, settings, scale) -> HoldRun:
         rot = [_sensor(model, bodyNumber=b, kind="RotationMatrix") for b in model.bodies[1:]]
         model.mbs.Assemble()
         t0 = time.process_time()
-        model.mbs.SolveDynamic(_settings(model, settings, duration))
+        model.mbs.SolveDynamic(solver_settings(settings, duration))
         cpu += time.process_time() - t0
         path = model.mbs.GetSensorStoredData(tip)[:, 1:]
         tip_drift[p] = np.max(np.linalg.norm(path - path[0], axis=1))
@@ -321,7 +322,7 @@ def static_joint_torques(model: Model, settings: SimSettings = SimSettings()) ->
 
     if model.kind != "locked":
         raise SpringlabError(f"static joint torques need a model with locked joints, not {model.kind!r}")
-    model.mbs.SolveStatic(_settings(model, settings))
+    model.mbs.SolveStatic(solver_settings(settings))
     out = np.zeros((len(model.joints), 3))
     for k, joint in enumerate(model.joints):
         local = np.asarray(model.mbs.GetObjectOutput(joint, exu.OutputVariableType.TorqueLocal))
@@ -373,9 +374,9 @@ def follow(chain: Chain, springs, sweep: Sweep, *, samples: int = 301,
     model.mbs.Assemble()
     period = sweep.duration / (samples - 1)
     steps_per_sample = max(1, int(np.ceil(period / settings.step)))
-    run = SimSettings(**{**settings.__dict__, "step": period / steps_per_sample})
+    run = dataclasses.replace(settings, step=period / steps_per_sample)
     t0 = time.process_time()
-    model.mbs.SolveDynamic(_settings(model, run, sweep.duration, write_period=period))
+    model.mbs.SolveDynamic(solver_settings(run, sweep.duration, write_period=period))
     cpu = time.process_time() - t0
     data = [model.mbs.GetSensorStoredData(s) for s in com]
     t = data[0][:, 0]
