@@ -20,22 +20,15 @@ from springlab.springs import Spring, check_springs
 DEFAULT_CHUNK = 8192
 
 
-def _joints(chain: Chain, X: np.ndarray) -> np.ndarray:
-    """Joint positions 1..n for a chunk (no validation): J_1 = 0, J_j = J_{j-1} + r_j x_j."""
-    joints = np.zeros(X.shape)
-    np.cumsum(np.asarray(chain.r)[None, :, None] * X[:, 1:], axis=1, out=joints[:, 1:])
-    return joints
-
-
 def attachment_points(chain: Chain, spring: Spring, X) -> tuple[np.ndarray, np.ndarray]:
     """World positions (m) of a spring's ends A (on link i) and B (on link j).
 
     A = J_i + a x_i and B = J_{j-1} + b x_j, with J_1 the base joint
     (see :mod:`springlab.springs`). Returns two arrays of shape (N, 3).
     """
-    X = chain.check_directions(X)
     (spring,) = check_springs(chain, [spring])
-    joints = _joints(chain, X)
+    X = chain.check_directions(X)
+    joints = chain.joint_positions(X)
     A = joints[:, spring.i - 1] + spring.a * X[:, spring.i - 1]
     B = joints[:, spring.j - 2] + spring.b * X[:, spring.j - 1]
     return A, B
@@ -134,8 +127,8 @@ def holding_torques(chain: Chain, springs, X) -> np.ndarray:
     """
     X = chain.check_directions(X)
     springs = check_springs(chain, springs)
-    joints = _joints(chain, X)
-    com = joints[:, :-1] + np.asarray(chain.d)[None, :, None] * X[:, 1:]  # links 2..n
+    joints = chain.joint_positions(X)
+    com = chain.com_positions(X)  # links 2..n
     weight = chain.g * np.asarray(chain.m)[None, :, None] * UP  # m_t g UP
     out = np.zeros((X.shape[0], chain.n - 1, 3))
     for j in range(2, chain.n + 1):
