@@ -71,6 +71,11 @@ def slot(text: str) -> SpringSlot:
     return SpringSlot(i, j, pattern)
 
 
+def as_slots(slots) -> list[SpringSlot]:
+    """A configuration as a list of :class:`SpringSlot`; strings are parsed by :func:`slot`."""
+    return [slot(s) if isinstance(s, str) else s for s in slots]
+
+
 def contributions(s: SpringSlot) -> dict[tuple[int, int], int]:
     """Signs of the off-diagonal entries a spring contributes to M (Eqs. 23a-d)."""
     out = {(s.i, s.j): -s.sa * s.sb}
@@ -129,7 +134,7 @@ def rule_violations(n: int, slots) -> list[Violation]:
     :param n: number of links, the ground included
     :param slots: iterable of :class:`SpringSlot` (or strings for :func:`slot`)
     """
-    slots = [slot(s) if isinstance(s, str) else s for s in slots]
+    slots = as_slots(slots)
     out: list[Violation] = []
     if n < 2:
         raise SpringlabError(f"n must be >= 2, got {n}")

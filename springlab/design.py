@@ -21,8 +21,7 @@ import sympy as sp
 from scipy.optimize import least_squares, linprog
 
 from springlab.chain import Chain
-from springlab.configurations import SpringSlot
-from springlab.configurations import slot as parse_slot
+from springlab.configurations import SpringSlot, as_slots
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.quadratic import balance_residual, gravity_entries, spring_entries
 from springlab.springs import Spring, sign_char
@@ -186,10 +185,6 @@ def _springs_of_solution(chain, specs, params, sol, max_extension):
 
 
 # --- numeric search and the plain feasibility criterion -------------------------
-def _slots(slots) -> list[SpringSlot]:
-    return [parse_slot(s) if isinstance(s, str) else s for s in slots]
-
-
 def _residual_entries(chain: Chain, slots) -> list[tuple[int, int]]:
     keys = {(1, j) for j in range(2, chain.n + 1)}
     for s in slots:
@@ -210,7 +205,7 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         (m; default the longest link). ``False`` asks for the signs only.
     :raises UnbalanceableError: when no start converges
     """
-    slots = _slots(slots)
+    slots = as_slots(slots)
     for s in slots:
         if s.j > chain.n:
             raise SpringlabError(f"{s} attaches to link {s.j}, but the chain has {chain.n} links")
@@ -284,7 +279,7 @@ def relaxation_margin(chain: Chain, slots) -> float:
     its pattern's sign by at least t (in units of max G). Drops only the
     coupling P k = A B, which binds only for springs spanning 3 or more links,
     so t <= 0 proves the configuration infeasible."""
-    slots = _slots(slots)
+    slots = as_slots(slots)
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
     scale = max(abs(v) for v in G.values())
     keys = _residual_entries(chain, slots)
@@ -329,7 +324,7 @@ def relaxation_margin(chain: Chain, slots) -> float:
 def feasibility(chain: Chain, slots, *, seed=0, restarts: int = 30) -> Feasibility:
     """The plain criterion: do Eqs. (39) have a solution with k > 0 and the signs
     of the slots' patterns, for this arm? See :class:`Feasibility`."""
-    slots = _slots(slots)
+    slots = as_slots(slots)
     margin = relaxation_margin(chain, slots)
     if margin <= 1e-9:
         return Feasibility("infeasible", margin)
