@@ -46,6 +46,21 @@ def half_unit(decimals: int) -> float:
     return 0.5 * 10.0 ** (-decimals) * (1 + 1e-9)
 
 
+def _number(value) -> str:
+    return "" if value is None else f"{value:.6g}"
+
+
+def markdown_table(records: list[dict]) -> str:
+    """Claim records (as in claims.json) as a Markdown table: paper, ours, difference, status."""
+    lines = ["| quantity | where | paper | ours | difference | unit | tolerance | status | note |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for r in records:
+        lines.append(f"| {r['quantity']} | {r['where']} | {_number(r['paper'])} | {_number(r['ours'])} | "
+                     f"{_number(r['difference'])} | {r['unit']} | {_number(r['tolerance'])} | **{r['status']}** | "
+                     f"{r['note']} |".replace("\n", " "))
+    return "\n".join(lines)
+
+
 class Claims:
     """The list of a notebook's claims."""
 
@@ -84,15 +99,7 @@ class Claims:
 
     def markdown(self) -> str:
         """The records as a Markdown table (paper, ours, difference, status)."""
-        def fmt(v):
-            return "" if v is None else f"{v:.6g}"
-
-        lines = ["| quantity | where | paper | ours | difference | unit | tolerance | status | note |",
-                 "|---|---|---|---|---|---|---|---|---|"]
-        for c in self.records:
-            lines.append(f"| {c.quantity} | {c.where} | {fmt(c.paper)} | {fmt(c.ours)} | "
-                         f"{fmt(c.difference)} | {c.unit} | {c.tolerance:g} | **{c.status}** | {c.note} |")
-        return "\n".join(lines)
+        return markdown_table(self.to_records())
 
     def _repr_markdown_(self) -> str:
         return self.markdown()

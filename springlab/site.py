@@ -24,7 +24,7 @@ import sys
 from collections import Counter
 from pathlib import Path
 
-from springlab.claims import STATUSES
+from springlab.claims import STATUSES, markdown_table
 from springlab.papers import PAPERS
 
 MATHJAX_URL = "mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe"
@@ -37,10 +37,6 @@ def load_claims(figures_dir) -> dict[str, list[dict]]:
     for path in sorted(Path(figures_dir).glob("*/claims.json")):
         out[path.parent.name] = json.loads(path.read_text())
     return out
-
-
-def _fmt(value) -> str:
-    return "" if value is None else f"{value:.6g}"
 
 
 def write_report(figures_dir) -> Path:
@@ -58,13 +54,7 @@ def write_report(figures_dir) -> Path:
         lines.append(f"| {stem} | {paper.get('authors', '')} ({paper.get('year', '')}) | "
                      + " | ".join(str(count.get(s, 0)) for s in STATUSES) + f" | {len(records)} |")
     for stem, records in claims.items():
-        lines += ["", f"## {stem}", "",
-                  "| quantity | where | paper | ours | difference | unit | tolerance | status | note |",
-                  "|---|---|---|---|---|---|---|---|---|"]
-        for r in records:
-            lines.append(f"| {r['quantity']} | {r['where']} | {_fmt(r['paper'])} | {_fmt(r['ours'])} | "
-                         f"{_fmt(r['difference'])} | {r['unit']} | {_fmt(r['tolerance'])} | {r['status']} | "
-                         f"{r['note']} |".replace("\n", " "))
+        lines += ["", f"## {stem}", "", markdown_table(records)]
     path = Path(figures_dir) / "REPRODUCTION.md"
     path.write_text("\n".join(lines) + "\n")
     return path
