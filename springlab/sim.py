@@ -114,17 +114,17 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
         if frames.shape != (chain.n, 3, 3) or not np.all(np.isfinite(frames)):
             raise SpringlabError(f"{name} must be finite with shape ({chain.n}, 3, 3), got {frames.shape}")
     ref_joints = chain.joint_positions(reference_frames[None, :, :, 0])[0]
-    init_joints = chain.joint_positions(initial_frames[None, :, :, 0])[0]
+    ref_com = chain.com_positions(reference_frames[None, :, :, 0])[0]
+    init_com = chain.com_positions(initial_frames[None, :, :, 0])[0]
 
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     bodies = [mbs.CreateGround(referencePosition=[0.0, 0.0, 0.0])]
     for j in range(2, chain.n + 1):
-        r, d, m = chain.r[j - 2], chain.d[j - 2], chain.m[j - 2]
+        r, m = chain.r[j - 2], chain.m[j - 2]
         transverse = m * r**2 / 12.0
         inertia = RigidBodyInertia(m, np.diag([settings.axial_inertia * transverse, transverse, transverse]))
-        com_ref = ref_joints[j - 2] + d * reference_frames[j - 1][:, 0]
-        com_init = init_joints[j - 2] + d * initial_frames[j - 1][:, 0]
+        com_ref, com_init = ref_com[j - 2], init_com[j - 2]
         bodies.append(mbs.CreateRigidBody(
             inertia=inertia, referencePosition=list(com_ref),
             referenceRotationMatrix=reference_frames[j - 1],
