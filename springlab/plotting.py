@@ -195,3 +195,82 @@ def two_spring_layouts_figure(designs: dict, forearm_length: float, *, shoulder_
         ax.set_visible(False)
     fig.tight_layout()
     return fig
+
+
+def joint_angles_figure(t, angles, *, printed=None, title: str = "", events=None):
+    """Joint angles against time, one colour per joint, the look of 001 Eq. (26)'s motion.
+
+    :param t: (T,) s; angles: (T, n) rad, plotted in rad
+    :param printed: optional (T, n) angles from a paper's printed coefficients, dashed
+    :param events: optional {label: time (s)} marked by vertical lines
+    """
+    import numpy as np
+
+    fig, ax = plt.subplots()
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for j in range(np.shape(angles)[1]):
+        colour = colours[j % len(colours)]
+        ax.plot(t, angles[:, j], color=colour, label=rf"$\theta_{j + 1}$")
+        if printed is not None and not np.allclose(printed[:, j], angles[:, j], atol=1e-3):
+            ax.plot(t, printed[:, j], color=colour, linestyle="--", linewidth=1.0,
+                    label=rf"$\theta_{j + 1}$, printed coefficients")
+    for label, when in (events or {}).items():
+        ax.axvline(when, color="0.5", linewidth=0.8, linestyle=":")
+        ax.text(when, ax.get_ylim()[1], label, fontsize=7, ha="center", va="bottom")
+    ax.set_xlabel("time t (s)")
+    ax.set_ylabel("joint angle (rad)")
+    ax.set_xlim(t[0], t[-1])
+    ax.set_title(title)
+    ax.legend(loc="best", ncol=2, fontsize=7)
+    return fig
+
+
+def joint_torques_figure(t, balanced, unbalanced, *, title: str = "", hold=None):
+    """Actuator torques (N m) against time with and without springs, two panels on
+    their own scales; optional ``hold`` = (t_h, balanced_h, unbalanced_h) holding
+    torques at rest, drawn as markers.
+
+    :param t: (T,) s; balanced, unbalanced: (T, n) N m
+    """
+    import numpy as np
+
+    fig, axes = plt.subplots(2, 1, sharex=True, figsize=(6.4, 5.2))
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for ax, values, which, h in ((axes[0], unbalanced, "springs removed", 2), (axes[1], balanced, "balanced", 1)):
+        for j in range(np.shape(values)[1]):
+            ax.plot(t, values[:, j], color=colours[j % len(colours)], label=rf"$\tau_{j + 1}$")
+            if hold is not None:
+                ax.plot(hold[0], hold[h][:, j], "o", color=colours[j % len(colours)], markersize=3)
+        ax.axhline(0.0, color="0.5", linewidth=0.6)
+        ax.set_ylabel("torque (N m)")
+        ax.set_title(f"{title}: {which}" if title else which, fontsize=9)
+    axes[0].legend(loc="best", ncol=3, fontsize=7)
+    axes[1].set_xlabel("time t (s)")
+    axes[1].set_xlim(t[0], t[-1])
+    fig.tight_layout()
+    return fig
+
+
+def fold_figure(t, margin, labels, *, tilt=None, title: str = ""):
+    """RSSR modules' fold margins against time (upper), and the pseudobases' tilt
+    from vertical in a simulation on a log scale (lower, optional ``tilt`` = (t, (T, k) rad))."""
+    import numpy as np
+
+    panels = 2 if tilt is not None else 1
+    fig, axes = plt.subplots(panels, 1, sharex=True, figsize=(6.4, 2.6 * panels + 0.6), squeeze=False)
+    ax = axes[0, 0]
+    for k, label in enumerate(labels):
+        ax.plot(t, margin[:, k], label=label)
+    ax.axhline(0.0, color="k", linewidth=0.8)
+    ax.set_ylabel("fold margin (-)")
+    ax.set_title(title)
+    ax.legend(loc="best", ncol=3, fontsize=7)
+    if tilt is not None:
+        low = axes[1, 0]
+        for k, label in enumerate(labels):
+            low.semilogy(tilt[0], np.maximum(tilt[1][:, k], 1e-18), label=label)
+        low.set_ylabel("pseudobase tilt (rad)")
+    axes[-1, 0].set_xlabel("time t (s)")
+    axes[-1, 0].set_xlim(t[0], t[-1])
+    fig.tight_layout()
+    return fig

@@ -101,3 +101,78 @@ class Sweep:
                 raise SpringlabError(
                     f"the trajectory does not {when[:-1]} at rest: joint rates or accelerations reach "
                     f"{worst:.3g} at t = {t:g} s; use law='quintic'")
+
+
+# --- 001 Eq. (26): rest-to-rest cubics, held before and after -------------------------
+def rest_to_rest_cubic(t_I: float, t_F: float, theta_I: float, theta_F: float) -> np.ndarray:
+    """Coefficients (a_0, a_1, a_2, a_3) of the cubic in absolute time t (s) that goes
+    from theta_I at t_I to theta_F at t_F with zero rate at both ends (001 Eq. 26)."""
+    if not (np.isfinite(t_I) and np.isfinite(t_F) and t_F > t_I):
+        raise SpringlabError(f"need t_F > t_I (s), got t_I = {t_I}, t_F = {t_F}")
+    T, delta = t_F - t_I, theta_F - theta_I
+    # theta = theta_I + delta (3 u^2 - 2 u^3), u = (t - t_I) / T, expanded in powers of t
+    c2, c3 = 3 * delta / T**2, -2 * delta / T**3
+    return np.array([theta_I + c2 * t_I**2 - c3 * t_I**3,
+                     -2 * c2 * t_I + 3 * c3 * t_I**2,
+                     c2 - 3 * c3 * t_I,
+                     c3])
+
+
+class PiecewiseCubic:
+    """001 Eq. (26): joint i holds theta_I before t_I, follows a_0 + a_1 t + a_2 t^2 +
+    a_3 t^3 from t_I to t_F, and holds theta_F after.
+
+    :param rows: (n, 4) of t_I, t_F (s), theta_I, theta_F (rad)
+    :param coefficients: (n, 4) of a_0..a_3 in absolute time; None: the rest-to-rest
+        cubic of each row (:func:`rest_to_rest_cubic`)
+
+    >>> traj = PiecewiseCubic([[0.0, 2.0, 0.0, 1.0]])
+    >>> [round(float(traj.angles(t)[0]), 6) for t in (0.0, 1.0, 2.0, 3.0)]
+    [0.0, 0.5, 1.0, 1.0]
+    """
+
+    def __init__(self, rows, coefficients=None):
+        rows = np.asarray(rows, dtype=float)
+        if rows.ndim != 2 or rows.shape[1] != 4 or not np.all(np.isfinite(rows)):
+            raise SpringlabError(f"rows must be finite with shape (n, 4): t_I, t_F, theta_I, theta_F; got {rows.shape}")
+        for k, (t_I, t_F, _, _) in enumerate(rows):
+            if not t_F > t_I:
+                raise SpringlabError(f"row {k + 1}: t_F = {t_F} s must be after t_I = {t_I} s")
+        if coefficients is None:
+            coefficients = np.array([rest_to_rest_cubic(*row) for row in rows])
+        coefficients = np.asarray(coefficients, dtype=float)
+        if coefficients.shape != (rows.shape[0], 4) or not np.all(np.isfinite(coefficients)):
+            raise SpringlabError(f"coefficients must be finite with shape ({rows.shape[0]}, 4), got {coefficients.shape}")
+        self.rows, self.coefficients = rows, coefficients
+
+    def _eval(self, t, order: int) -> np.ndarray:
+        t = np.asarray(t, dtype=float)[..., None]
+        t_I, t_F, th_I, th_F = self.rows.T
+        a0, a1, a2, a3 = self.coefficients.T
+        inside = (t >= t_I) & (t < t_F)
+        if order == 0:
+            cubic = a0 + a1 * t + a2 * t**2 + a3 * t**3
+            return np.where(t < t_I, th_I, np.where(inside, cubic, th_F))
+        cubic = a1 + 2 * a2 * t + 3 * a3 * t**2 if order == 1 else 2 * a2 + 6 * a3 * t
+        return np.where(inside, cubic, 0.0)
+
+    def angles(self, t) -> np.ndarray:
+        """Joint angles (rad), shape t.shape + (n,)."""
+        return self._eval(t, 0)
+
+    def rates(self, t) -> np.ndarray:
+        """Joint rates (rad/s) inside the cubic segments, 0 outside."""
+        return self._eval(t, 1)
+
+    def accelerations(self, t) -> np.ndarray:
+        """Joint accelerations (rad/s^2) inside the cubic segments, 0 outside."""
+        return self._eval(t, 2)
+
+    def endpoint_errors(self) -> np.ndarray:
+        """(n, 2): cubic(t_I) - theta_I and cubic(t_F) - theta_F (rad): the jumps
+        Eq. (26) makes at t_I and t_F when a row's coefficients miss its own endpoints."""
+        a = self.coefficients
+        out = np.zeros((len(a), 2))
+        for k, (t_I, t_F, th_I, th_F) in enumerate(self.rows):
+            out[k] = np.polyval(a[k, ::-1], [t_I, t_F]) - [th_I, th_F]
+        return out

@@ -1,0 +1,71 @@
+"""Data of Lin, Shieh and Chen (2010), *Design of a Gravity-Balanced General Spatial
+Serial-Type Manipulator*, J. Mechanisms Robotics 2, 031003 (paper 001): the 6-DOF
+example of Section 6, as printed. SI units: m, kg, rad, s; stiffnesses in N/m.
+
+Link numbering follows the paper: links 1..6, link 0 the ground. Table 2 gives no
+data for link 1 (its joint axis is vertical, so its weight never changes the
+energy); its mass is 0 here.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from springlab.pseudobase import DH, PseudobaseArm
+
+# Table 1: DH parameters (standard DH), primary / auxiliary chains
+DH_PRIMARY = DH(d=[0.0, 0.0, 0.0, 0.5, 0.0, 0.27],
+                a=[0.1, 0.4, 0.0, 0.0, 0.0, 0.0],
+                alpha=np.radians([90.0, 0.0, 90.0, -90.0, 90.0, 0.0]))
+DH_AUX = DH(d=[0.1, 0.0, 0.0, 0.5, 0.0, 0.27],  # d^_1 = 0.1: the auxiliary chain sits 0.1 m higher
+            a=[0.1, 0.4, 0.0, 0.0, 0.0, 0.0],
+            alpha=np.radians([90.0, 0.0, 90.0, -90.0, 90.0, 0.0]))
+
+# Table 2: links 2..6 (index 0 is link 2)
+LINKS = (2, 3, 4, 5, 6)
+M = [23.21, 24.51, 15.13, 6.12, 2.20]  # m_i (kg)
+M_STAR = [0.47, 0.47, 0.47, 0.47, 0.47]  # m*_i, pseudobases (kg)
+M_HAT = [2.38, 0.81, 1.58, 1.32, 0.27]  # m^_i, auxiliary links (kg)
+S = [(-0.20, 0.00, -0.1), (0, 0, 0), (0, 0.16, 0.00), (0, 0.02, 0.11), (0, 0.00, -0.02)]  # s_i, frame i
+S_HAT = [(-0.17, 0.07, 0.06), (0, 0.02, 0.10), (0, 0.13, 0.00), (0, 0.01, 0.09), (0, -0.02, -0.08)]
+R = [(-0.4, 0, 0), (0, 0, 0), (0, 0.5, 0), (0, 0, 0), (0, 0, -0.27)]  # r_i, frame i
+R_HAT = [(-0.4, 0, 0), (0, 0, 0), (0, 0.5, 0), (0, 0, 0), (0, 0, -0.27)]
+C = [(-0.3, 0.1, -0.1), (0, 0.06, 0.09), (0, 0.21, 0.06), (0, -0.1, 0.1), (0, -0.06, -0.06)]  # c_i
+MU_TILDE = [105.92, 79.59, 45.21, 18.76, 5.88]  # printed with 2 decimals (kg)
+SIGMA_TILDE = [(0.25, 0.00, -0.02), (0, 0.00, 0.00), (0, -0.25, 0.00), (0, 0.00, 0.05), (0, -0.01, 0.12)]  # 2 decimals (m)
+
+# Table 3: springs 2..6
+K = [20.0e3, 2.0e3, 15.0e3, 2.0e3, 1.0e3]  # N/m (printed in kN/m, 1 decimal)
+L_CA = [0.1, 0.08, 0.08, 0.08, 0.08]  # m
+L_CB = [0.13, 0.01, 0.09, 0.05, 0.09]  # m, 2 decimals
+A = [(-0.2, 0.1, -0.1), (0.08, 0.06, 0.09), (0.08, 0.21, 0.06), (0.08, -0.1, 0.1), (0.08, -0.06, -0.06)]  # frame i
+B = [(-0.17, 0.10, -0.11), (0, 0.06, 0.09), (0, 0.12, 0.06), (0, -0.09, 0.15), (0, -0.06, 0.03)]
+
+# Table 4: joint i: t_I, t_F (s), theta_I, theta_F (rad), a_0..a_3 of Eq. (26)
+TABLE4 = np.array([
+    [0, 5, 1.57, -0.42, 1.57, 0.0000, -0.2388, 0.0318],
+    [0, 5, 1.57, 0.57, 1.57, 0.0000, -0.12, 0.016],
+    [0, 5, 0, 1, 0, 0, 0.12, -0.016],
+    [1, 3, 0, 1, 1, -2.25, 1.5, -0.25],
+    [5, 9, 0, 1.2, 10.3125, -5.0625, 0.7875, -0.0375],
+    [5, 9, 0, 2.5, 21.4844, -10.5429, 1.6406, -0.0781],
+])
+TABLE4_DECIMALS = np.array([  # printed decimals of a_0..a_3, per row
+    [2, 4, 4, 4], [2, 4, 2, 3], [0, 0, 2, 3], [0, 2, 1, 2], [4, 4, 4, 4], [4, 4, 4, 4]])
+DURATION = 10.0  # s, Eq. (26)
+INITIAL_POSE = TABLE4[:, 2]  # theta_I: the pose at which Table 3 prints a_i (x_2..x_6 vertical)
+
+G = 9.81  # m/s^2; not stated. Table 3's two-digit l_CB cannot tell 9.8 from 9.81.
+
+
+def _rows(values, first=(0.0, 0.0, 0.0)):
+    return np.vstack([first, np.asarray(values, dtype=float)])
+
+
+def arm(g: float = G) -> PseudobaseArm:
+    """The 6-DOF arm of 001 Section 6 with its five modules (links 2..6)."""
+    offset = (DH_AUX.d[0] - DH_PRIMARY.d[0]) * np.array([0.0, 0.0, 1.0])  # along the vertical z_0
+    return PseudobaseArm(
+        dh=DH_PRIMARY, m=np.r_[0.0, M], s=_rows(S), modules=LINKS,
+        m_hat=np.r_[0.0, M_HAT], s_hat=_rows(S_HAT), m_star=np.r_[0.0, M_STAR], c=_rows(C),
+        aux_offset=offset, g=g)

@@ -1,0 +1,574 @@
+r"""Rotational subsystems and pseudobases: Lin, Shieh and Chen (2010), paper 001.
+
+The gravity energy of n serial links is a sum of n *rotational subsystems*
+(001 Eqs. 5-8): subsystem i is a point mass mu_i at sigma_i, a vector fixed
+in link i, so its energy depends on link i's orientation only. Each one is
+balanced like a single-link equilibrator (Eqs. 9-18) by one zero-free-length
+spring from a point B_i of link i to a point A_i of a *pseudobase*, a body
+that keeps the line C_i A_i vertical. A spatial parallelogram RSSR module per
+link keeps the pseudobases vertical (Section 4); their own masses and those
+of the auxiliary links fold into combined subsystems (Eqs. 21-25).
+
+One module, link i, seen across the vertical parallelogram O_{i-1} C_i D_i Ô_{i-1}
+(frames i and î stay parallel; Ô = O + h up everywhere)::
+
+      Ô_{i-1} o- - - - - - - - - - -o D_i        auxiliary link î (revolute at Ô_{i-1},
+        h |    auxiliary link î      |            spherical at D_i)
+          |                     A_i  o  pseudobase i: C_i D_i stays vertical,
+          |                          |\           A_i is l_CA above C_i
+      O_{i-1} o--------------------- o C_i \ spring K_i (zero free length)
+        joint i     link i            `----o B_i  l_CB from C_i along sigma_i
+
+Conventions (stated, tested):
+
+* standard DH (001 Table 1): ^{i-1}T_i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i);
+  frame i is fixed on link i with origin O_i on the axis z_i of joint i+1;
+  frame 0 is the ground's and the world frame; ``up`` is a unit vector in it
+  (gravity acts along -up);
+* link vectors r_i = O_{i-1} - O_i in frame i (Eq. 2): r_i = -(a_i, d_i sin alpha_i,
+  d_i cos alpha_i);
+* the auxiliary chain is the primary chain translated by the vertical vector
+  ``aux_offset`` (the parallelogram branch of every RSSR module, Section 4.1),
+  so vectors in frame î have the same coordinates as in frame i;
+* links are numbered 1..n as in the paper (link 0 is the ground); arrays are
+  0-based: ``m[i - 1]`` is m_i.
+
+Only the product mu_i sigma_i is physical
+-----------------------------------------
+Eq. (5) fixes the vector mu_i sigma_i = m_i s_i - (sum_{j>=i} m_j) r_i (kg m),
+the first moment of subsystem i. Eq. (7)'s mu_i = m_i + sum_{j>=i} m_j (which
+counts m_i twice) is a normalisation: any mu_i > 0 with sigma_i = (mu_i
+sigma_i) / mu_i gives the same energy -mu_i g . sigma_i, and the same spring
+through Eq. (16), K l_CA l_CB = mu_i g |sigma_i|. :func:`subsystems` takes
+``mu`` to show it:
+
+>>> import numpy as np
+>>> m, s, r = [2.0, 1.0], [[0.1, 0, 0], [0.2, 0, 0]], [[-0.3, 0, 0], [-0.4, 0, 0]]
+>>> mu, sigma = subsystems(m, s, r)               # Eq. (7)
+>>> mu2, sigma2 = subsystems(m, s, r, mu=[1.0, 1.0])
+>>> bool(np.allclose(mu[:, None] * sigma, mu2[:, None] * sigma2))
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from springlab.errors import SpringlabError, UnbalanceableError
+
+__all__ = [
+    "DH",
+    "PseudobaseArm",
+    "Equilibrator",
+    "subsystem_moments",
+    "subsystems",
+    "combined_subsystems",
+    "subsystem_energy",
+    "design_equilibrators",
+    "attachment_a",
+    "positions",
+    "energies",
+    "fold_margin",
+    "mobility",
+    "module_chain_mobility",
+    "joint_space_inertia",
+    "fold_crossings",
+    "symbolic_subsystems",
+]
+
+
+def _vector_rows(name: str, value, n: int) -> np.ndarray:
+    out = np.asarray(value, dtype=float)
+    if out.shape != (n, 3) or not np.all(np.isfinite(out)):
+        raise SpringlabError(f"{name} must be finite with shape ({n}, 3) (m), got shape {np.shape(value)}")
+    return out
+
+
+def _masses(name: str, value, n: int) -> np.ndarray:
+    out = np.asarray(value, dtype=float)
+    if out.shape != (n,) or not np.all(np.isfinite(out)):
+        raise SpringlabError(f"{name} must be {n} finite masses (kg), got {value!r}")
+    bad = np.flatnonzero(out < 0)
+    if bad.size:
+        raise SpringlabError(f"{name}[{bad[0]}] (link {bad[0] + 1}) = {out[bad[0]]} kg: masses must be >= 0")
+    return out
+
+
+# --- DH kinematics (001 Table 1) -------------------------------------------------
+@dataclass(frozen=True)
+class DH:
+    """Standard Denavit-Hartenberg parameters of an all-revolute chain.
+
+    :ivar d: (n,) offsets along z_{i-1} (m)
+    :ivar a: (n,) lengths along x_i (m)
+    :ivar alpha: (n,) twists about x_i (rad)
+
+    >>> dh = DH(d=[0.0, 0.0], a=[0.4, 0.3], alpha=[0.0, 0.0])
+    >>> R, org = dh.frames([0.0, 0.0])
+    >>> org[-1].round(3).tolist()
+    [0.7, 0.0, 0.0]
+    >>> dh.link_vectors()[0].round(3).tolist()   # r_1 = O_0 - O_1 in frame 1
+    [-0.4, -0.0, -0.0]
+    """
+
+    d: np.ndarray
+    a: np.ndarray
+    alpha: np.ndarray
+
+    def __post_init__(self):
+        arrays = [np.atleast_1d(np.asarray(getattr(self, k), dtype=float)) for k in ("d", "a", "alpha")]
+        if len({x.shape for x in arrays}) != 1 or arrays[0].ndim != 1 or arrays[0].size == 0:
+            raise SpringlabError(f"d, a, alpha must be 1-d arrays of one length, got shapes {[x.shape for x in arrays]}")
+        for k, x in zip(("d", "a", "alpha"), arrays, strict=True):
+            if not np.all(np.isfinite(x)):
+                raise SpringlabError(f"DH parameter {k} must be finite, got {x.tolist()}")
+            object.__setattr__(self, k, x)
+
+    @property
+    def n(self) -> int:
+        return self.d.size
+
+    def check_angles(self, q) -> np.ndarray:
+        """Joint angles as an (N, n) array (rad); one pose (n,) becomes (1, n)."""
+        q = np.asarray(q, dtype=float)
+        if q.ndim == 1:
+            q = q[None]
+        if q.ndim != 2 or q.shape[1] != self.n or not np.all(np.isfinite(q)):
+            raise SpringlabError(f"joint angles must be finite with shape (N, {self.n}) in rad, got shape {q.shape}")
+        return q
+
+    def frames(self, q):
+        """Frames 0..n for joint angles q: rotations (..., n+1, 3, 3) and origins (..., n+1, 3),
+        in frame 0 (m). One pose (n,) gives unbatched arrays."""
+        single = np.ndim(q) == 1
+        q = self.check_angles(q)
+        N = q.shape[0]
+        R = np.empty((N, self.n + 1, 3, 3))
+        org = np.empty((N, self.n + 1, 3))
+        R[:, 0], org[:, 0] = np.eye(3), 0.0
+        ca, sa = np.cos(self.alpha), np.sin(self.alpha)
+        for i in range(self.n):
+            ct, st = np.cos(q[:, i]), np.sin(q[:, i])
+            A = np.zeros((N, 3, 3))  # Rz(theta) Rx(alpha)
+            A[:, 0, 0], A[:, 0, 1], A[:, 0, 2] = ct, -st * ca[i], st * sa[i]
+            A[:, 1, 0], A[:, 1, 1], A[:, 1, 2] = st, ct * ca[i], -ct * sa[i]
+            A[:, 2, 1], A[:, 2, 2] = sa[i], ca[i]
+            p = np.stack([self.a[i] * ct, self.a[i] * st, np.full(N, self.d[i])], axis=1)
+            R[:, i + 1] = R[:, i] @ A
+            org[:, i + 1] = org[:, i] + np.einsum("nij,nj->ni", R[:, i], p)
+        return (R[0], org[0]) if single else (R, org)
+
+    def link_vectors(self) -> np.ndarray:
+        """r_i = O_{i-1} - O_i in frame i (001 Eq. 2), (n, 3) in m."""
+        return -np.stack([self.a, self.d * np.sin(self.alpha), self.d * np.cos(self.alpha)], axis=1)
+
+
+# --- the arm with its modules -------------------------------------------------------
+@dataclass(frozen=True)
+class PseudobaseArm:
+    """A serial arm with an RSSR module (auxiliary link + pseudobase) on some links.
+
+    :ivar dh: the primary chain (:class:`DH`)
+    :ivar m: (n,) link masses m_i (kg); 0 where a link's mass does not matter
+    :ivar s: (n, 3) COM of link i from O_i, in frame i (m)
+    :ivar modules: links (1-based) that carry a module and a spring, a range k..n
+        with k = 1, or k = 2 when joint 1 is vertical (link 1's energy then never changes)
+    :ivar m_hat, s_hat: auxiliary link masses (kg) and COMs from Ô_i in frame î (m)
+    :ivar m_star: pseudobase masses (kg)
+    :ivar c: (n, 3) spherical joint C_i from O_i in frame i (m)
+    :ivar aux_offset: (3,) Ô_i - O_i in frame 0 (m); must be vertical (Section 4.2)
+    :ivar star_height: pseudobase COM above C_i on the vertical line C_i D_i (m);
+        None puts it half-way to D_i. It never changes the energy's variation.
+    :ivar g: gravitational acceleration (m/s^2); up: (3,) unit vector, frame 0
+    """
+
+    dh: DH
+    m: np.ndarray
+    s: np.ndarray
+    modules: tuple
+    m_hat: np.ndarray
+    s_hat: np.ndarray
+    m_star: np.ndarray
+    c: np.ndarray
+    aux_offset: np.ndarray
+    star_height: float | None = None
+    g: float = 9.81
+    up: np.ndarray = field(default_factory=lambda: np.array([0.0, 0.0, 1.0]))
+
+    def __post_init__(self):
+        n = self.dh.n
+        set_ = lambda k, v: object.__setattr__(self, k, v)  # noqa: E731
+        set_("m", _masses("m", self.m, n))
+        set_("m_hat", _masses("m_hat", self.m_hat, n))
+        set_("m_star", _masses("m_star", self.m_star, n))
+        for k in ("s", "s_hat", "c"):
+            set_(k, _vector_rows(k, getattr(self, k), n))
+        modules = tuple(int(i) for i in self.modules)
+        if not modules or modules != tuple(range(modules[0], n + 1)) or modules[0] not in (1, 2):
+            raise SpringlabError(f"modules must be the links k..{n} with k = 1 or 2, got {self.modules!r}")
+        set_("modules", modules)
+        if not (np.isfinite(self.g) and self.g > 0):
+            raise SpringlabError(f"g must be > 0 m/s^2, got {self.g}")
+        up = np.asarray(self.up, dtype=float)
+        if up.shape != (3,) or not np.isclose(np.linalg.norm(up), 1.0, atol=1e-12):
+            raise SpringlabError(f"up must be a unit 3-vector, got {self.up!r}")
+        set_("up", up)
+        offset = np.asarray(self.aux_offset, dtype=float)
+        if offset.shape != (3,) or not np.all(np.isfinite(offset)) or np.linalg.norm(offset) == 0:
+            raise SpringlabError(f"aux_offset must be a non-zero finite 3-vector (m), got {self.aux_offset!r}")
+        tilt = np.degrees(np.arccos(np.clip(abs(offset @ up) / np.linalg.norm(offset), -1.0, 1.0)))
+        if tilt > 1e-6:
+            raise SpringlabError(
+                f"aux_offset {offset.tolist()} is {tilt:.3g} deg from vertical: the first joint pair "
+                "(a joint and its auxiliary joint) must lie in one vertical plane with O Ô vertical "
+                "(001 Section 4.2), or the pseudobases do not stay vertical")
+        set_("aux_offset", offset)
+        if modules[0] == 2:
+            z0 = np.array([0.0, 0.0, 1.0])  # joint 1's axis in frame 0
+            angle = np.degrees(np.arccos(np.clip(abs(z0 @ up), -1.0, 1.0)))
+            if angle > 1e-6:
+                raise SpringlabError(
+                    f"joint 1's axis is {angle:.3g} deg from vertical, so link 1's subsystem energy "
+                    "changes and the first joint pair is not vertical: give link 1 a module "
+                    "(modules starting at 1)")
+        free = [i for i in range(1, n + 1) if i not in modules and (self.m_hat[i - 1] or self.m_star[i - 1])]
+        if free:
+            raise SpringlabError(f"links {free} have no module but auxiliary or pseudobase masses")
+        if self.star_height is None:
+            set_("star_height", float(np.linalg.norm(offset)) / 2)
+        elif not np.isfinite(self.star_height):
+            raise SpringlabError(f"star_height must be finite (m), got {self.star_height}")
+
+    @property
+    def n(self) -> int:
+        return self.dh.n
+
+    @property
+    def h(self) -> float:
+        """Length of the vertical sides O_i Ô_i = C_i D_i of the parallelograms (m)."""
+        return float(np.linalg.norm(self.aux_offset))
+
+    def link_vectors(self) -> np.ndarray:
+        return self.dh.link_vectors()
+
+
+# --- subsystems (001 Eqs. 5-8, 21-25) -------------------------------------------------
+def subsystem_moments(m, s, r) -> np.ndarray:
+    """mu_i sigma_i = m_i s_i - (sum_{j>=i} m_j) r_i, (n, 3) in kg m (001 Eq. 5): the
+    physical content of a subsystem, in frame i."""
+    m = np.asarray(m, dtype=float)
+    s, r = np.asarray(s, dtype=float), np.asarray(r, dtype=float)
+    beyond = np.cumsum(m[::-1])[::-1]  # sum_{j>=i} m_j
+    return m[:, None] * s - beyond[:, None] * r
+
+
+def subsystems(m, s, r, mu=None):
+    """(mu, sigma) of the n rotational subsystems (001 Eqs. 6-8).
+
+    :param m: (n,) masses (kg); s: (n, 3) COMs from O_i; r: (n, 3) link vectors, frame i (m)
+    :param mu: (n,) normalising masses (kg, > 0); None: Eq. (7), mu_i = m_i + sum_{j>=i} m_j
+    :returns: mu (n,) kg, sigma (n, 3) m with mu_i sigma_i = Eq. (5)'s first moment
+    """
+    m = _masses("m", m, len(np.atleast_1d(m)))
+    n = m.size
+    s, r = _vector_rows("s", s, n), _vector_rows("r", r, n)
+    moment = subsystem_moments(m, s, r)
+    if mu is None:
+        mu = m + np.cumsum(m[::-1])[::-1]  # Eq. (7)
+    mu = np.asarray(mu, dtype=float)
+    if mu.shape != (n,) or not np.all(np.isfinite(mu)) or np.any(mu <= 0):
+        raise SpringlabError(f"mu must be {n} masses > 0 kg, got {mu!r}")
+    return mu, moment / mu[:, None]  # Eq. (8)
+
+
+def combined_subsystems(arm: PseudobaseArm, mu=None):
+    """Combined (mu~, sigma~) with the auxiliary links and pseudobases (001 Eqs. 24-25).
+
+    Each body's mass is m_i + m^_i + m*_i; its first moment about O_i is
+    m_i s_i + m^_i s^_i + m*_i c_i (frame i = frame î), and the mass beyond link i
+    acts at -r_i (r^_i = r_i on the parallelogram branch). The constant height
+    of the pseudobase's COM above C_i drops out (Eq. 23).
+    """
+    total = arm.m + arm.m_hat + arm.m_star
+    first = arm.m[:, None] * arm.s + arm.m_hat[:, None] * arm.s_hat + arm.m_star[:, None] * arm.c
+    beyond = np.cumsum(total[::-1])[::-1]
+    moment = first - beyond[:, None] * arm.link_vectors()  # numerator of Eq. (25)
+    if mu is None:
+        mu = total + beyond  # Eq. (24)
+    mu = np.asarray(mu, dtype=float)
+    if mu.shape != (arm.n,) or np.any(~np.isfinite(mu)) or np.any(mu <= 0):
+        raise SpringlabError(f"mu must be {arm.n} masses > 0 kg, got {mu!r}")
+    return mu, moment / mu[:, None]
+
+
+def subsystem_energy(arm: PseudobaseArm, q, mu, sigma) -> np.ndarray:
+    """Route 1: sum_i -mu_i g . sigma_i = sum_i mu_i g up . (R_i sigma_i), (N,) J (001 Eq. 6).
+
+    Equal to the direct-geometry gravity energy up to a constant."""
+    R, _ = arm.dh.frames(arm.dh.check_angles(q))
+    world = np.einsum("nkij,kj->nki", R[:, 1:], np.asarray(sigma, dtype=float))
+    return arm.g * np.einsum("k,nk->n", np.asarray(mu, dtype=float), world @ arm.up)
+
+
+# --- equilibrator springs (001 Eqs. 13-16) ---------------------------------------------
+@dataclass(frozen=True)
+class Equilibrator:
+    """Spring i between B_i on link i and A_i on pseudobase i, zero free length.
+
+    :ivar link: i (1-based); K: stiffness (N/m); l_CA, l_CB: |C_i A_i|, |C_i B_i| (m)
+    :ivar b: (3,) B_i from O_i in frame i (m), Eq. (14); c: (3,) C_i from O_i in frame i (m)
+    """
+
+    link: int
+    K: float
+    l_CA: float
+    l_CB: float
+    b: np.ndarray
+    c: np.ndarray
+
+    def scaled(self, factor: float) -> Equilibrator:
+        return Equilibrator(self.link, self.K * factor, self.l_CA, self.l_CB, self.b, self.c)
+
+
+def design_equilibrators(arm: PseudobaseArm, K, l_CA, *, max_l_CB: float | None = None,
+                         l_CB=None) -> tuple[Equilibrator, ...]:
+    """One spring per module from K_i and l_CA,i, with l_CB,i from Eq. (16):
+    K_i l_CA,i l_CB,i = mu~_i g |sigma~_i|, and B_i on the line through C_i along
+    sigma~_i (Eq. 14).
+
+    :param K: stiffnesses (N/m, > 0), one per module; l_CA: (m, > 0)
+    :param max_l_CB: the longest distance C_i B_i link i allows (m); a spring that
+        needs more cannot be attached and raises :class:`UnbalanceableError`
+    :param l_CB: given lengths instead of Eq. (16) (e.g. a paper's rounded ones),
+        for measuring what they leave unbalanced
+    """
+    k = len(arm.modules)
+    K, l_CA = np.asarray(K, dtype=float), np.asarray(l_CA, dtype=float)
+    for name, v in (("K", K), ("l_CA", l_CA)):
+        if v.shape != (k,) or not np.all(np.isfinite(v)):
+            raise SpringlabError(f"{name} must have {k} finite values (one per module), got {v!r}")
+        bad = np.flatnonzero(v <= 0)
+        if bad.size:
+            unit = "N/m" if name == "K" else "m"
+            raise SpringlabError(f"{name} of spring {arm.modules[bad[0]]} = {v[bad[0]]} {unit}: must be > 0")
+    mu, sigma = combined_subsystems(arm)
+    out = []
+    for col, i in enumerate(arm.modules):
+        length = float(np.linalg.norm(sigma[i - 1]))
+        if length == 0.0:
+            raise UnbalanceableError(f"subsystem {i} has no first moment (sigma~_{i} = 0): it needs no spring; "
+                                     "remove its module")
+        need = mu[i - 1] * arm.g * length / (K[col] * l_CA[col])  # Eq. (16)
+        if l_CB is not None:
+            need = float(np.asarray(l_CB, dtype=float)[col])
+        if max_l_CB is not None and need > max_l_CB:
+            raise UnbalanceableError(
+                f"spring {i} cannot be attached: Eq. (16) needs l_CB = {need:.4g} m > max_l_CB = {max_l_CB} m; "
+                f"raise K_{i} or l_CA,{i}")
+        b = arm.c[i - 1] + need * sigma[i - 1] / length  # Eq. (14)
+        out.append(Equilibrator(i, float(K[col]), float(l_CA[col]), float(need), b, arm.c[i - 1].copy()))
+    return tuple(out)
+
+
+def attachment_a(arm: PseudobaseArm, springs, q) -> np.ndarray:
+    """A_i from O_i in frame i at each pose, (N, k, 3) m (001 Eq. 13: a_i - c_i = l_CA up).
+
+    A_i is fixed on the pseudobase, not on link i: its coordinates in frame i
+    depend on the pose (001 Table 3 prints them at the initial pose)."""
+    R, _ = arm.dh.frames(arm.dh.check_angles(q))
+    out = []
+    for sp in springs:
+        up_local = R[:, sp.link].transpose(0, 2, 1) @ arm.up
+        out.append(sp.c + sp.l_CA * up_local)
+    return np.stack(out, axis=1)
+
+
+# --- route 2: direct geometry ------------------------------------------------------------
+def _world(R, org, k, local):
+    return org[:, k] + np.einsum("nij,j->ni", R[:, k], local)
+
+
+def positions(arm: PseudobaseArm, springs, q) -> dict:
+    """Every body and attachment point in frame 0 (m), for joint angles q (N, n).
+
+    The auxiliary chain is placed by its own DH transforms from Ô_0 = O_0 +
+    aux_offset (its angles equal the primary ones on the parallelogram branch);
+    the pseudobase's direction is then the line C_i D_i as placed, not assumed.
+
+    :returns: dict of arrays: 'com' (N, n, 3) primary COMs; 'aux_com', 'star_com',
+        'C', 'D' (N, k, 3) per module; 'A', 'B' (N, k, 3) per spring; 'O' (N, n+1, 3) the frame origins
+    """
+    q = arm.dh.check_angles(q)
+    R, org = arm.dh.frames(q)
+    O_aux = org + arm.aux_offset  # parallel frames, translated: frame î
+    com = np.stack([_world(R, org, i, arm.s[i - 1]) for i in range(1, arm.n + 1)], axis=1)
+    C = np.stack([_world(R, org, i, arm.c[i - 1]) for i in arm.modules], axis=1)
+    D = np.stack([_world(R, O_aux, i, arm.c[i - 1]) for i in arm.modules], axis=1)
+    aux_com = np.stack([_world(R, O_aux, i, arm.s_hat[i - 1]) for i in arm.modules], axis=1)
+    line = D - C
+    u = line / np.linalg.norm(line, axis=-1, keepdims=True)  # the pseudobase's axis
+    star_com = C + arm.star_height * u
+    index = {i: col for col, i in enumerate(arm.modules)}
+    A, B = [], []
+    for sp in springs:
+        if sp.link not in index:
+            raise SpringlabError(f"spring on link {sp.link}: that link has no module (modules {arm.modules})")
+        A.append(C[:, index[sp.link]] + sp.l_CA * u[:, index[sp.link]])
+        B.append(_world(R, org, sp.link, sp.b))
+    shape = (q.shape[0], 0, 3)
+    return {"O": org, "com": com, "C": C, "D": D, "aux_com": aux_com, "star_com": star_com,
+            "A": np.stack(A, axis=1) if A else np.zeros(shape), "B": np.stack(B, axis=1) if B else np.zeros(shape)}
+
+
+def energies(arm: PseudobaseArm, springs, q) -> dict:
+    """Route 2 energies (J) at joint angles q (N, n): 'gravity_primary', 'gravity_aux',
+    'gravity_pseudobase', 'gravity' (their sum), 'elastic', 'total', each (N,).
+    Heights are measured along ``up`` from O_0."""
+    p = positions(arm, springs, q)
+    mod = np.asarray(arm.modules) - 1
+    out = {
+        "gravity_primary": arm.g * (p["com"] @ arm.up) @ arm.m,
+        "gravity_aux": arm.g * (p["aux_com"] @ arm.up) @ arm.m_hat[mod],
+        "gravity_pseudobase": arm.g * (p["star_com"] @ arm.up) @ arm.m_star[mod],
+    }
+    out["gravity"] = out["gravity_primary"] + out["gravity_aux"] + out["gravity_pseudobase"]
+    K = np.array([sp.K for sp in springs])
+    out["elastic"] = 0.5 * (np.sum((p["A"] - p["B"]) ** 2, axis=-1) @ K) if len(K) else np.zeros(len(p["O"]))
+    out["total"] = out["gravity"] + out["elastic"]
+    return out
+
+
+def fold_margin(arm: PseudobaseArm, q) -> np.ndarray:
+    """How far each RSSR module is from folding, (N, k), in [-1, 1].
+
+    The vertical component of the unit direction in which C_i moves when joint i
+    turns: up . (z_{i-1} x rho) / |rho|, rho the part of O_{i-1} C_i normal to the
+    joint axis z_{i-1}. Zero when the crank O_{i-1} C_i is vertical (the parallelogram
+    collapses onto its vertical side and can switch branch) or the axis is vertical.
+    """
+    R, org = arm.dh.frames(arm.dh.check_angles(q))
+    out = []
+    for i in arm.modules:
+        z = R[:, i - 1, :, 2]
+        rho = _world(R, org, i, arm.c[i - 1]) - org[:, i - 1]
+        rho = rho - np.sum(rho * z, axis=-1, keepdims=True) * z
+        norm = np.linalg.norm(rho, axis=-1)
+        if np.any(norm == 0):
+            raise SpringlabError(f"C_{i} lies on joint {i}'s axis: module {i} cannot turn its auxiliary link")
+        out.append(np.cross(z, rho) @ arm.up / norm)
+    return np.stack(out, axis=1)
+
+
+# --- mobility (001 Eqs. 19-20) --------------------------------------------------------------
+def mobility(links: int, joint_freedoms, lam: int = 6) -> int:
+    """Gruebler-Kutzbach mobility F = lam (n - j - 1) + sum f_i (001 Eqs. 19-20).
+
+    :param links: n, the number of links including the ground
+    :param joint_freedoms: f_i of each of the j joints (1 revolute, 3 spherical)
+    :param lam: 6 in space, 3 in the plane
+
+    >>> mobility(4, [1, 3, 3, 1])   # one RSSR linkage, Eq. (19): one active + one idle DOF
+    2
+    """
+    if lam not in (3, 6):
+        raise SpringlabError(f"lam must be 3 (planar) or 6 (spatial), got {lam}")
+    if int(links) != links or links < 1:
+        raise SpringlabError(f"links must be an integer >= 1 (ground included), got {links}")
+    f = [int(x) for x in joint_freedoms]
+    if any(x != y for x, y in zip(f, joint_freedoms, strict=True)) or any(x < 1 or x >= lam for x in f):
+        raise SpringlabError(f"joint freedoms must be integers in 1..{lam - 1}, got {list(joint_freedoms)}")
+    return lam * (int(links) - len(f) - 1) + sum(f)
+
+
+def module_chain_mobility(n: int) -> int:
+    """Mobility of n RSSR modules along n primary links (001 Eq. 20): 3n moving links
+    plus the ground, 2n revolute and 2n spherical joints: F = 2n (n active, n idle spins)."""
+    if int(n) != n or n < 1:
+        raise SpringlabError(f"n must be an integer >= 1, got {n}")
+    return mobility(3 * n + 1, [1] * (2 * n) + [3] * (2 * n))
+
+
+# --- added inertia ------------------------------------------------------------------------------
+def joint_space_inertia(arm: PseudobaseArm, q, *, gyration: float = 0.05,
+                        parts=("primary", "aux", "pseudobase")) -> np.ndarray:
+    """The joint-space mass matrix M(q), (N, n, n) in kg m^2, of the chosen parts.
+
+    Each primary and auxiliary link is its mass at its COM with an isotropic
+    radius of gyration ``gyration`` (m) (the paper gives no inertia tensors);
+    an auxiliary link moves as link i translated, a pseudobase translates with
+    C_i (its idle spin is not driven). M = sum m (J_v^T J_v + rho^2 J_w^T J_w).
+    """
+    unknown = set(parts) - {"primary", "aux", "pseudobase"}
+    if unknown:
+        raise SpringlabError(f"parts must be among 'primary', 'aux', 'pseudobase', got {sorted(unknown)}")
+    if not (np.isfinite(gyration) and gyration >= 0):
+        raise SpringlabError(f"gyration must be >= 0 m, got {gyration}")
+    q = arm.dh.check_angles(q)
+    R, org = arm.dh.frames(q)
+    N, n = q.shape
+    M = np.zeros((N, n, n))
+    bodies = []  # (link i, point in world, mass, rotates)
+    for i in range(1, n + 1):
+        if "primary" in parts:
+            bodies.append((i, _world(R, org, i, arm.s[i - 1]), arm.m[i - 1], True))
+        if i in arm.modules and "aux" in parts:
+            bodies.append((i, _world(R, org, i, arm.s_hat[i - 1]), arm.m_hat[i - 1], True))
+        if i in arm.modules and "pseudobase" in parts:
+            bodies.append((i, _world(R, org, i, arm.c[i - 1]), arm.m_star[i - 1], False))
+    for i, p, mass, rotates in bodies:
+        Jv = np.zeros((N, 3, n))
+        Jw = np.zeros((N, 3, n))
+        for j in range(i):  # joint j+1 turns about z_j through O_j
+            z = R[:, j, :, 2]
+            Jv[:, :, j] = np.cross(z, p - org[:, j])
+            Jw[:, :, j] = z
+        M += mass * np.einsum("nki,nkj->nij", Jv, Jv)
+        if rotates:
+            M += mass * gyration**2 * np.einsum("nki,nkj->nij", Jw, Jw)
+    return M
+
+
+def fold_crossings(t, margin, links) -> list[tuple[float, int]]:
+    """Times (s) at which a module's fold margin changes sign along a sampled path,
+    by linear interpolation: [(t, link), ...] in time order.
+
+    :param t: (T,) s; margin: (T, k) from :func:`fold_margin`; links: the k module links
+    """
+    t, margin = np.asarray(t, dtype=float), np.asarray(margin, dtype=float)
+    out = []
+    for col, link in enumerate(links):
+        y = margin[:, col]
+        for k in np.flatnonzero(np.sign(y[:-1]) * np.sign(y[1:]) < 0):
+            out.append((float(t[k] - y[k] * (t[k + 1] - t[k]) / (y[k + 1] - y[k])), int(link)))
+    return sorted(out)
+
+
+# --- the derivation of Eqs. (4)-(8), in sympy ---------------------------------------------
+def symbolic_subsystems(n: int) -> dict:
+    """001 Eqs. (4)-(8) for n links in sympy, with the dot products g . s_i and g . r_i
+    as symbols (the energy is linear in them).
+
+    :returns: dict of sympy expressions: 'eq4' (the sum of Eq. (4) over the links),
+        'eq5', 'eq6' (with mu_i, sigma_i of Eqs. (7)-(8)); each is the total gravity
+        energy, and their differences expand to 0.
+
+    >>> import sympy as sp
+    >>> e = symbolic_subsystems(3)
+    >>> sp.simplify(e["eq4"] - e["eq5"]), sp.simplify(e["eq5"] - e["eq6"])
+    (0, 0)
+    """
+    import sympy as sp
+
+    if int(n) != n or n < 1:
+        raise SpringlabError(f"n must be an integer >= 1, got {n}")
+    m = sp.symbols(f"m1:{n + 1}", positive=True)
+    gs = sp.symbols(f"gs1:{n + 1}", real=True)  # g . s_i
+    gr = sp.symbols(f"gr1:{n + 1}", real=True)  # g . r_i
+    eq4 = sum(-m[i] * (gs[i] - sum(gr[j] for j in range(i + 1))) for i in range(n))  # Eqs. (3)-(4)
+    eq5 = -sum(m[i] * gs[i] - sum(m[j] for j in range(i, n)) * gr[i] for i in range(n))  # Eq. (5)
+    mu = [m[i] + sum(m[j] for j in range(i, n)) for i in range(n)]  # Eq. (7)
+    g_sigma = [(m[i] * gs[i] - sum(m[j] for j in range(i, n)) * gr[i]) / mu[i] for i in range(n)]  # Eq. (8)
+    eq6 = -sum(mu[i] * g_sigma[i] for i in range(n))  # Eq. (6)
+    return {"eq4": eq4, "eq5": eq5, "eq6": eq6, "mu": mu, "g_sigma": g_sigma}
