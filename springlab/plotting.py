@@ -211,7 +211,7 @@ def joint_angles_figure(t, angles, *, printed=None, title: str = "", events=None
     for j in range(np.shape(angles)[1]):
         colour = colours[j % len(colours)]
         ax.plot(t, angles[:, j], color=colour, label=rf"$\theta_{j + 1}$")
-        if printed is not None and not np.allclose(printed[:, j], angles[:, j], atol=1e-3):
+        if printed is not None and not np.allclose(printed[:, j], angles[:, j], atol=0.01):
             ax.plot(t, printed[:, j], color=colour, linestyle="--", linewidth=1.0,
                     label=rf"$\theta_{j + 1}$, printed coefficients")
     for label, when in (events or {}).items():

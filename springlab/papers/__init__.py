@@ -10,6 +10,14 @@ PAPERS = {
         "doi": "10.1016/j.mechmachtheory.2023.105497",
         "key_figure": "fig16_spatial.png",
     },
+    "lin2010_pseudobases": {
+        "authors": "P.-Y. Lin, W.-B. Shieh, D.-Z. Chen",
+        "year": 2010,
+        "title": "Design of a Gravity-Balanced General Spatial Serial-Type Manipulator",
+        "venue": "Journal of Mechanisms and Robotics 2, 031003",
+        "doi": "10.1115/1.4001816",
+        "key_figure": "fig9_energies.png",
+    },
     "zhang2023_dyad": {
         "authors": "Y. Zhang, V. Arakelian",
         "year": 2023,
