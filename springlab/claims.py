@@ -90,17 +90,21 @@ class Claims:
         self.records: list[Claim] = []
 
     def compare(self, quantity: str, where: str, paper: float, ours: float, *, unit: str,
-                tolerance: float, decimals: int | None = None, expect: str = "reproduced",
-                note: str = "") -> Claim:
+                tolerance: float, decimals: int | None = None, rounding: float | None = None,
+                expect: str = "reproduced", note: str = "") -> Claim:
         """Record ours against the paper's printed value and assert the status.
 
         :param tolerance: absolute tolerance for 'reproduced', in ``unit``
         :param decimals: the paper's printed decimals, for the 'rounding' status
+        :param rounding: instead of ``decimals``, the largest difference the paper's
+            rounding explains (e.g. its rounded inputs propagated, :func:`propagated_rounding`)
         :param expect: the status this claim must have; anything else raises AssertionError
         """
         diff = abs(float(ours) - float(paper))
         if diff <= tolerance:
             status = "reproduced"
+        elif rounding is not None and diff <= rounding:
+            status = "rounding"
         elif decimals is not None and diff <= half_unit(decimals):
             status = "rounding"
         else:
