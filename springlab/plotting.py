@@ -252,11 +252,12 @@ def joint_torques_figure(t, balanced, unbalanced, *, title: str = "", hold=None)
 
 
 def fold_figure(t, margin, labels, *, tilt=None, title: str = ""):
-    """RSSR modules' fold margins against time (upper), and the pseudobases' tilt
-    from vertical in a simulation on a log scale (lower, optional ``tilt`` = (t, (T, k) rad))."""
+    """RSSR modules' fold margins against time (upper), and the largest pseudobase tilt
+    from vertical in simulations on a log scale (lower, optional ``tilt`` =
+    {label: (t, (T,) rad)})."""
     import numpy as np
 
-    panels = 2 if tilt is not None else 1
+    panels = 2 if tilt else 1
     fig, axes = plt.subplots(panels, 1, sharex=True, figsize=(6.4, 2.6 * panels + 0.6), squeeze=False)
     ax = axes[0, 0]
     for k, label in enumerate(labels):
@@ -265,11 +266,12 @@ def fold_figure(t, margin, labels, *, tilt=None, title: str = ""):
     ax.set_ylabel("fold margin (-)")
     ax.set_title(title)
     ax.legend(loc="best", ncol=3, fontsize=7)
-    if tilt is not None:
+    if tilt:
         low = axes[1, 0]
-        for k, label in enumerate(labels):
-            low.semilogy(tilt[0], np.maximum(tilt[1][:, k], 1e-18), label=label)
-        low.set_ylabel("pseudobase tilt (rad)")
+        for label, (tt, values) in tilt.items():
+            low.semilogy(tt, np.maximum(values, 1e-18), label=label)
+        low.set_ylabel("largest pseudobase tilt (rad)")
+        low.legend(loc="best", fontsize=7)
     axes[-1, 0].set_xlabel("time t (s)")
     axes[-1, 0].set_xlim(t[0], t[-1])
     fig.tight_layout()

@@ -76,6 +76,9 @@ __all__ = [
     "joint_space_inertia",
     "fold_crossings",
     "symbolic_subsystems",
+    "aux_offset_from_dh",
+    "rotate_crank",
+    "clearest_crank",
 ]
 
 
@@ -572,3 +575,60 @@ def symbolic_subsystems(n: int) -> dict:
     g_sigma = [(m[i] * gs[i] - sum(m[j] for j in range(i, n)) * gr[i]) / mu[i] for i in range(n)]  # Eq. (8)
     eq6 = -sum(mu[i] * g_sigma[i] for i in range(n))  # Eq. (6)
     return {"eq4": eq4, "eq5": eq5, "eq6": eq6, "mu": mu, "g_sigma": g_sigma}
+
+
+# --- the auxiliary chain from its own DH table; moving a module clear of its folds ---------------
+def aux_offset_from_dh(primary: DH, aux: DH, up=(0.0, 0.0, 1.0)) -> np.ndarray:
+    """Ô_i - O_i (m, frame 0) from the two DH tables of 001 Table 1.
+
+    The auxiliary chain must be the primary one lifted along the first joint's
+    axis: equal tables except d^_1, and that axis vertical. Otherwise the first
+    joint pair (joint 1 and its auxiliary joint) does not lie in one vertical
+    plane with a vertical O_0 Ô_0 (001 Section 4.2), and the error says so.
+    """
+    if primary.n != aux.n:
+        raise SpringlabError(f"the auxiliary DH table has {aux.n} rows, the primary {primary.n}")
+    for name in ("d", "a", "alpha"):
+        p, a = getattr(primary, name), getattr(aux, name)
+        start = 1 if name == "d" else 0
+        if not np.allclose(p[start:], a[start:], atol=1e-12):
+            raise SpringlabError(f"auxiliary DH parameter {name} {a.tolist()} differs from the primary {p.tolist()}: "
+                                 "the auxiliary chain must be the primary one translated (only d^_1 may differ)")
+    up = np.asarray(up, dtype=float)
+    angle = np.degrees(np.arccos(np.clip(abs(up[2]) / np.linalg.norm(up), -1.0, 1.0)))  # z_0 = (0, 0, 1)
+    if angle > 1e-6:
+        raise SpringlabError(f"the first joint pair is not vertical: joint 1's axis is {angle:.3g} deg from up, so "
+                             "lifting the auxiliary chain by d^_1 along it does not keep the pseudobases vertical")
+    return (aux.d[0] - primary.d[0]) * np.array([0.0, 0.0, 1.0])
+
+
+def rotate_crank(arm: PseudobaseArm, link: int, angle: float) -> PseudobaseArm:
+    """The arm with C_link turned by ``angle`` (rad) about joint ``link``'s axis (kept at
+    its distance from the axis): 001 Section 4.1 leaves C_i free on link i, and where it
+    sits decides the poses at which module ``link`` folds. The pseudobase's mass moves
+    with it, so redesign the springs after."""
+    import dataclasses
+
+    if link not in arm.modules:
+        raise SpringlabError(f"link {link} has no module (modules {arm.modules})")
+    alpha = arm.dh.alpha[link - 1]
+    axis = np.array([0.0, np.sin(alpha), np.cos(alpha)])  # z_{i-1} in frame i
+    r = arm.link_vectors()[link - 1]  # O_{i-1} in frame i
+    v = arm.c[link - 1] - r
+    turned = (v * np.cos(angle) + np.cross(axis, v) * np.sin(angle)
+              + axis * (axis @ v) * (1 - np.cos(angle)))  # Rodrigues
+    c = arm.c.copy()
+    c[link - 1] = r + turned
+    return dataclasses.replace(arm, c=c)
+
+
+def clearest_crank(arm: PseudobaseArm, link: int, q, samples: int = 360) -> tuple[float, float]:
+    """The turn of C_link about its joint axis (rad, in [-pi, pi)) that keeps module
+    ``link`` furthest from folding over the poses q, and that smallest |fold margin|."""
+    col = arm.modules.index(link) if link in arm.modules else None
+    if col is None:
+        raise SpringlabError(f"link {link} has no module (modules {arm.modules})")
+    angles = np.linspace(-np.pi, np.pi, int(samples), endpoint=False)
+    worst = [np.min(np.abs(fold_margin(rotate_crank(arm, link, a), q)[:, col])) for a in angles]
+    best = int(np.argmax(worst))
+    return float(angles[best]), float(worst[best])

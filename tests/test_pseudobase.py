@@ -229,3 +229,34 @@ def test_holding_torques_balanced_vs_springs_removed():
         ps.build_model(ARM, SPRINGS, q[0], model="parallel", joints="locked")
     with pytest.raises(SpringlabError, match="start at the reference pose"):
         ps.build_model(ARM, SPRINGS, q[0], joints="driven", trajectory=lambda t: q[1])
+
+
+def test_aux_chain_from_its_own_dh_table():
+    offset = pb.aux_offset_from_dh(paper.DH_PRIMARY, paper.DH_AUX)
+    assert np.allclose(offset, [0, 0, 0.1])
+    q = random_poses(100)
+    (Rp, Op), (Ra, Oa) = paper.DH_PRIMARY.frames(q), paper.DH_AUX.frames(q)
+    assert np.allclose(Ra, Rp) and np.allclose(Oa[:, 1:] - Op[:, 1:], offset, atol=1e-14)
+    with pytest.raises(SpringlabError, match="first joint pair is not vertical"):
+        pb.aux_offset_from_dh(paper.DH_PRIMARY, paper.DH_AUX, up=[0, np.sin(0.1), np.cos(0.1)])
+    bent = pb.DH(d=paper.DH_AUX.d, a=paper.DH_AUX.a + [0, 0.01, 0, 0, 0, 0], alpha=paper.DH_AUX.alpha)
+    with pytest.raises(SpringlabError, match="translated"):
+        pb.aux_offset_from_dh(paper.DH_PRIMARY, bent)
+
+
+def test_turning_a_crank_moves_the_fold_and_keeps_the_balance():
+    t = np.linspace(0, 10, 1001)
+    q = PiecewiseCubic(paper.TABLE4[:, :4]).angles(t)
+    turn, best = pb.clearest_crank(ARM, 2, q, samples=72)
+    moved = pb.rotate_crank(ARM, 2, turn)
+    r2 = ARM.link_vectors()[1]
+    axis = np.array([0, 0, 1.0])  # joint 2's axis in frame 2 (alpha_2 = 0)
+    before, after = ARM.c[1] - r2, moved.c[1] - r2
+    assert np.isclose(np.linalg.norm(np.cross(axis, before)), np.linalg.norm(np.cross(axis, after)))
+    assert np.isclose(before @ axis, after @ axis)
+    assert best > 0.5 and [k for _, k in pb.fold_crossings(t, pb.fold_margin(moved, q), moved.modules)] == [6]
+    springs = pb.design_equilibrators(moved, paper.K, paper.L_CA)
+    E = pb.energies(moved, springs, q)
+    assert np.ptp(E["total"]) < 1e-10 * np.ptp(E["gravity"])
+    with pytest.raises(SpringlabError, match="no module"):
+        pb.rotate_crank(ARM, 1, 0.1)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from springlab.pseudobase import DH, PseudobaseArm
+from springlab.pseudobase import DH, PseudobaseArm, aux_offset_from_dh
 
 # Table 1: DH parameters (standard DH), primary / auxiliary chains
 DH_PRIMARY = DH(d=[0.0, 0.0, 0.0, 0.5, 0.0, 0.27],
@@ -64,7 +64,7 @@ def _rows(values, first=(0.0, 0.0, 0.0)):
 
 def arm(g: float = G) -> PseudobaseArm:
     """The 6-DOF arm of 001 Section 6 with its five modules (links 2..6)."""
-    offset = (DH_AUX.d[0] - DH_PRIMARY.d[0]) * np.array([0.0, 0.0, 1.0])  # along the vertical z_0
+    offset = aux_offset_from_dh(DH_PRIMARY, DH_AUX)  # 0.1 m along the vertical z_0
     return PseudobaseArm(
         dh=DH_PRIMARY, m=np.r_[0.0, M], s=_rows(S), modules=LINKS,
         m_hat=np.r_[0.0, M_HAT], s_hat=_rows(S_HAT), m_star=np.r_[0.0, M_STAR], c=_rows(C),
