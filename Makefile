@@ -30,6 +30,7 @@ $(VENV)/.bench-installed: $(STAMP)
 bench: $(VENV)/.bench-installed
 	$(BIN)/python benchmarks/bench_energy.py
 	$(BIN)/python benchmarks/bench_sim.py
+	$(BIN)/python benchmarks/bench_efficiency.py
 
 lab: $(STAMP)
 	$(BIN)/jupyter lab notebooks/

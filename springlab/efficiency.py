@@ -42,6 +42,7 @@ need the S part, which 000's springs (attached on the link lines) never have.
 
 from __future__ import annotations
 
+import functools
 import itertools
 from dataclasses import dataclass
 
@@ -73,6 +74,9 @@ __all__ = [
     "design",
     "payload_adjustment",
     "READINGS",
+    "com_distances",
+    "optimise_index",
+    "Optimum",
 ]
 
 READINGS = ("magnitudes", "literal", "direct")
@@ -595,6 +599,26 @@ def solve_configuration(config, free, G=None, values=None) -> dict:
     return sol[0]
 
 
+@functools.lru_cache(maxsize=64)
+def _symbolic_designer(cfg, names):
+    """Eqs. (16) solved once, with the |G| and the chosen parameters as symbols, and
+    compiled: (G values, chosen values) -> {parameter name: value}; None if sympy cannot
+    solve it generally (e.g. when a chosen parameter is in fact forced)."""
+    import sympy as sp
+
+    try:
+        sol = solve_configuration(cfg, list(names))
+    except UnbalanceableError:
+        return None
+    n = max(j for (_, j), _ in cfg)
+    args = [sp.Symbol(f"G_1{u}", positive=True) for u in range(2, n + 1)] + [sp.Symbol(x, positive=True) for x in names]
+    if any(not expr.free_symbols <= set(args) for expr in sol.values()):
+        return None
+    keys = [x.name for x in sol]
+    f = sp.lambdify(args, list(sol.values()), "math")
+    return lambda G, values: dict(zip(keys, f(*G, *values), strict=True))
+
+
 def design(arm: PlanarArm, config, choices: dict) -> list[PlanarSpring]:
     """Springs of ``config`` for the arm, from Eqs. (16) and the user's ``choices``
     ({'A_S14': 0.1, 'k_S12': 4998, ...}: enough of k, A, B to fix the rest).
@@ -605,17 +629,23 @@ def design(arm: PlanarArm, config, choices: dict) -> list[PlanarSpring]:
     import sympy as sp
 
     cfg = CONFIGURATIONS[config] if isinstance(config, str) else tuple(config)
-    sol = solve_configuration(cfg, list(choices), G=arm.G, values=choices)
-    values = {sp.Symbol(k, positive=True): sp.nsimplify(v) for k, v in choices.items()}
+    names = tuple(sorted(choices))
+    fast = _symbolic_designer(cfg, names)
+    if fast is not None:
+        known = dict(choices) | fast(tuple(arm.G), tuple(float(choices[x]) for x in names))
+    else:
+        sol = solve_configuration(cfg, list(choices), G=arm.G, values=choices)
+        known = dict(choices) | {x.name: (float(v) if not sp.sympify(v).free_symbols else None) for x, v in sol.items()}
     out = []
     for (i, j), (alpha, beta) in cfg:
         got = []
         for name in ("k", "A", "B"):
-            s_ = sp.Symbol(f"{name}_S{i}{j}", positive=True)
-            expr = values.get(s_, sol.get(s_))
-            if expr is None or sp.sympify(expr).free_symbols:
-                raise UnbalanceableError(f"S({i},{j}): {s_.name} is not determined by Eqs. (16); choose it")
-            got.append(float(expr))
+            value = known.get(f"{name}_S{i}{j}")
+            if value is None:
+                raise UnbalanceableError(f"S({i},{j}): {name}_S{i}{j} is not determined by Eqs. (16); choose it")
+            if not (np.isfinite(value) and value > 0):
+                raise UnbalanceableError(f"S({i},{j}): Eqs. (16) give {name}_S{i}{j} = {value:.6g}, not > 0")
+            got.append(float(value))
         k, A, B = got
         spring = PlanarSpring(i, j, k, A * arm.r[i - 1], B * arm.r[j - 1], alpha, beta)
         check_spring(arm, spring)
@@ -660,3 +690,71 @@ def payload_adjustment(arm: PlanarArm, springs, config, payload: float, *, keep:
             except UnbalanceableError:
                 continue
     raise UnbalanceableError(f"no design keeps the attachments of {config} under a payload of {payload} kg")
+
+
+def com_distances(r, m, G, g: float) -> np.ndarray:
+    """s_2..s_n (m) that give the printed |G_{1,u}| (N/m) by Eq. (7), for a given g:
+    s_u = (|G_1u| r_1 / g - sum_{w>u} m_w) r_u / m_u.
+
+    :param r: r_1..r_n (m); m: m_2..m_n (kg); G: |G_12|..|G_1n| (N/m)
+    """
+    r, m, G = (np.asarray(x, dtype=float) for x in (r, m, G))
+    if not (r.size == m.size + 1 == G.size + 1):
+        raise SpringlabError(f"need r_1..r_n, m_2..m_n, |G_12|..|G_1n|; got {r.size}, {m.size}, {G.size} values")
+    beyond = np.r_[np.cumsum(m[::-1])[::-1][1:], 0.0]
+    return (G * r[0] / g - beyond) * r[1:] / m
+
+
+@dataclass(frozen=True)
+class Optimum:
+    """The best index found: ``choices`` (the free parameters), ``springs``, ``index``,
+    and the bounds respected."""
+
+    config: str
+    choices: dict
+    springs: list
+    index: float
+    bounds: dict
+    k_max: float
+    evaluations: int
+
+
+def optimise_index(arm: PlanarArm, config: str, free: dict, fixed: dict, workspace: Workspace, *,
+                   step: float = 5.0, k_max: float = 20000.0, start: dict | None = None) -> Optimum:
+    """Maximise the efficiency index (grid ``step``, 'magnitudes' reading) over the
+    parameters in ``free`` ({name: (low, high)}, e.g. {'A_S14': (0.05, 1)}), with the
+    others in ``fixed``, every stiffness <= ``k_max`` (N/m) and every A, B in (0, 1]
+    (scipy SLSQP from ``start``, default the middle of the bounds)."""
+    from scipy.optimize import minimize
+
+    names = list(free)
+    lo = np.array([free[x][0] for x in names])
+    hi = np.array([free[x][1] for x in names])
+    if np.any(lo <= 0) or np.any(hi > 1 + 1e-12) or np.any(lo > hi):
+        raise SpringlabError(f"bounds must satisfy 0 < low <= high <= 1, got {free}")
+    x0 = np.array([(start or {}).get(x, 0.5 * (free[x][0] + free[x][1])) for x in names])
+    count = [0]
+
+    def springs_of(x):
+        return design(arm, config, fixed | dict(zip(names, map(float, x), strict=True)))
+
+    def objective(x):
+        count[0] += 1
+        try:
+            return -efficiency_index(arm, springs_of(x), workspace, step=step)
+        except SpringlabError:
+            return 0.0
+
+    def stiffness_margin(x):
+        try:
+            return np.array([k_max - s.k for s in springs_of(x)]) / k_max
+        except SpringlabError:
+            return -np.ones(len(CONFIGURATIONS[config]))
+
+    res = minimize(objective, x0, method="SLSQP", bounds=list(zip(lo, hi, strict=True)),
+                   constraints=[{"type": "ineq", "fun": stiffness_margin}], options={"ftol": 1e-9, "maxiter": 200})
+    best = dict(zip(names, map(float, np.clip(res.x, lo, hi)), strict=True))
+    springs = springs_of(list(best.values()))
+    if max(s.k for s in springs) > k_max * (1 + 1e-6):
+        raise UnbalanceableError(f"no design of {config} within k <= {k_max} N/m was found")
+    return Optimum(config, best, springs, efficiency_index(arm, springs, workspace, step=step), dict(free), k_max, count[0])

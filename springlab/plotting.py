@@ -276,3 +276,65 @@ def fold_figure(t, margin, labels, *, tilt=None, title: str = ""):
     axes[-1, 0].set_xlim(t[0], t[-1])
     fig.tight_layout()
     return fig
+
+
+def lines_figure(x, curves: dict, *, xlabel: str, ylabel: str, title: str = "", styles: dict | None = None,
+                 references: dict | None = None, logx: bool = False):
+    """Curves {label: y} against x, with optional horizontal ``references`` {label: y}
+    (e.g. a paper's printed values) drawn dotted."""
+    fig, ax = plt.subplots()
+    for label, values in curves.items():
+        ax.plot(x, values, label=label, **(styles or {}).get(label, {}))
+    for label, value in (references or {}).items():
+        ax.axhline(value, color="0.4", linestyle=":", linewidth=1.0)
+        ax.text(ax.get_xlim()[1], value, f" {label}", fontsize=7, va="center", ha="left")
+    if logx:
+        ax.set_xscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(loc="best", fontsize=7)
+    return fig
+
+
+def workspace_panels_figure(theta3, theta4, panels: dict, *, title: str, label: str, levels=None):
+    """Values over (theta_3, theta_4) in degrees, one panel per theta_2 ({theta_2 deg:
+    (len(theta3), len(theta4)) array}), a shared colour bar, the look of 003 Fig. 5."""
+    import numpy as np
+
+    keys = list(panels)
+    cols = 2
+    rows = (len(keys) + 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(6.4, 2.9 * rows), sharex=True, sharey=True, squeeze=False)
+    vmin = min(float(np.min(v)) for v in panels.values())
+    vmax = max(float(np.max(v)) for v in panels.values())
+    levels = levels if levels is not None else np.linspace(vmin, vmax, 15)
+    for ax, key in zip(axes.flat, keys, strict=False):
+        cs = ax.contourf(theta4, theta3, panels[key], levels=levels, cmap="viridis")
+        ax.set_title(rf"$\theta_2$ = {key:g} deg", fontsize=8)
+    for ax in list(axes.flat)[len(keys):]:
+        ax.set_visible(False)
+    for ax in axes[-1]:
+        ax.set_xlabel(r"$\theta_4$ (deg)")
+    for ax in axes[:, 0]:
+        ax.set_ylabel(r"$\theta_3$ (deg)")
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    fig.colorbar(cs, ax=axes.ravel().tolist(), label=label, shrink=0.9)
+    return fig
+
+
+def map_figure(x, y, Z, *, xlabel: str, ylabel: str, label: str, title: str = "", marks: dict | None = None):
+    """A filled contour map Z (len(y), len(x)) with labelled points ``marks`` {label: (x, y)},
+    the look of 003 Fig. 7."""
+    fig, ax = plt.subplots()
+    cs = ax.contourf(x, y, Z, levels=20, cmap="viridis")
+    ax.contour(x, y, Z, levels=10, colors="k", linewidths=0.4)
+    for text, (px, py) in (marks or {}).items():
+        ax.plot(px, py, "o", color="w", markeredgecolor="k", markersize=5)
+        ax.annotate(text, (px, py), textcoords="offset points", xytext=(5, 4), fontsize=7, color="w")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    fig.colorbar(cs, ax=ax, label=label)
+    return fig

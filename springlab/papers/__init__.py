@@ -26,6 +26,15 @@ PAPERS = {
         "doi": None,  # the paper's text gives none
         "key_figure": "exudyn_drive.png",
     },
+    "juang2022_spring_efficiency": {
+        "authors": "C.-W. Juang, C.-S. Jhuang, D.-Z. Chen",
+        "year": 2022,
+        "title": "Spring efficiency assessment and efficient use of spring methods of statically balanced planar "
+                 "serial manipulators with revolute joints only",
+        "venue": "Mechanical Sciences (2022)",
+        "doi": None,  # the text does not print the paper's own DOI
+        "key_figure": "fig7a_attachments.png",
+    },
     "lenzo2017_two_spring_arm": {
         "authors": "B. Lenzo",
         "year": 2017,
