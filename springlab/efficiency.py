@@ -494,6 +494,9 @@ def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: flo
     from tqdm import tqdm
 
     if samples is not None:
+        if int(samples) != samples or samples < 1:
+            raise SpringlabError(f"samples must be an integer >= 1 (an empty sample has no mean), got {samples}")
+        samples = int(samples)
         if seed is None:
             raise SpringlabError("Monte Carlo sampling needs a seed")
         total, done = 0.0, 0
