@@ -31,7 +31,7 @@ import numpy as np
 
 from springlab.errors import SpringlabError
 from springlab.pseudobase import PseudobaseArm, energies, positions
-from springlab.sim import SimSettings, solver_settings
+from springlab.sim import SimSettings, _frame_with_z, _sensor, solver_settings
 
 MODELS = ("rssr", "ideal")
 _SETTINGS = SimSettings()
@@ -55,14 +55,6 @@ class PseudobaseModel:
         self.SC, self.mbs, self.kind, self.arm, self.springs = SC, mbs, kind, arm, springs
         self.links, self.aux, self.stars = links, aux, stars  # body numbers
         self.drives, self.spring_items = drives, spring_items  # joint objects, spring objects
-
-
-def _frame_with_z(z: np.ndarray) -> np.ndarray:
-    z = z / np.linalg.norm(z)
-    helper = np.array([1.0, 0.0, 0.0]) if abs(z[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    x = np.cross(helper, z)
-    x /= np.linalg.norm(x)
-    return np.column_stack([x, np.cross(z, x), z])
 
 
 def build_model(arm: PseudobaseArm, springs, q0, *, model: str = "rssr", joints: str = "driven",
@@ -157,17 +149,6 @@ def build_model(arm: PseudobaseArm, springs, q0, *, model: str = "rssr", joints:
     return PseudobaseModel(SC, mbs, model, arm, springs, links, aux, stars, drives, spring_items)
 
 
-def _sensor(model, kind, **kwargs):
-    import exudyn as exu
-
-    if "bodyNumber" in kwargs:
-        from exudyn.utilities import SensorBody as make
-    else:
-        from exudyn.utilities import SensorObject as make
-    return model.mbs.AddSensor(make(storeInternal=True, writeToFile=False,
-                                    outputVariableType=getattr(exu.OutputVariableType, kind), **kwargs))
-
-
 @dataclass(frozen=True)
 class FollowRun:
     """One driven run. t (T,) s; gravity, elastic, total (T,) J from exudyn's body
@@ -210,10 +191,10 @@ def follow(arm: PseudobaseArm, springs, trajectory, duration: float, *, model: s
                     spring_scale=spring_scale, inertias=inertias, settings=settings)
     bodies = [(b, mass) for b, mass in zip(m.links[1:], arm.m, strict=True)]
     bodies += [(m.aux[i], arm.m_hat[i - 1]) for i in arm.modules] + [(m.stars[i], arm.m_star[i - 1]) for i in arm.modules]
-    pos = [_sensor(m, "Position", bodyNumber=b) for b, _ in bodies]
-    rot = [_sensor(m, "RotationMatrix", bodyNumber=m.stars[i]) for i in arm.modules]
-    pot = [_sensor(m, "PotentialEnergy", objectNumber=o) for o in m.spring_items]
-    tq = [_sensor(m, "TorqueLocal", objectNumber=o) for o in m.drives]
+    pos = [_sensor(m, kind="Position", bodyNumber=b) for b, _ in bodies]
+    rot = [_sensor(m, kind="RotationMatrix", bodyNumber=m.stars[i]) for i in arm.modules]
+    pot = [_sensor(m, kind="PotentialEnergy", objectNumber=o) for o in m.spring_items]
+    tq = [_sensor(m, kind="TorqueLocal", objectNumber=o) for o in m.drives]
     m.mbs.Assemble()
     period = duration / (samples - 1)
     per = max(1, int(np.ceil(period / step)))
