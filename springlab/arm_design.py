@@ -1,0 +1,205 @@
+"""Springs for your own arm: ranked, verified designs (paper 000's method, any n).
+
+:func:`design_arm` takes an :class:`~springlab.armfile.ArmSpec` (or an arm file)
+and returns designs ranked by spring count, then the largest spring force over
+the arm's workspace, then the system spring efficiency. Each is verified by route
+2 (the total energy over the workspace samples varies by less than 1e-10 of the
+gravity energy's range) *before* it is returned; one that fails is dropped, with
+the reason kept in the report.
+
+Spatial system spring efficiency
+--------------------------------
+Paper 003 defines e_sys = (X + Y) / (X + 2Y) (Eq. 25) for planar arms. Paper 000's
+quadratic form gives the same pieces in space: the energy's pose-dependent part
+is sum_{u<v} M_uv x_u . x_v, each spring S contributing entries K^S_uv (000 Eqs.
+23a-d) and gravity G_1v. Divided by r_u r_v (r_1 = 1 m, as 003 sets it), an entry
+times x_u . x_v is a pseudo-stiffness. Gravity's are positive (x_1 is up), so a
+spring term *balances* when its entry is negative and *is balanced* when positive;
+with the attachment patterns (+,+) on the ground, (+,+) and (-,-) elsewhere this
+is exactly 003's C1/C2 classification. Then, at each pose,
+
+    X = sum_v |G_1v x_1 . x_v| / r_v,   Y = sum_{S, u<v, K^S_uv > 0} |K^S_uv x_u . x_v| / (r_u r_v)
+
+and e_sys = (X + Y)/(X + 2Y): 003's Eq. (25), 'magnitudes' reading. For a planar
+motion x_u . x_v = cos Theta_uv and it reduces to 003's (tested against
+:func:`springlab.efficiency.system_efficiency`).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from springlab.armfile import ArmSpec, load_arm
+from springlab.chain import Chain
+from springlab.configurations import SpringSlot, as_slots, iter_configurations
+from springlab.design import find_design, relaxation_margin
+from springlab.energy import attachment_points, energy_breakdown
+from springlab.errors import SpringlabError, UnbalanceableError
+from springlab.quadratic import gravity_entries, spring_entries
+from springlab.springs import Spring
+
+METHODS = ("no auxiliary links",)
+VERIFY_TOLERANCE = 1e-10
+SORTED_UP_TO = 5  # n up to which all configurations are enumerated and sorted (n = 5: 213 in 0.3 s)
+
+
+def spatial_system_efficiency(chain: Chain, springs, X) -> np.ndarray:
+    """e_sys (Eq. 25 of 003, generalised; module docstring) at each pose X (N, n, 3), (N,)."""
+    X = chain.check_directions(X)
+    r = {1: 1.0} | {t: chain.r[t - 2] for t in range(2, chain.n + 1)}
+    dots = np.einsum("nuk,nvk->nuv", X, X)
+    Xs = np.zeros(len(X))
+    for (u, v), value in gravity_entries(chain.r, chain.d, chain.m, chain.g).items():
+        Xs += np.abs(value * dots[:, u - 1, v - 1]) / (r[u] * r[v])
+    Ys = np.zeros(len(X))
+    for s in springs:
+        for (u, v), value in spring_entries(s.i, s.j, s.a, s.b, s.k, chain.r).items():
+            if u < v and value > 0:
+                Ys += np.abs(value * dots[:, u - 1, v - 1]) / (r[u] * r[v])
+    return (Xs + Ys) / (Xs + 2 * Ys)
+
+
+def workspace_poses(spec: ArmSpec, chain: Chain) -> np.ndarray:
+    """The poses that judge a design: ``spec.samples`` link-direction sets (N, n, 3), seeded."""
+    rng = np.random.default_rng(spec.seed)
+    if chain.all_spherical:
+        from springlab.chain import random_directions
+
+        return random_directions(chain.n, spec.samples, rng)
+    return chain.directions(chain.random_angles(spec.samples, rng))
+
+
+@dataclass(frozen=True)
+class RankedDesign:
+    """One verified design. Forces in N, stiffness in N/m, energies in J."""
+
+    method: str
+    configuration: tuple
+    springs: tuple
+    max_force: float
+    stiffness_sum: float
+    efficiency: float  # mean spatial e_sys over the workspace samples
+    energy_variation: float  # route 2: max - min total energy / gravity range
+    spans: int  # joints spanned, summed over the springs
+
+    @property
+    def spring_count(self) -> int:
+        return len(self.springs)
+
+    def label(self) -> str:
+        return " ".join(f"{s.label}{s.pattern}" for s in self.springs)
+
+    def to_dict(self) -> dict:
+        return {"method": self.method, "configuration": [str(c) for c in self.configuration],
+                "springs": [{"i": s.i, "j": s.j, "pattern": s.pattern, "a_m": s.a, "b_m": s.b, "k_N_per_m": s.k}
+                            for s in self.springs],
+                "max_force_N": self.max_force, "stiffness_sum_N_per_m": self.stiffness_sum,
+                "efficiency": self.efficiency, "energy_variation": self.energy_variation}
+
+
+@dataclass
+class DesignReport:
+    """The ranked designs and what was tried: ``rejected`` lists (configuration, reason)."""
+
+    spec: ArmSpec
+    designs: list = field(default_factory=list)
+    rejected: list = field(default_factory=list)
+    configurations_tried: int = 0
+    seconds: float = 0.0
+
+    def table(self) -> str:
+        """The ranked designs as a Markdown table."""
+        lines = ["| rank | springs | configuration | max force (N) | sum of k (N/m) | efficiency | energy variation |",
+                 "|---|---|---|---|---|---|---|"]
+        for rank, d in enumerate(self.designs, start=1):
+            lines.append(f"| {rank} | {d.spring_count} | {d.label()} | {d.max_force:.1f} | {d.stiffness_sum:.0f} | "
+                         f"{d.efficiency:.4f} | {d.energy_variation:.1e} |")
+        return "\n".join(lines)
+
+
+def verify(chain: Chain, springs, X) -> float:
+    """Route 2: (max - min) of the total energy over the poses X, over the gravity energy's range.
+    Raises UnbalanceableError above :data:`VERIFY_TOLERANCE`."""
+    E = energy_breakdown(chain, springs, X)
+    rel = float(np.ptp(E["total"]) / np.ptp(E["gravity"]))
+    if not rel < VERIFY_TOLERANCE:
+        raise UnbalanceableError(f"route 2: the total energy varies by {rel:.2e} of the gravity range "
+                                 f"(> {VERIFY_TOLERANCE:g}): not balanced")
+    return rel
+
+
+def evaluate(method: str, chain: Chain, configuration, springs, X) -> RankedDesign:
+    """Verify ``springs`` by route 2 and measure them over the poses X."""
+    rel = verify(chain, springs, X)
+    force = 0.0
+    for s in springs:
+        A, B = attachment_points(chain, s, X)
+        force = max(force, float(s.k * np.max(np.linalg.norm(B - A, axis=1))))
+    eff = float(np.mean(spatial_system_efficiency(chain, springs, X)))
+    return RankedDesign(method, tuple(configuration), tuple(springs), force, float(sum(s.k for s in springs)),
+                        eff, rel, sum(s.j - s.i for s in springs))
+
+
+def _rank_key(d: RankedDesign):
+    return (d.spring_count, d.max_force, -d.efficiency)
+
+
+def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10, max_configurations: int | None = None,
+               restarts: int = 8, seed: int = 0, progress: bool = False, finder=None) -> DesignReport:
+    """Ranked, verified spring designs for an arm.
+
+    :param arm: an :class:`~springlab.armfile.ArmSpec` or the path of an arm file
+    :param method: 'no auxiliary links' (paper 000: configurations with necessary springs
+        from rules R1-R6, fewest springs first; each solved within the arm's limits)
+    :param max_designs: stop after this many verified designs
+    :param max_configurations: stop after trying this many configurations (None: all)
+    :param finder: the solver (default :func:`springlab.design.find_design`); any design it
+        returns is verified before it is kept
+    """
+    from tqdm import tqdm
+
+    spec = arm if isinstance(arm, ArmSpec) else load_arm(arm)
+    if method not in METHODS:
+        raise SpringlabError(f"method must be one of {METHODS}, got {method!r}")
+    finder = finder or find_design
+    chain = spec.chain()
+    X = workspace_poses(spec, chain)
+    report = DesignReport(spec)
+    t0 = time.perf_counter()
+    if chain.n <= SORTED_UP_TO:  # all of them, fewest springs (then fewest spanned joints) first
+        configs = sorted(iter_configurations(chain.n), key=lambda c: (len(c), sum(s.j - s.i for s in c), c))
+    else:  # thousands from n = 6 on: take them in the enumerator's order
+        configs = iter_configurations(chain.n)
+    for cfg in tqdm(configs, disable=not progress, desc="configurations", mininterval=1.0):
+        if max_configurations is not None and report.configurations_tried >= max_configurations:
+            break
+        if len(report.designs) >= max_designs:
+            break
+        report.configurations_tried += 1
+        if relaxation_margin(chain, cfg) <= 1e-9:
+            report.rejected.append((cfg, "Eqs. (39) have no solution with these signs (linear relaxation)"))
+            continue
+        try:
+            springs = finder(chain, cfg, seed=seed, restarts=restarts, max_extension=spec.max_attachment)
+            stiff = [s for s in springs if s.k > spec.max_stiffness]
+            if stiff:
+                raise UnbalanceableError(f"{stiff[0].label} needs k = {stiff[0].k:.0f} N/m > {spec.max_stiffness:.0f} N/m")
+            report.designs.append(evaluate(method, chain, cfg, springs, X))
+        except (UnbalanceableError, SpringlabError) as err:
+            report.rejected.append((cfg, str(err)))
+    report.designs.sort(key=_rank_key)
+    report.seconds = time.perf_counter() - t0
+    return report
+
+
+def configuration_of(springs) -> tuple[SpringSlot, ...]:
+    """The configuration (slots with patterns) of a list of springs."""
+    return tuple(sorted(as_slots([f"{s.label}{s.pattern}" for s in springs])))
+
+
+def springs_from_dict(items) -> list[Spring]:
+    """Springs from :meth:`RankedDesign.to_dict`'s 'springs' list."""
+    return [Spring(int(d["i"]), int(d["j"]), float(d["a_m"]), float(d["b_m"]), float(d["k_N_per_m"])) for d in items]

@@ -1,0 +1,225 @@
+"""An arm described in a file (TOML or JSON), with units, for :func:`springlab.arm_design.design_arm`.
+
+Every quantity is a number in SI units or a string "value unit"::
+
+    name = "my arm"
+    g = "9.81 m/s^2"                 # optional, default 9.81 m/s^2
+
+    [[link]]                         # moving links 2..n, from the ground out
+    length = "400 mm"
+    com = "0.18 m"                   # from the link's proximal joint
+    mass = "12 kg"
+    joint = "spherical"              # optional; or a revolute axis [0, 0, 1] in the previous link's frame
+
+    [payload]                        # optional, at the end link's centre of mass
+    mass = "2 kg"
+
+    [limits]                         # optional
+    max_stiffness = "20 kN/m"
+    max_attachment = "0.4 m"         # longest bracket: an end beyond a joint, or up the base post
+
+    [workspace]                      # optional: the poses used to judge spring forces and efficiency
+    samples = 2000
+    seed = 1
+
+Link numbering follows paper 000: the ground is link 1, so an arm file with k
+``[[link]]`` tables describes n = k + 1 links. n above 8 needs ``allow_large``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from springlab.errors import SpringlabError
+
+UNITS = {
+    "length": {"m": 1.0, "cm": 1e-2, "mm": 1e-3},
+    "mass": {"kg": 1.0, "g": 1e-3},
+    "stiffness": {"N/m": 1.0, "kN/m": 1e3, "N/mm": 1e3},
+    "acceleration": {"m/s^2": 1.0, "m/s2": 1.0, "m/s²": 1.0},
+}
+MAX_LINKS = 8
+
+
+def parse_quantity(value, kind: str, where: str) -> float:
+    """A number (SI) or a string "value unit" of ``kind`` ('length', 'mass', 'stiffness',
+    'acceleration') in SI units. ``where`` names the field in error messages.
+
+    >>> parse_quantity("400 mm", "length", "link 2: length")
+    0.4
+    >>> parse_quantity("20 kN/m", "stiffness", "limits: max_stiffness")
+    20000.0
+    """
+    units = UNITS[kind]
+    if isinstance(value, bool):
+        raise SpringlabError(f"{where} = {value!r}: expected a number or a string like '1.5 {next(iter(units))}'")
+    if isinstance(value, int | float):
+        number = float(value)
+    elif isinstance(value, str):
+        match = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\s\d].*?)?\s*", value)
+        if not match:
+            raise SpringlabError(f"{where} = {value!r} does not parse: write a number and a unit, e.g. '1.5 {next(iter(units))}'")
+        number, unit = float(match.group(1)), match.group(2)
+        if unit is not None:
+            if unit not in units:
+                raise SpringlabError(f"{where} = {value!r}: unknown unit {unit!r} for a {kind} (use {', '.join(units)})")
+            number *= units[unit]
+    else:
+        raise SpringlabError(f"{where} = {value!r}: expected a number or a string like '1.5 {next(iter(units))}'")
+    if not math.isfinite(number):
+        raise SpringlabError(f"{where} = {value!r} is not finite")
+    return number
+
+
+@dataclass(frozen=True)
+class ArmSpec:
+    """An arm as a user describes it (SI units). See the module docstring for the file format.
+
+    :ivar r, d, m: lengths, COM distances, masses of the moving links 2..n
+    :ivar joints: per moving link 'spherical' or a revolute axis (3-tuple)
+    """
+
+    name: str
+    r: tuple
+    d: tuple
+    m: tuple
+    joints: tuple
+    g: float = 9.81
+    payload: float = 0.0
+    max_stiffness: float = math.inf
+    max_attachment: float | None = None
+    samples: int = 2000
+    seed: int = 0
+    source: str = field(default="", compare=False)
+
+    @property
+    def n(self) -> int:
+        """Links, the ground included (paper 000's n)."""
+        return len(self.r) + 1
+
+    def chain(self, *, with_payload: bool = True):
+        """The springlab :class:`~springlab.chain.Chain` (payload at the end link's COM)."""
+        from springlab.chain import serial_chain
+
+        joints = None if all(j == "spherical" for j in self.joints) else list(self.joints)
+        chain = serial_chain(self.r, self.d, self.m, self.g, joints=joints)
+        return chain.with_payload(self.payload) if with_payload else chain
+
+
+def _field(table: dict, key: str, where: str, *, required: bool = True):
+    if key not in table:
+        if required:
+            raise SpringlabError(f"{where}: missing field {key!r}")
+        return None
+    return table[key]
+
+
+def arm_from_dict(data: dict, *, source: str = "arm", allow_large: bool = False) -> ArmSpec:
+    """Validate a parsed arm description (see the module docstring) into an :class:`ArmSpec`."""
+    if not isinstance(data, dict):
+        raise SpringlabError(f"{source}: expected a table of fields, got {type(data).__name__}")
+    known = {"name", "g", "link", "payload", "limits", "workspace"}
+    unknown = sorted(set(data) - known)
+    if unknown:
+        raise SpringlabError(f"{source}: unknown field(s) {unknown} (known: {sorted(known)})")
+    links = _field(data, "link", source)
+    if not isinstance(links, list) or not links:
+        raise SpringlabError(f"{source}: 'link' must be a list of link tables ([[link]] in TOML), one per moving link")
+    n = len(links) + 1
+    if n > MAX_LINKS and not allow_large:
+        raise SpringlabError(f"{source}: {n} links (ground included) is more than {MAX_LINKS}; designs grow "
+                             "combinatorially with n: pass allow_large=True (--allow-large) to try anyway")
+    if n < 2:
+        raise SpringlabError(f"{source}: need at least one moving link")
+    r, d, m, joints = [], [], [], []
+    for idx, link in enumerate(links):
+        where = f"{source}: link {idx + 2}"
+        if not isinstance(link, dict):
+            raise SpringlabError(f"{where}: expected a table with length, com, mass")
+        extra = sorted(set(link) - {"length", "com", "mass", "joint"})
+        if extra:
+            raise SpringlabError(f"{where}: unknown field(s) {extra} (known: length, com, mass, joint)")
+        length = parse_quantity(_field(link, "length", where), "length", f"{where}: length")
+        com = parse_quantity(_field(link, "com", where), "length", f"{where}: com")
+        mass = parse_quantity(_field(link, "mass", where), "mass", f"{where}: mass")
+        if length <= 0:
+            raise SpringlabError(f"{where}: length = {length} m must be > 0")
+        if mass <= 0:
+            raise SpringlabError(f"{where}: mass = {mass} kg must be > 0")
+        if not 0 <= com <= length:
+            raise SpringlabError(f"{where}: com = {com} m must lie on the link, in [0, {length}] m")
+        joint = link.get("joint", "spherical")
+        if joint != "spherical":
+            if not (isinstance(joint, list) and len(joint) == 3 and all(isinstance(x, int | float) for x in joint)):
+                raise SpringlabError(f"{where}: joint = {joint!r}: 'spherical' or a revolute axis [x, y, z]")
+            joint = tuple(float(x) for x in joint)
+        r.append(length)
+        d.append(com)
+        m.append(mass)
+        joints.append(joint)
+    g = parse_quantity(data.get("g", 9.81), "acceleration", f"{source}: g")
+    if g <= 0:
+        raise SpringlabError(f"{source}: g = {g} m/s^2 must be > 0")
+    payload = 0.0
+    if "payload" in data:
+        table = data["payload"]
+        if not isinstance(table, dict):
+            raise SpringlabError(f"{source}: payload must be a table with a mass")
+        payload = parse_quantity(_field(table, "mass", f"{source}: payload"), "mass", f"{source}: payload: mass")
+        if payload < 0:
+            raise SpringlabError(f"{source}: payload: mass = {payload} kg must be >= 0")
+    limits = data.get("limits", {})
+    if not isinstance(limits, dict):
+        raise SpringlabError(f"{source}: limits must be a table")
+    extra = sorted(set(limits) - {"max_stiffness", "max_attachment"})
+    if extra:
+        raise SpringlabError(f"{source}: limits: unknown field(s) {extra} (known: max_stiffness, max_attachment)")
+    k_max = math.inf
+    if "max_stiffness" in limits:
+        k_max = parse_quantity(limits["max_stiffness"], "stiffness", f"{source}: limits: max_stiffness")
+    reach = limits.get("max_attachment")
+    if reach is not None:
+        reach = parse_quantity(reach, "length", f"{source}: limits: max_attachment")
+    for name, value in (("max_stiffness", k_max), ("max_attachment", reach)):
+        if value is not None and value <= 0:
+            raise SpringlabError(f"{source}: limits: {name} = {value} must be > 0")
+    ws = data.get("workspace", {})
+    if not isinstance(ws, dict):
+        raise SpringlabError(f"{source}: workspace must be a table")
+    samples, seed = ws.get("samples", 2000), ws.get("seed", 0)
+    if not (isinstance(samples, int) and not isinstance(samples, bool) and samples >= 1):
+        raise SpringlabError(f"{source}: workspace: samples = {samples!r} must be an integer >= 1")
+    if not (isinstance(seed, int) and not isinstance(seed, bool)):
+        raise SpringlabError(f"{source}: workspace: seed = {seed!r} must be an integer")
+    name = data.get("name", Path(source).stem)
+    return ArmSpec(str(name), tuple(r), tuple(d), tuple(m), tuple(joints), g, payload, k_max, reach, samples, seed, source)
+
+
+def load_arm(path, *, allow_large: bool = False) -> ArmSpec:
+    """Read an arm file (.toml or .json) into an :class:`ArmSpec`."""
+    path = Path(path)
+    if not path.exists():
+        raise SpringlabError(f"arm file {path} does not exist")
+    text = path.read_text()
+    if path.suffix == ".toml":
+        try:
+            import tomllib
+        except ImportError:  # Python 3.10
+            import tomli as tomllib
+
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as err:
+            raise SpringlabError(f"{path}: not valid TOML: {err}") from None
+    elif path.suffix == ".json":
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as err:
+            raise SpringlabError(f"{path}: not valid JSON: {err}") from None
+    else:
+        raise SpringlabError(f"{path}: arm files are .toml or .json, got {path.suffix!r}")
+    return arm_from_dict(data, source=str(path), allow_large=allow_large)
