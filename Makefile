@@ -31,6 +31,7 @@ bench: $(VENV)/.bench-installed
 	$(BIN)/python benchmarks/bench_energy.py
 	$(BIN)/python benchmarks/bench_sim.py
 	$(BIN)/python benchmarks/bench_efficiency.py
+	$(BIN)/python benchmarks/bench_design.py
 
 lab: $(STAMP)
 	$(BIN)/jupyter lab notebooks/

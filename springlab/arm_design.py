@@ -34,7 +34,7 @@ import numpy as np
 
 from springlab.armfile import ArmSpec, load_arm
 from springlab.chain import Chain
-from springlab.configurations import SpringSlot, as_slots, iter_configurations
+from springlab.configurations import SpringSlot, as_slots, best_first_configurations
 from springlab.design import find_design, relaxation_margin
 from springlab.energy import attachment_points, energy_breakdown
 from springlab.errors import SpringlabError, UnbalanceableError
@@ -43,7 +43,6 @@ from springlab.springs import Spring
 
 METHODS = ("no auxiliary links",)
 VERIFY_TOLERANCE = 1e-10
-SORTED_UP_TO = 5  # n up to which all configurations are enumerated and sorted (n = 5: 213 in 0.3 s)
 
 
 def spatial_system_efficiency(chain: Chain, springs, X) -> np.ndarray:
@@ -153,7 +152,9 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
 
     :param arm: an :class:`~springlab.armfile.ArmSpec` or the path of an arm file
     :param method: 'no auxiliary links' (paper 000: configurations with necessary springs
-        from rules R1-R6, fewest springs first; each solved within the arm's limits)
+        from rules R1-R6, fewest springs and then fewest spanned joints first
+        (:func:`~springlab.configurations.best_first_configurations`); each solved within
+        the arm's limits)
     :param max_designs: stop after this many verified designs
     :param max_configurations: stop after trying this many configurations (None: all)
     :param finder: the solver (default :func:`springlab.design.find_design`); any design it
@@ -169,10 +170,8 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
     X = workspace_poses(spec, chain)
     report = DesignReport(spec)
     t0 = time.perf_counter()
-    if chain.n <= SORTED_UP_TO:  # all of them, fewest springs (then fewest spanned joints) first
-        configs = sorted(iter_configurations(chain.n), key=lambda c: (len(c), sum(s.j - s.i for s in c), c))
-    else:  # thousands from n = 6 on: take them in the enumerator's order
-        configs = iter_configurations(chain.n)
+    # fewest springs first, then fewest spanned joints: best first, without enumerating the rest
+    configs = (cfg for _, _, cfg in best_first_configurations(chain.n))
     for cfg in tqdm(configs, disable=not progress, desc="configurations", mininterval=1.0):
         if max_configurations is not None and report.configurations_tried >= max_configurations:
             break

@@ -135,3 +135,17 @@ def test_cli_prints_and_writes_json(tmp_path, capsys):
     assert main(["design", str(bad), "--quiet"]) == 2
     assert "missing field 'com'" in capsys.readouterr().err
     assert SpringSlot(1, 2) == SpringSlot(1, 2, "(+,+)")
+
+
+def test_best_first_search_finds_the_same_configurations_in_order():
+    from springlab.configurations import best_first_configurations, iter_configurations, spans
+
+    for n in (3, 4, 5):
+        found = list(best_first_configurations(n))
+        assert sorted(c for _, _, c in found) == sorted(iter_configurations(n))
+        keys = [(k, s) for k, s, _ in found]
+        assert keys == sorted(keys) and all(s == spans(c) and k == len(c) for k, s, c in found)
+    first8 = next(best_first_configurations(8))
+    assert first8[0] == 10  # springs
+    with pytest.raises(SpringlabError, match="n must be"):
+        next(best_first_configurations(1))
