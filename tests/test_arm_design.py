@@ -149,3 +149,30 @@ def test_best_first_search_finds_the_same_configurations_in_order():
     assert first8[0] == 10  # springs
     with pytest.raises(SpringlabError, match="n must be"):
         next(best_first_configurations(1))
+
+
+def test_tolerance_study():
+    from springlab import tolerance as tl
+    from springlab.chain import UP
+
+    spec = load_arm(ARMS / "paper000_arm.toml")
+    chain = spec.chain()
+    springs = ad.design_arm(spec, max_designs=1).designs[0].springs
+    X = ad.workspace_poses(spec, chain)[:100]
+    small = tl.tolerance_study(chain, springs, X, tl.Tolerances(stiffness=0.01), samples=200, progress=False)
+    large = tl.tolerance_study(chain, springs, X, tl.Tolerances(stiffness=0.02), samples=200, progress=False)
+    ratio = np.median(large.torques["stiffness"]) / np.median(small.torques["stiffness"])
+    assert 1.6 < ratio < 2.4  # torques grow linearly with small stiffness errors
+    again = tl.tolerance_study(chain, springs, X, tl.Tolerances(stiffness=0.01), samples=200, progress=False)
+    assert np.array_equal(again.torques["stiffness"], small.torques["stiffness"])  # seeded
+    dm = 0.3
+    pay = tl.tolerance_study(chain, springs, X, tl.Tolerances(payload=dm), samples=100, progress=False)
+    reach = sum(chain.r[:-1]) + chain.d[-1]  # a payload's lever arm is at most the distance to the end COM
+    assert 0 < pay.torques["payload"].max() <= dm * chain.g * reach * (1 + 1e-9)
+    both = tl.tolerance_study(chain, springs, X, tl.Tolerances(attachment=1e-3, free_length=1e-3), samples=20, progress=False)
+    assert set(both.torques) == {"attachment", "free_length", "all"} and "| all |" in both.table()
+    with pytest.raises(SpringlabError, match="nothing to study"):
+        tl.tolerance_study(chain, springs, X, tl.Tolerances(), progress=False)
+    with pytest.raises(SpringlabError, match="stiffness = -0.1"):
+        tl.Tolerances(stiffness=-0.1)
+    assert np.allclose(UP, [1, 0, 0])

@@ -1,0 +1,122 @@
+"""How well a spring design holds up when it is built: a seeded Monte Carlo study.
+
+Each sample builds the design with random errors and measures, by route 2
+(:func:`springlab.energy.holding_torques`), the largest joint torque needed to
+hold the arm over a set of workspace poses. A perfectly built balanced design
+needs none; the study says how much each error costs. Errors (all optional):
+
+* ``attachment`` (m): each end's distance a, b off by a normal error of this
+  standard deviation, along the link line (000's springs sit on the joint lines);
+* ``free_length`` (m): each spring's free length uniform in [0, this] instead of 0
+  (a real spring is never quite zero-free-length);
+* ``stiffness`` (relative): each k off by a normal error of this relative deviation;
+* ``payload`` (kg): a payload uniform in [-payload, +payload] added at the end
+  link's COM (a negative draw takes mass off, down to nothing).
+
+The torque is the norm of the holding-torque vector at each joint (for a revolute
+joint an upper bound on the actuator's share), maximised over joints and poses.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab.chain import Chain
+from springlab.energy import holding_torques
+from springlab.errors import SpringlabError
+from springlab.springs import Spring, check_springs
+
+FACTORS = ("attachment", "free_length", "stiffness", "payload")
+
+
+@dataclass(frozen=True)
+class Tolerances:
+    """Manufacturing and use tolerances (module docstring); 0 switches a factor off."""
+
+    attachment: float = 0.0
+    free_length: float = 0.0
+    stiffness: float = 0.0
+    payload: float = 0.0
+
+    def __post_init__(self):
+        for name in FACTORS:
+            value = getattr(self, name)
+            if not (np.isfinite(value) and value >= 0):
+                unit = {"attachment": "m", "free_length": "m", "stiffness": "(relative)", "payload": "kg"}[name]
+                raise SpringlabError(f"tolerance {name} = {value} {unit} must be finite and >= 0")
+
+    def only(self, factor: str) -> Tolerances:
+        """The same tolerances with every other factor switched off."""
+        if factor not in FACTORS:
+            raise SpringlabError(f"factor must be one of {FACTORS}, got {factor!r}")
+        return Tolerances(**{f: (getattr(self, f) if f == factor else 0.0) for f in FACTORS})
+
+
+def perturbed(chain: Chain, springs, tol: Tolerances, rng) -> tuple[Chain, list[Spring]]:
+    """One built arm: the chain (payload changed) and the springs with their errors."""
+    out = []
+    for s in springs:
+        a = s.a + rng.normal(0.0, tol.attachment) if tol.attachment else s.a
+        b = s.b + rng.normal(0.0, tol.attachment) if tol.attachment else s.b
+        k = s.k * max(1e-9, 1.0 + rng.normal(0.0, tol.stiffness)) if tol.stiffness else s.k
+        l0 = rng.uniform(0.0, tol.free_length) if tol.free_length else 0.0
+        out.append(Spring(s.i, s.j, a, b, k, free_length=l0))
+    if tol.payload:
+        dm = rng.uniform(-tol.payload, tol.payload)
+        m = list(chain.m)
+        m[-1] = max(1e-9, m[-1] + dm)
+        chain = Chain(chain.r, chain.d, tuple(m), chain.g, chain.joints)
+    return chain, out
+
+
+@dataclass(frozen=True)
+class ToleranceResult:
+    """Per factor (and 'all' together): the largest holding torque of each sample (N m), (samples,)."""
+
+    torques: dict
+    samples: int
+    seed: int
+
+    def summary(self) -> list[tuple[str, float, float, float]]:
+        """(factor, median, 95th percentile, max) of the largest holding torque, N m."""
+        return [(name, float(np.median(v)), float(np.percentile(v, 95)), float(np.max(v)))
+                for name, v in self.torques.items()]
+
+    def table(self) -> str:
+        lines = ["| error | median (N m) | 95th percentile (N m) | largest (N m) |", "|---|---|---|---|"]
+        lines += [f"| {n} | {a:.3g} | {b:.3g} | {c:.3g} |" for n, a, b, c in self.summary()]
+        return "\n".join(lines)
+
+
+def tolerance_study(chain: Chain, springs, X, tol: Tolerances, *, samples: int = 500, seed: int = 0,
+                    progress: bool = True) -> ToleranceResult:
+    """Monte Carlo over built arms: each factor alone, then all together.
+
+    :param X: workspace poses, link directions (N, n, 3)
+    :param samples: built arms per factor; ``seed`` makes the study repeatable
+    """
+    from tqdm import tqdm
+
+    springs = check_springs(chain, springs)
+    X = chain.check_directions(X)
+    if int(samples) != samples or samples < 1:
+        raise SpringlabError(f"samples must be an integer >= 1, got {samples}")
+    active = [f for f in FACTORS if getattr(tol, f)]
+    if not active:
+        raise SpringlabError("every tolerance is 0: nothing to study")
+    runs = {f: tol.only(f) for f in active} | ({"all": tol} if len(active) > 1 else {})
+    out = {}
+    seeds = np.random.SeedSequence(seed).spawn(len(runs))
+    bar = tqdm(total=len(runs) * int(samples), disable=not progress, desc="tolerance study", mininterval=1.0)
+    for (name, t), ss in zip(runs.items(), seeds, strict=True):
+        rng = np.random.default_rng(ss)
+        worst = np.zeros(int(samples))
+        for k in range(int(samples)):
+            built_chain, built = perturbed(chain, springs, t, rng)
+            worst[k] = float(np.max(np.linalg.norm(holding_torques(built_chain, built, X), axis=-1)))
+            bar.update()
+        out[name] = worst
+    bar.close()
+    return ToleranceResult(out, int(samples), seed)
