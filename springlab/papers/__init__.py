@@ -18,6 +18,14 @@ PAPERS = {
         "doi": "10.1115/1.4001816",
         "key_figure": "fig9_energies.png",
     },
+    "springlab_design_your_arm": {
+        "authors": "springlab, from papers 000 and 003",
+        "year": 2026,
+        "title": "Design springs for your own arm: ranked, verified designs, a tolerance study, an exudyn check",
+        "venue": "",
+        "doi": None,
+        "key_figure": "best_design.png",
+    },
     "zhang2023_dyad": {
         "authors": "Y. Zhang, V. Arakelian",
         "year": 2023,
