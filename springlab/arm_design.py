@@ -202,3 +202,52 @@ def configuration_of(springs) -> tuple[SpringSlot, ...]:
 def springs_from_dict(items) -> list[Spring]:
     """Springs from :meth:`RankedDesign.to_dict`'s 'springs' list."""
     return [Spring(int(d["i"]), int(d["j"]), float(d["a_m"]), float(d["b_m"]), float(d["k_N_per_m"])) for d in items]
+
+
+def all_pattern_slots(n: int) -> list[SpringSlot]:
+    """Every spring S(i,j) of an n-link arm with every sign pattern, the paper's
+    criteria (Eq. 41, Fig. 10) ignored."""
+    from springlab.configurations import PATTERNS
+
+    return [SpringSlot(i, j, p) for i in range(1, n) for j in range(i + 1, n + 1) for p in PATTERNS]
+
+
+def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = None, restarts: int = 20,
+                  seed: int = 0, samples: int = 2000, progress: bool = False) -> list[RankedDesign]:
+    """Verified designs with ``count`` springs of any sign pattern (000's criteria treated
+    as the heuristics they are), ranked like :func:`design_arm`.
+
+    Every set of ``count`` slots that includes S(1,n) (the only spring with an entry
+    (1, n), which gravity's G_1n needs; (+,+) or (-,-)) is screened by the linear
+    relaxation of Eqs. (39) (:func:`springlab.design.relaxation_margin`), then solved
+    by least squares and verified by route 2 over ``samples`` random poses.
+    """
+    import itertools
+
+    from tqdm import tqdm
+
+    chain = spec_or_chain.chain() if isinstance(spec_or_chain, ArmSpec) else spec_or_chain
+    if int(count) != count or count < 1:
+        raise SpringlabError(f"count must be an integer >= 1, got {count}")
+    n = chain.n
+    rng = np.random.default_rng(seed)
+    if chain.all_spherical:
+        from springlab.chain import random_directions
+
+        X = random_directions(n, samples, rng)
+    else:
+        X = chain.directions(chain.random_angles(samples, rng))
+    slots = all_pattern_slots(n)
+    end = [s for s in slots if (s.i, s.j) == (1, n) and s.pattern in ("(+,+)", "(-,-)")]
+    rest = [s for s in slots if s not in end]
+    candidates = [(e, *others) for e in end for others in itertools.combinations(rest, count - 1)]
+    out = []
+    for cfg in tqdm(candidates, disable=not progress, desc=f"{count} springs, all patterns", mininterval=1.0):
+        if relaxation_margin(chain, cfg) <= 1e-9:
+            continue
+        try:
+            springs = find_design(chain, cfg, seed=seed, restarts=restarts, max_extension=max_extension)
+            out.append(evaluate("no auxiliary links, any signs", chain, tuple(sorted(cfg)), springs, X))
+        except (UnbalanceableError, SpringlabError):
+            continue
+    return sorted(out, key=_rank_key)

@@ -176,3 +176,20 @@ def test_tolerance_study():
     with pytest.raises(SpringlabError, match="stiffness = -0.1"):
         tl.Tolerances(stiffness=-0.1)
     assert np.allclose(UP, [1, 0, 0])
+
+
+def test_three_springs_balance_the_paper000_arm_with_a_forbidden_pattern():
+    from springlab import sim
+    from springlab.chain import random_directions
+    from springlab.configurations import rule_violations
+
+    spec = load_arm(ARMS / "paper000_arm.toml")
+    found = ad.fewer_springs(spec, 3, max_extension=spec.max_attachment)
+    assert found and all(d.spring_count == 3 and d.energy_variation < ad.VERIFY_TOLERANCE for d in found)
+    assert all(rule_violations(spec.n, d.configuration) for d in found)  # the paper's criteria reject them
+    assert ad.fewer_springs(spec, 2) == []
+    chain = spec.chain()
+    hold = sim.hold_test(chain, list(found[0].springs), random_directions(chain.n, 2, 5), duration=1.0)
+    assert hold.balanced.max_tip_drift < 1e-8 < 1e-3 < hold.control.max_tip_drift
+    with pytest.raises(SpringlabError, match="count"):
+        ad.fewer_springs(spec, 0)
