@@ -61,14 +61,20 @@ def spatial_system_efficiency(chain: Chain, springs, X) -> np.ndarray:
     return (Xs + Ys) / (Xs + 2 * Ys)
 
 
-def workspace_poses(spec: ArmSpec, chain: Chain) -> np.ndarray:
-    """The poses that judge a design: ``spec.samples`` link-direction sets (N, n, 3), seeded."""
-    rng = np.random.default_rng(spec.seed)
+def random_poses(chain: Chain, samples: int, seed) -> np.ndarray:
+    """``samples`` seeded link-direction sets (N, n, 3): uniform directions for a spherical
+    chain, uniform joint angles for one with revolute joints."""
+    rng = np.random.default_rng(seed)
     if chain.all_spherical:
         from springlab.chain import random_directions
 
-        return random_directions(chain.n, spec.samples, rng)
-    return chain.directions(chain.random_angles(spec.samples, rng))
+        return random_directions(chain.n, samples, rng)
+    return chain.directions(chain.random_angles(samples, rng))
+
+
+def workspace_poses(spec: ArmSpec, chain: Chain) -> np.ndarray:
+    """The poses that judge a design: the arm file's ``samples`` and ``seed``."""
+    return random_poses(chain, spec.samples, spec.seed)
 
 
 @dataclass(frozen=True)
@@ -230,13 +236,7 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
     if int(count) != count or count < 1:
         raise SpringlabError(f"count must be an integer >= 1, got {count}")
     n = chain.n
-    rng = np.random.default_rng(seed)
-    if chain.all_spherical:
-        from springlab.chain import random_directions
-
-        X = random_directions(n, samples, rng)
-    else:
-        X = chain.directions(chain.random_angles(samples, rng))
+    X = random_poses(chain, samples, seed)
     slots = all_pattern_slots(n)
     end = [s for s in slots if (s.i, s.j) == (1, n) and s.pattern in ("(+,+)", "(-,-)")]
     rest = [s for s in slots if s not in end]

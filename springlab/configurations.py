@@ -196,6 +196,22 @@ def _ground_sets(n: int):
                 yield base
 
 
+def _open_branch(n: int, current) -> list[SpringSlot] | None:
+    """The springs that may offset the first unbalanced entry of ``current`` (its rule's
+    candidates), or None when every positive entry has a partner."""
+    for (u, v), signs in sorted(entry_signs(current).items()):
+        if 1 in signs:
+            _, candidates = rule_candidates(u, v, n)
+            if not any(c in current for c in candidates):
+                return candidates
+    return None
+
+
+def _minimal_admissible(n: int, current) -> bool:
+    """Admissible, and no single spring can be removed with the rest still admissible."""
+    return is_admissible(n, current) and not any(is_admissible(n, current - {s}) for s in current)
+
+
 def iter_configurations(n: int, *, max_springs: int | None = None):
     """Yield the admissible configurations with necessary springs only, for n links,
     in a deterministic order (see :func:`enumerate_configurations`)."""
@@ -209,18 +225,10 @@ def iter_configurations(n: int, *, max_springs: int | None = None):
         if current in seen or len(current) > max_springs:
             continue
         seen.add(current)
-        branch = None
-        for (u, v), signs in sorted(entry_signs(current).items()):
-            if 1 in signs:
-                _, candidates = rule_candidates(u, v, n)
-                if not any(c in current for c in candidates):
-                    branch = candidates
-                    break
+        branch = _open_branch(n, current)
         if branch is not None:
             stack.extend(current | {c} for c in reversed(branch))
-        elif is_admissible(n, current) and not any(
-            is_admissible(n, current - {s}) for s in current
-        ):
+        elif _minimal_admissible(n, current):
             yield tuple(sorted(current))
 
 
@@ -312,17 +320,11 @@ def best_first_configurations(n: int):
         if current in seen:
             continue
         seen.add(current)
-        branch = None
-        for (u, v), signs in sorted(entry_signs(current).items()):
-            if 1 in signs:
-                _, candidates = rule_candidates(u, v, n)
-                if not any(c in current for c in candidates):
-                    branch = candidates
-                    break
+        branch = _open_branch(n, current)
         if branch is not None:
             for c in branch:
                 nxt = tuple(sorted(current | {c}))
                 if frozenset(nxt) not in seen:
                     heapq.heappush(heap, (len(nxt), spans(nxt), nxt))
-        elif is_admissible(n, current) and not any(is_admissible(n, current - {s}) for s in current):
+        elif _minimal_admissible(n, current):
             yield count, span, cfg
