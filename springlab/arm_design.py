@@ -251,3 +251,93 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
         except (UnbalanceableError, SpringlabError):
             continue
     return sorted(out, key=_rank_key)
+
+
+# --- other methods, for comparison ------------------------------------------------------------
+@dataclass(frozen=True)
+class MethodSummary:
+    """One method's best design for an arm, in the comparison's terms (N, N/m, kg)."""
+
+    method: str
+    springs: int
+    stiffness_sum: float
+    max_force: float
+    added_mass: float
+    efficiency: float
+    energy_variation: float
+    note: str = ""
+
+
+def pseudobase_summary(spec: ArmSpec, *, aux_mass_ratio: float = 0.09, pseudobase_mass: float = 0.47,
+                       post: float = 0.1) -> MethodSummary:
+    """Paper 001's method on this arm, idealised: one spring per moving link i, from a point
+    l_CA above its proximal joint on a pseudobase kept vertical (by RSSR parallelograms and an
+    auxiliary link beside link i) to a point l_CB along link i, K_i l_CA l_CB = g mu~_i sigma~_i
+    (001 Eq. 16). Both lengths are the arm's ``max_attachment`` (B within the link), the
+    stiffness the least that balances.
+
+    The auxiliary links (``aux_mass_ratio`` of each link's mass, 001's Table 2 has 9 %, each with
+    its centre of mass beside link i's: a translated copy) and
+    pseudobases (``pseudobase_mass`` kg each, at the joint, ``post`` m tall) add mass; their
+    energy is folded into the combined subsystems (001 Eqs. 24-25). Verified by route 2: every
+    body and spring end placed for each workspace pose.
+    """
+    from springlab.chain import UP
+
+    chain = spec.chain()
+    if not (0 <= aux_mass_ratio and pseudobase_mass >= 0 and post > 0):
+        raise SpringlabError("aux_mass_ratio and pseudobase_mass must be >= 0 and post > 0")
+    m = np.asarray(chain.m)
+    m_hat = aux_mass_ratio * m
+    total = m + m_hat + pseudobase_mass
+    beyond = np.r_[np.cumsum(total[::-1])[::-1][1:], 0.0]
+    moment = (m + m_hat) * np.asarray(chain.d) + beyond * np.asarray(chain.r)  # mu~ sigma~ along x_i (kg m)
+    reach = spec.max_attachment if spec.max_attachment is not None else max(chain.r)
+    l_CA = np.full(len(m), reach)
+    l_CB = np.minimum(reach, np.asarray(chain.r))
+    K = chain.g * moment / (l_CA * l_CB)  # 001 Eq. (16)
+    X = workspace_poses(spec, chain)
+    joints = chain.joint_positions(X)
+    com = chain.com_positions(X)
+    heights = com @ UP
+    gravity = chain.g * (heights @ (m + m_hat)) + chain.g * ((joints[:, :-1] @ UP) @ np.full(len(m), pseudobase_mass))
+    elastic = np.zeros(len(X))
+    force = 0.0
+    for idx in range(len(m)):
+        A = joints[:, idx] + l_CA[idx] * UP  # on the pseudobase, above the proximal joint
+        B = joints[:, idx] + l_CB[idx] * X[:, idx + 1]  # along link idx + 2
+        stretch = np.linalg.norm(B - A, axis=1)
+        elastic += 0.5 * K[idx] * stretch**2
+        force = max(force, float(K[idx] * stretch.max()))
+    rel = float(np.ptp(gravity + elastic) / np.ptp(gravity))
+    if not rel < VERIFY_TOLERANCE:
+        raise UnbalanceableError(f"pseudobase design: route 2 variation {rel:.2e} of the gravity range")
+    note = "" if K.max() <= spec.max_stiffness else f"exceeds max_stiffness ({K.max():.0f} N/m)"
+    added = float(m_hat.sum() + pseudobase_mass * len(m))
+    return MethodSummary("pseudobases (001), idealised", len(m), float(K.sum()), force, added, 1.0, rel, note)
+
+
+def compare_methods(spec: ArmSpec, report: DesignReport | None = None, **pseudobase_options) -> list[MethodSummary]:
+    """The best design of each method that applies to the arm: 000's (no auxiliary links, the
+    top of ``report``), 001's pseudobases, and 004's two springs where the arm has two moving
+    links (n = 3); 004's rows need a revolute elbow, which an arm file gives as its second joint."""
+    report = report or design_arm(spec, max_designs=5)
+    out = []
+    if report.designs:
+        d = report.designs[0]
+        out.append(MethodSummary("no auxiliary links (000)", d.spring_count, d.stiffness_sum, d.max_force, 0.0,
+                                 d.efficiency, d.energy_variation))
+    out.append(pseudobase_summary(spec, **pseudobase_options))
+    if spec.n == 3:
+        out.append(MethodSummary("two springs (004)", 2, float("nan"), float("nan"), 0.0, float("nan"), float("nan"),
+                                 "applies: compare with notebooks/lenzo2017_two_spring_arm"))
+    return out
+
+
+def comparison_table(rows) -> str:
+    lines = ["| method | springs | sum of k (N/m) | largest spring force (N) | added mass (kg) | efficiency | energy variation | note |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r.method} | {r.springs} | {r.stiffness_sum:.0f} | {r.max_force:.1f} | {r.added_mass:.2f} | "
+                     f"{r.efficiency:.3f} | {r.energy_variation:.1e} | {r.note} |")
+    return "\n".join(lines)

@@ -193,3 +193,24 @@ def test_three_springs_balance_the_paper000_arm_with_a_forbidden_pattern():
     assert hold.balanced.max_tip_drift < 1e-8 < 1e-3 < hold.control.max_tip_drift
     with pytest.raises(SpringlabError, match="count"):
         ad.fewer_springs(spec, 0)
+
+
+def test_pseudobase_method_summary():
+    spec = load_arm(ARMS / "paper000_arm.toml")
+    row = ad.pseudobase_summary(spec, aux_mass_ratio=0.0, pseudobase_mass=0.0)
+    chain = spec.chain()
+    # without added masses, K_i l_CA l_CB = G_1i of 000 (Eq. 18): one spring per moving link
+    from springlab.quadratic import gravity_entries
+
+    G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
+    reach = spec.max_attachment
+    expected = sum(G[(1, j)] / (reach * min(reach, chain.r[j - 2])) for j in range(2, chain.n + 1))
+    assert row.springs == chain.n - 1 and row.stiffness_sum == pytest.approx(expected)
+    assert row.energy_variation < ad.VERIFY_TOLERANCE and row.added_mass == 0.0 and row.efficiency == 1.0
+    heavy = ad.pseudobase_summary(spec)
+    assert heavy.added_mass > 0 and heavy.stiffness_sum > row.stiffness_sum
+    rows = ad.compare_methods(spec)
+    assert [r.method for r in rows][:2] == ["no auxiliary links (000)", "pseudobases (001), idealised"]
+    assert "| pseudobases (001)" in ad.comparison_table(rows)
+    with pytest.raises(SpringlabError, match="post"):
+        ad.pseudobase_summary(spec, post=0.0)
