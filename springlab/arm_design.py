@@ -319,8 +319,9 @@ def pseudobase_summary(spec: ArmSpec, *, aux_mass_ratio: float = 0.09, pseudobas
 
 def compare_methods(spec: ArmSpec, report: DesignReport | None = None, **pseudobase_options) -> list[MethodSummary]:
     """The best design of each method that applies to the arm: 000's (no auxiliary links, the
-    top of ``report``), 001's pseudobases, and 004's two springs where the arm has two moving
-    links (n = 3); 004's rows need a revolute elbow, which an arm file gives as its second joint."""
+    top of ``report``), 001's pseudobases (idealised), and 004's two springs where the arm has
+    two moving links (n = 3), which are 000's configurations S(1,3) + S(2,3) (Lenzo's layouts
+    a and b; c and d need a COM off the link)."""
     report = report or design_arm(spec, max_designs=5)
     out = []
     if report.designs:
@@ -328,9 +329,13 @@ def compare_methods(spec: ArmSpec, report: DesignReport | None = None, **pseudob
         out.append(MethodSummary("no auxiliary links (000)", d.spring_count, d.stiffness_sum, d.max_force, 0.0,
                                  d.efficiency, d.energy_variation))
     out.append(pseudobase_summary(spec, **pseudobase_options))
-    if spec.n == 3:
-        out.append(MethodSummary("two springs (004)", 2, float("nan"), float("nan"), 0.0, float("nan"), float("nan"),
-                                 "applies: compare with notebooks/lenzo2017_two_spring_arm"))
+    if spec.n == 3:  # Lenzo's two springs are 000's S(1,3) + S(2,3): layouts b (+,+) and a (-,-)
+        two = [d for d in report.designs if [(s.i, s.j) for s in d.springs] == [(1, 3), (2, 3)]]
+        if two:
+            d = two[0]
+            layout = "b" if d.springs[1].pattern == "(+,+)" else "a"
+            out.append(MethodSummary("two springs (004)", 2, d.stiffness_sum, d.max_force, 0.0, d.efficiency,
+                                     d.energy_variation, f"Lenzo's layout {layout}: 000's {d.label()}"))
     return out
 
 

@@ -214,3 +214,13 @@ def test_pseudobase_method_summary():
     assert "| pseudobases (001)" in ad.comparison_table(rows)
     with pytest.raises(SpringlabError, match="post"):
         ad.pseudobase_summary(spec, post=0.0)
+
+
+def test_two_link_arm_compares_three_methods():
+    spec = arm_from_dict({"g": 9.81, "link": [{"length": 0.30, "com": 0.13, "mass": 2.0},
+                                              {"length": 0.35, "com": 0.18, "mass": 1.5, "joint": [0, 0, 1]}]})
+    rows = ad.compare_methods(spec)
+    names = [r.method for r in rows]
+    assert names == ["no auxiliary links (000)", "pseudobases (001), idealised", "two springs (004)"]
+    two = rows[-1]
+    assert two.springs == 2 and two.energy_variation < ad.VERIFY_TOLERANCE and "layout" in two.note
