@@ -543,6 +543,15 @@ CONFIGURATIONS = {
 Table 1 gives only alpha - beta, (90, 0) or (0, 0) is used; Table 4 attaches S(3,4) at (180, 180)."""
 
 
+def _configuration(config) -> tuple:
+    """A configuration given by its Table 1 name ('Λ3-1', ...) or as ((i, j), (alpha, beta)) pairs."""
+    if isinstance(config, str):
+        if config not in CONFIGURATIONS:
+            raise SpringlabError(f"unknown configuration {config!r}; Table 1's are {list(CONFIGURATIONS)}")
+        return CONFIGURATIONS[config]
+    return tuple(config)
+
+
 def _symbols(config):
     import sympy as sp
 
@@ -558,7 +567,7 @@ def balance_equations(config, G=None) -> dict:
     (``G`` numbers instead of the symbols G_1u if given)."""
     import sympy as sp
 
-    config = CONFIGURATIONS[config] if isinstance(config, str) else tuple(config)
+    config = _configuration(config)
     n = max(j for (_, j), _ in config)
     syms = _symbols(config)
     Gs = [sp.Symbol(f"G_1{u}", positive=True) for u in range(2, n + 1)] if G is None else [sp.nsimplify(x) for x in G]
@@ -631,7 +640,7 @@ def design(arm: PlanarArm, config, choices: dict) -> list[PlanarSpring]:
     """
     import sympy as sp
 
-    cfg = CONFIGURATIONS[config] if isinstance(config, str) else tuple(config)
+    cfg = _configuration(config)
     names = tuple(sorted(choices))
     fast = _symbolic_designer(cfg, names)
     if fast is not None:
@@ -671,7 +680,7 @@ def payload_adjustment(arm: PlanarArm, springs, config, payload: float, *, keep:
     if mono not in ("A", "B"):
         raise SpringlabError(f"mono must be 'A' or 'B', got {mono!r}")
     loaded = arm.with_payload(payload)
-    cfg = CONFIGURATIONS[config] if isinstance(config, str) else tuple(config)
+    cfg = _configuration(config)
     if keep == "stiffness":
         choices = {}
         for sp in springs:
@@ -752,7 +761,7 @@ def optimise_index(arm: PlanarArm, config: str, free: dict, fixed: dict, workspa
         try:
             return np.array([k_max - s.k for s in springs_of(x)]) / k_max
         except SpringlabError:
-            return -np.ones(len(CONFIGURATIONS[config]))
+            return -np.ones(len(_configuration(config)))
 
     res = minimize(objective, x0, method="SLSQP", bounds=list(zip(lo, hi, strict=True)),
                    constraints=[{"type": "ineq", "fun": stiffness_margin}], options={"ftol": 1e-9, "maxiter": 200})

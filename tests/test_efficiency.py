@@ -182,6 +182,8 @@ def test_bad_workspaces_and_arms():
         ef.efficiency_index(ARM, TABLE4, WS)
     with pytest.raises(SpringlabError, match="seed"):
         ef.efficiency_index(ARM, TABLE4, WS, samples=10)
+    with pytest.raises(SpringlabError, match="unknown configuration 'Λ4'"):
+        ef.design(ARM, "Λ4", paper.FREE_CHOICES)
     with pytest.raises(SpringlabError, match="empty sample"):
         ef.efficiency_index(ARM, TABLE4, WS, samples=0, seed=1)
     with pytest.raises(SpringlabError, match="workspace has 2 joints"):
