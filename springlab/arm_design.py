@@ -35,7 +35,7 @@ import numpy as np
 from springlab.armfile import ArmSpec, load_arm
 from springlab.chain import Chain
 from springlab.configurations import SpringSlot, as_slots, best_first_configurations
-from springlab.design import find_design, relaxation_margin
+from springlab.design import find_design, minimise_largest_force, relaxation_margin
 from springlab.energy import attachment_points, energy_breakdown
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.quadratic import gravity_entries, spring_entries
@@ -153,7 +153,8 @@ def _rank_key(d: RankedDesign):
 
 
 def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10, max_configurations: int | None = None,
-               restarts: int = 8, seed: int = 0, progress: bool = False, finder=None) -> DesignReport:
+               restarts: int = 8, seed: int = 0, progress: bool = False, finder=None,
+               minimise_force: bool = True) -> DesignReport:
     """Ranked, verified spring designs for an arm.
 
     :param arm: an :class:`~springlab.armfile.ArmSpec` or the path of an arm file
@@ -165,6 +166,8 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
     :param max_configurations: stop after trying this many configurations (None: all)
     :param finder: the solver (default :func:`springlab.design.find_design`); any design it
         returns is verified before it is kept
+    :param minimise_force: spend each configuration's free choices on the smallest largest
+        spring force (:func:`springlab.design.minimise_largest_force`), within the limits
     """
     from tqdm import tqdm
 
@@ -192,6 +195,9 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
             stiff = [s for s in springs if s.k > spec.max_stiffness]
             if stiff:
                 raise UnbalanceableError(f"{stiff[0].label} needs k = {stiff[0].k:.0f} N/m > {spec.max_stiffness:.0f} N/m")
+            if minimise_force:
+                springs = minimise_largest_force(chain, cfg, springs, max_extension=spec.max_attachment,
+                                                 max_stiffness=spec.max_stiffness)
             report.designs.append(evaluate(method, chain, cfg, springs, X))
         except (UnbalanceableError, SpringlabError) as err:
             report.rejected.append((cfg, str(err)))

@@ -23,7 +23,7 @@ from scipy.optimize import least_squares, linprog
 from springlab.chain import Chain
 from springlab.configurations import SpringSlot, as_slots
 from springlab.errors import SpringlabError, UnbalanceableError
-from springlab.quadratic import balance_residual, gravity_entries, spring_entries
+from springlab.quadratic import gravity_entries, spring_entries
 from springlab.springs import Spring, sign_char
 
 
@@ -192,8 +192,34 @@ def _residual_entries(chain: Chain, slots) -> list[tuple[int, int]]:
     return sorted(keys)
 
 
+def _linear_columns(chain: Chain, slots) -> list[dict[str, dict[tuple[int, int], float]]]:
+    """Per spring, the entries of Eqs. (39) that P = k a b, A = k a, B = k b and k
+    carry (000 Eqs. 23a-d, written linearly): {'P': {(i, j): -1}, 'A': ..., 'B': ..., 'K': ...}."""
+    rr = {t: chain.r[t - 2] for t in range(2, chain.n + 1)}
+    out = []
+    for s in as_slots(slots):
+        inner = range(s.i + 1, s.j)
+        out.append({"P": {(s.i, s.j): -1.0}, "A": {(s.i, t): -rr[t] for t in inner},
+                    "B": {(t, s.j): rr[t] for t in inner},
+                    "K": {(t, v): rr[t] * rr[v] for t in inner for v in inner if t < v}})
+    return out
+
+
+def _linear_system(chain: Chain, slots, keys) -> tuple[np.ndarray, np.ndarray]:
+    """Eqs. (39) at the entries ``keys`` as M @ v + g = 0, v = (P, A, B, k) per spring (SI units)."""
+    row = {key: idx for idx, key in enumerate(keys)}
+    M = np.zeros((len(keys), 4 * len(as_slots(slots))))
+    for idx, cols in enumerate(_linear_columns(chain, slots)):
+        for c, name in enumerate("PABK"):
+            for key, coef in cols[name].items():
+                M[row[key], 4 * idx + c] += coef
+    G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
+    return M, np.array([G.get(key, 0.0) for key in keys])
+
+
 def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float = 1e-13,
-                within_links: bool = True, max_extension: float | None = None) -> tuple[Spring, ...]:
+                within_links: bool = True, max_extension: float | None = None,
+                max_stiffness: float | None = None, start=None) -> tuple[Spring, ...]:
     """A balanced design of the configuration ``slots``, found numerically.
 
     Least squares over (log k, log|a|, log|b|) of every spring, with the signs
@@ -203,6 +229,8 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
     :param within_links: keep every end on its link (see :func:`check_attachments`)
         and every bracket (an end beyond a joint) no longer than ``max_extension``
         (m; default the longest link). ``False`` asks for the signs only.
+    :param max_stiffness: largest k (N/m), or None
+    :param start: springs to start from (first), before the random starts
     :raises UnbalanceableError: when no start converges
     """
     slots = as_slots(slots)
@@ -219,6 +247,8 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
     signs = np.array([(s.sa, s.sb) for s in slots], dtype=float)
     keys = _residual_entries(chain, slots)
     upper = np.full(3 * len(slots), 20.0)
+    if max_stiffness is not None:
+        upper[0::3] = np.log(max_stiffness / scale_k)
     if within_links:
         reach = max_extension if max_extension is not None else max(chain.r)
         for idx, s in enumerate(slots):
@@ -234,15 +264,47 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         b = signs[:, 1] * length * np.exp(z[:, 2])
         return [Spring(s.i, s.j, float(ai), float(bi), float(ki)) for s, ai, bi, ki in zip(slots, a, b, k, strict=True)]
 
-    def residual(z):
-        R = balance_residual(chain, springs_of(z))
-        return np.array([R[u - 1, v - 1] for u, v in keys]) / scale_u
+    M, g_keys = _linear_system(chain, slots, keys)
+    M, g_keys = M / scale_u, g_keys / scale_u
+    m = len(slots)
+
+
+    def values(z):  # (P, A, B, k) per spring, SI units
+        z = z.reshape(-1, 3)
+        k = scale_k * np.exp(z[:, 0])
+        A = signs[:, 0] * length * np.exp(z[:, 1]) * k
+        B = signs[:, 1] * length * np.exp(z[:, 2]) * k
+        P = signs[:, 0] * signs[:, 1] * length**2 * np.exp(z[:, 1] + z[:, 2]) * k
+        return np.stack([P, A, B, k], axis=1).ravel()
+
+    def residual(z):  # Eqs. (39), linear in (P, A, B, k)
+        return M @ values(z) + g_keys
+
+    # d v / d z: every value scales with k (z_0); P and A with |a| (z_1); P and B with |b| (z_2)
+    uses = np.zeros((4 * m, 3 * m))
+    for s_idx in range(m):
+        base, col = 4 * s_idx, 3 * s_idx
+        uses[base:base + 4, col] = 1.0
+        uses[[base, base + 1], col + 1] = 1.0
+        uses[[base, base + 2], col + 2] = 1.0
+
+
+    def jacobian(z):
+        return M @ (values(z)[:, None] * uses)
 
     best = None
-    for _ in range(restarts):
-        z0 = np.minimum(rng.uniform(-1.5, 0.5, size=3 * len(slots)), upper - 0.05)
+    starts = []
+    if start is not None:
+        start = list(start)
+        if len(start) != len(slots):
+            raise SpringlabError(f"start has {len(start)} springs for {len(slots)} slots")
+        z_start = np.array([[np.log(sp_.k / scale_k), np.log(abs(sp_.a) / length), np.log(abs(sp_.b) / length)]
+                            for sp_ in start]).ravel()
+        starts.append(np.clip(z_start, lower, upper))
+    for idx in range(restarts + len(starts)):
+        z0 = starts[idx] if idx < len(starts) else np.minimum(rng.uniform(-1.5, 0.5, size=3 * len(slots)), upper - 0.05)
         try:
-            sol = least_squares(residual, z0, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+            sol = least_squares(residual, z0, jac=jacobian, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15,
                                 bounds=(lower, upper), max_nfev=2000)
         except (ValueError, FloatingPointError):
             continue
@@ -257,6 +319,137 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
     raise UnbalanceableError(
         f"no balanced design found for {' '.join(map(str, slots))} after {restarts} starts "
         f"(best relative residual {best[0] if best else float('nan'):.3g})")
+
+
+def longest_stretch(chain: Chain, spring: Spring) -> float:
+    """The longest a spring can get over every pose of an arm whose links turn freely:
+    |a| + sum_{i<t<j} r_t + |b| (m), all its segments in line (the ground link's x_1
+    is fixed, the others can line up with it). ``k`` times this bounds its force."""
+    return abs(spring.a) + sum(chain.length(t) for t in range(spring.i + 1, spring.j)) + abs(spring.b)
+
+
+def minimise_largest_force(chain: Chain, slots, springs, *, max_extension: float | None = None,
+                           max_stiffness: float | None = None, tol: float = 1e-11, rounds: int = 3) -> tuple[Spring, ...]:
+    """Spend a configuration's free choices on the smallest largest spring force: up to
+    ``rounds`` rounds of :func:`_force_round`, each from the last one's polished design,
+    while a round gains more than 1 %. See :func:`_force_round` for the formulation."""
+    springs = tuple(springs)
+    best = max(s.k * longest_stretch(chain, s) for s in springs)
+    for _ in range(max(1, int(rounds))):
+        out = _force_round(chain, slots, springs, max_extension=max_extension, max_stiffness=max_stiffness, tol=tol)
+        force = max(s.k * longest_stretch(chain, s) for s in out)
+        if not force < best:
+            break
+        gain, best, springs = 1 - force / best, force, out
+        if gain < 0.01:
+            break
+    return springs
+
+
+def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = None,
+                 max_stiffness: float | None = None, tol: float = 1e-11) -> tuple[Spring, ...]:
+    """Spend a configuration's free choices on the smallest largest spring force.
+
+    A spring's force over the workspace is at most k (|a| + R + |b|) =
+    |A| + R k + |B| (N) with A = k a, B = k b (:func:`longest_stretch`), and Eqs. (39)
+    are linear in P = k a b, A, B and k: only P k = A B per spring is not. So the
+    problem is a linear programme but for one bilinear equation per spring: minimise t
+    subject to Eqs. (39), |A| + R k + |B| <= t, the slots' signs, the attachment limits
+    of :func:`find_design` (|A| <= reach k, linear too) and k <= ``max_stiffness``
+    (N/m) if given, and P k = A B. Solved by scipy's SLSQP from the balanced design
+    ``springs``, then polished by least squares until Eqs. (39) hold to ``tol`` of the
+    largest G_1,j. Returns the input unchanged when that does not improve on it.
+    """
+    from scipy.optimize import minimize
+
+    slots = as_slots(slots)
+    springs = tuple(springs)
+    if len(springs) != len(slots):
+        raise SpringlabError(f"{len(springs)} springs for {len(slots)} slots")
+    G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
+    scale_u = float(max(abs(v) for v in G.values()))
+    length = float(np.mean(chain.r))
+    scale_k = scale_u / length**2
+    reach = max_extension if max_extension is not None else max(chain.r)
+    keys = _residual_entries(chain, slots)
+    row = {key: idx for idx, key in enumerate(keys)}
+    m = len(slots)
+    # unknowns, scaled: x = [P / scale_u, A / (scale_k L), B / (scale_k L), k / scale_k] per spring, then t
+    A_eq = np.zeros((len(keys), 4 * m + 1))
+    for idx, cols in enumerate(_linear_columns(chain, slots)):
+        for c, name in enumerate("PABK"):
+            unit = {"P": scale_u, "A": scale_k * length, "B": scale_k * length, "K": scale_k}[name]
+            for key, coef in cols[name].items():
+                A_eq[row[key], 4 * idx + c] += coef * unit / scale_u
+    b_eq = np.array([-G.get(key, 0.0) / scale_u for key in keys])
+    # Eqs. (39) repeat themselves (springs spanning the same joints give proportional rows):
+    # keep independent combinations, or SLSQP's subproblem is singular
+    U, S, Vt = np.linalg.svd(A_eq, full_matrices=False)
+    rank = int(np.sum(S > 1e-10 * S[0]))
+    A_eq, b_eq = S[:rank, None] * Vt[:rank], U[:, :rank].T @ b_eq
+    sa = np.array([s.sa for s in slots], dtype=float)
+    sb = np.array([s.sb for s in slots], dtype=float)
+    R = np.array([sum(chain.length(t) for t in range(s.i + 1, s.j)) for s in slots]) / length
+    reach_a = np.array([(chain.length(s.i) if (s.i >= 2 and s.sa < 0) else reach) for s in slots]) / length
+    reach_b = np.array([(chain.length(s.j) if s.sb > 0 else reach) for s in slots]) / length
+
+    def parts(x):
+        y = x[:-1].reshape(m, 4)
+        return y[:, 0], y[:, 1], y[:, 2], y[:, 3]
+
+    def inequalities(x):
+        P, A, B, K = parts(x)
+        return np.concatenate([x[-1] - (sa * A + R * K + sb * B),  # force <= t
+                               reach_a * K - sa * A, reach_b * K - sb * B])  # |a| and |b| within reach
+
+    def bilinear(x):
+        P, A, B, K = parts(x)
+        return P * K - A * B
+
+    def bilinear_jac(x):
+        P, A, B, K = parts(x)
+        J = np.zeros((m, 4 * m + 1))
+        idx = np.arange(m)
+        J[idx, 4 * idx], J[idx, 4 * idx + 1], J[idx, 4 * idx + 2], J[idx, 4 * idx + 3] = K, -B, -A, P
+        return J
+
+    idx = np.arange(m)
+    ineq_jac = np.zeros((3 * m, 4 * m + 1))  # constant: the inequalities are linear
+    ineq_jac[idx, -1] = 1.0
+    ineq_jac[idx, 4 * idx + 1], ineq_jac[idx, 4 * idx + 2], ineq_jac[idx, 4 * idx + 3] = -sa, -sb, -R
+    ineq_jac[m + idx, 4 * idx + 3], ineq_jac[m + idx, 4 * idx + 1] = reach_a, -sa
+    ineq_jac[2 * m + idx, 4 * idx + 3], ineq_jac[2 * m + idx, 4 * idx + 2] = reach_b, -sb
+
+    x0 = np.concatenate([np.array([[s.k * s.a * s.b / scale_u, s.k * s.a / (scale_k * length),
+                                    s.k * s.b / (scale_k * length), s.k / scale_k] for s in springs]).ravel(), [0.0]])
+    x0[-1] = float(np.max(sa * x0[1:-1:4] + R * x0[3:-1:4] + sb * x0[2:-1:4]))
+    start = x0[-1]
+    tiny = 1e-9
+    kmax = np.inf if max_stiffness is None else max_stiffness / scale_k
+    bounds = []
+    for a_sign, b_sign in zip(sa, sb, strict=True):
+        bounds += [(tiny, None) if a_sign * b_sign > 0 else (None, -tiny),
+                   (tiny, None) if a_sign > 0 else (None, -tiny),
+                   (tiny, None) if b_sign > 0 else (None, -tiny), (tiny, kmax)]
+    bounds.append((0.0, None))
+    res = minimize(lambda x: x[-1], x0, method="SLSQP", jac=lambda x: np.r_[np.zeros(len(x) - 1), 1.0],
+                   constraints=[{"type": "eq", "fun": lambda x: A_eq @ x - b_eq, "jac": lambda x: A_eq},
+                                {"type": "eq", "fun": bilinear, "jac": bilinear_jac},
+                                {"type": "ineq", "fun": inequalities, "jac": lambda x: ineq_jac}],
+                   bounds=bounds, options={"maxiter": 500, "ftol": 1e-12})
+    P, A, B, K = parts(res.x)
+    if not (np.all(np.isfinite(res.x)) and np.all(K > 0) and res.x[-1] < start):
+        return springs
+    k = K * scale_k
+    candidate = [Spring(s.i, s.j, float(a * scale_k * length / kk), float(b * scale_k * length / kk), float(kk))
+                 for s, a, b, kk in zip(slots, A, B, k, strict=True)]
+    try:  # polish the balance (SLSQP meets its constraints to about 1e-8) within the same limits
+        out = find_design(chain, slots, start=candidate, restarts=0, tol=tol, max_extension=reach,
+                          max_stiffness=max_stiffness)
+    except UnbalanceableError:
+        return springs
+    force = max(s.k * longest_stretch(chain, s) for s in out) / (scale_k * length)
+    return out if force < start else springs
 
 
 @dataclass(frozen=True)

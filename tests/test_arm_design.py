@@ -8,9 +8,10 @@ import pytest
 
 from springlab import arm_design as ad
 from springlab import efficiency as ef
+from springlab import energy
 from springlab.armfile import arm_from_dict, load_arm, parse_quantity
 from springlab.cli import main
-from springlab.configurations import SpringSlot
+from springlab.configurations import SpringSlot, as_slots
 from springlab.design import SpringSpec, find_design, solve_design
 from springlab.errors import SpringlabError
 from springlab.papers import juang2022, juang2023
@@ -106,13 +107,17 @@ def test_planar_three_link_arm_contains_003s_configurations():
         assert ad.configuration_of(springs) in configs, name
 
 
-def test_a_design_that_fails_verification_is_never_returned():
+def test_a_design_that_fails_verification_is_never_returned(monkeypatch):
     def bad_finder(chain, cfg, **kw):
         return tuple(s.scaled(0.98) for s in find_design(chain, cfg, **kw))
 
-    report = ad.design_arm(ARMS / "paper000_arm.toml", finder=bad_finder, max_configurations=6)
+    report = ad.design_arm(ARMS / "paper000_arm.toml", finder=bad_finder, max_configurations=6, minimise_force=False)
     assert report.designs == []
     assert len(report.rejected) == 6 and all("route 2" in why for _, why in report.rejected)
+    # the force minimisation runs before the check too: a step that spoils the balance is caught
+    monkeypatch.setattr(ad, "minimise_largest_force", lambda chain, cfg, springs, **kw: tuple(s.scaled(1.01) for s in springs))
+    report = ad.design_arm(ARMS / "paper000_arm.toml", max_configurations=6)
+    assert report.designs == [] and all("route 2" in why for _, why in report.rejected)
 
 
 def test_stiffness_limit_rejects():
@@ -224,3 +229,28 @@ def test_two_link_arm_compares_three_methods():
     assert names == ["no auxiliary links (000)", "pseudobases (001), idealised", "two springs (004)"]
     two = rows[-1]
     assert two.springs == 2 and two.energy_variation < ad.VERIFY_TOLERANCE and "layout" in two.note
+
+
+def test_minimise_largest_force_lowers_the_force_and_keeps_balance_and_limits():
+    from springlab.design import longest_stretch, minimise_largest_force
+    from springlab.quadratic import balance_residual, gravity_matrix
+
+    spec = load_arm(ARMS / "paper000_arm.toml")
+    chain = spec.chain()
+    cfg = as_slots("S(1,2)(+,+) S(1,4)(+,+) S(2,4)(+,+) S(3,4)(-,-)".split())
+    start = find_design(chain, cfg, seed=3, restarts=8, max_extension=0.3)
+    force = lambda springs: max(s.k * longest_stretch(chain, s) for s in springs)  # noqa: E731
+    for k_max in (None, 1.2 * max(s.k for s in start)):
+        out = minimise_largest_force(chain, cfg, start, max_extension=0.3, max_stiffness=k_max)
+        assert force(out) < 0.8 * force(start)
+        assert ad.configuration_of(out) == tuple(sorted(cfg))
+        R = balance_residual(chain, out)
+        assert np.max(np.abs(np.triu(R, 1))) < 1e-10 * np.max(gravity_matrix(chain))
+        ad.verify(chain, out, ad.random_poses(chain, 500, 1))
+        assert all(s.k <= k_max * (1 + 1e-9) for s in out) if k_max else True
+        assert all(abs(v) <= 0.3 + 1e-9 for s in out for v, ext in ((s.a, s.a > 0), (s.b, s.b < 0)) if ext)
+    # the bound is what the samples approach: no sampled stretch exceeds it
+    X = ad.random_poses(chain, 2000, 2)
+    for s in out:
+        A, B = energy.attachment_points(chain, s, X)
+        assert np.linalg.norm(B - A, axis=1).max() <= longest_stretch(chain, s) * (1 + 1e-12)
