@@ -41,7 +41,7 @@ from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.quadratic import gravity_entries, spring_entries
 from springlab.springs import Spring
 
-METHODS = ("no auxiliary links",)
+METHODS = ("no auxiliary links", "ground springs")
 VERIFY_TOLERANCE = 1e-10
 
 
@@ -161,7 +161,8 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
     :param method: 'no auxiliary links' (paper 000: configurations with necessary springs
         from rules R1-R6, fewest springs and then fewest spanned joints first
         (:func:`~springlab.configurations.best_first_configurations`); each solved within
-        the arm's limits)
+        the arm's limits), or 'ground springs' (the n - 1 springs from the base column
+        of :func:`ground_springs`, which 000's Eq. 41 forbids: one design)
     :param max_designs: stop after this many verified designs
     :param max_configurations: stop after trying this many configurations (None: all)
     :param finder: the solver (default :func:`springlab.design.find_design`); any design it
@@ -180,7 +181,10 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
     report = DesignReport(spec)
     t0 = time.perf_counter()
     # fewest springs first, then fewest spanned joints: best first, without enumerating the rest
-    configs = (cfg for _, _, cfg in best_first_configurations(chain.n))
+    if method == "ground springs":
+        configs = iter([ground_springs(chain.n)])
+    else:
+        configs = (cfg for _, _, cfg in best_first_configurations(chain.n))
     for cfg in tqdm(configs, disable=not progress, desc="configurations", mininterval=1.0):
         if max_configurations is not None and report.configurations_tried >= max_configurations:
             break
@@ -224,39 +228,103 @@ def all_pattern_slots(n: int) -> list[SpringSlot]:
     return [SpringSlot(i, j, p) for i in range(1, n) for j in range(i + 1, n + 1) for p in PATTERNS]
 
 
+def _any_sign_candidates(n: int, count: int) -> list[tuple[SpringSlot, ...]]:
+    """Every set of ``count`` slots, any sign pattern, that includes a same-sign S(1,n) (the
+    only spring with an entry (1, n), which gravity's G_1n > 0 needs: -k a b < 0)."""
+    import itertools
+
+    if int(count) != count or count < 1:
+        raise SpringlabError(f"count must be an integer >= 1, got {count}")
+    slots = all_pattern_slots(n)
+    end = [s for s in slots if (s.i, s.j) == (1, n) and s.pattern in ("(+,+)", "(-,-)")]
+    rest = [s for s in slots if s not in end]
+    return [(e, *others) for e in end for others in itertools.combinations(rest, count - 1)]
+
+
 def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = None, restarts: int = 20,
-                  seed: int = 0, samples: int = 2000, progress: bool = False) -> list[RankedDesign]:
+                  seed: int = 0, samples: int = 2000, progress: bool = False,
+                  minimise_force: bool = True) -> list[RankedDesign]:
     """Verified designs with ``count`` springs of any sign pattern (000's criteria treated
     as the heuristics they are), ranked like :func:`design_arm`.
 
     Every set of ``count`` slots that includes S(1,n) (the only spring with an entry
     (1, n), which gravity's G_1n needs; (+,+) or (-,-)) is screened by the linear
     relaxation of Eqs. (39) (:func:`springlab.design.relaxation_margin`), then solved
-    by least squares and verified by route 2 over ``samples`` random poses.
+    by least squares (free choices spent on the smallest largest force if
+    ``minimise_force``) and verified by route 2 over ``samples`` random poses. The
+    candidates number about C(2 n (n - 1), count - 1): practical to n = 5.
     """
-    import itertools
-
     from tqdm import tqdm
 
     chain = spec_or_chain.chain() if isinstance(spec_or_chain, ArmSpec) else spec_or_chain
-    if int(count) != count or count < 1:
-        raise SpringlabError(f"count must be an integer >= 1, got {count}")
-    n = chain.n
     X = random_poses(chain, samples, seed)
-    slots = all_pattern_slots(n)
-    end = [s for s in slots if (s.i, s.j) == (1, n) and s.pattern in ("(+,+)", "(-,-)")]
-    rest = [s for s in slots if s not in end]
-    candidates = [(e, *others) for e in end for others in itertools.combinations(rest, count - 1)]
     out = []
+    candidates = _any_sign_candidates(chain.n, count)
     for cfg in tqdm(candidates, disable=not progress, desc=f"{count} springs, all patterns", mininterval=1.0):
         if relaxation_margin(chain, cfg) <= 1e-9:
             continue
         try:
             springs = find_design(chain, cfg, seed=seed, restarts=restarts, max_extension=max_extension)
+            if minimise_force:
+                springs = minimise_largest_force(chain, cfg, springs, max_extension=max_extension)
             out.append(evaluate("no auxiliary links, any signs", chain, tuple(sorted(cfg)), springs, X))
         except (UnbalanceableError, SpringlabError):
             continue
     return sorted(out, key=_rank_key)
+
+
+def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False) -> tuple[int, int]:
+    """(candidates, survivors): how many sets of ``count`` springs, any sign pattern, any
+    attachment (limits ignored), pass the linear relaxation of Eqs. (39). No survivor
+    proves that no ``count`` springs without auxiliary links balance this arm: the
+    relaxation only drops constraints (P k = A B per spring)."""
+    from tqdm import tqdm
+
+    chain = spec_or_chain.chain() if isinstance(spec_or_chain, ArmSpec) else spec_or_chain
+    candidates = _any_sign_candidates(chain.n, count)
+    survivors = sum(1 for cfg in tqdm(candidates, disable=not progress, desc=f"{count} springs, screen", mininterval=1.0)
+                    if relaxation_margin(chain, cfg) > 1e-9)
+    return len(candidates), survivors
+
+
+def ground_springs(n: int) -> tuple[SpringSlot, ...]:
+    """n - 1 springs, all anchored on the base column (x_1, above the base joint):
+    S(1,n) (+,+) and S(1,j) (+,-) for j = 3..n. Balances an arm of any n (see
+    :func:`ground_spring_design`). Eq. (41) of 000 allows only (+,+) on the ground."""
+    if int(n) != n or n < 3:
+        raise SpringlabError(f"n (links with the ground) must be an integer >= 3, got {n}")
+    return tuple(sorted([SpringSlot(1, n, "(+,+)")] + [SpringSlot(1, j, "(+,-)") for j in range(3, n + 1)]))
+
+
+def ground_spring_design(spec_or_chain, *, max_extension: float | None = None, max_stiffness: float | None = None,
+                         samples: int = 2000, seed: int = 0, restarts: int = 30) -> RankedDesign:
+    """The n - 1 ground springs of :func:`ground_springs`, solved, with the free choices
+    spent on the smallest largest force, and verified by route 2.
+
+    Why n - 1 springs suffice. Spring S(1,j) with A = k a, B = k b puts k r_t r_v on every
+    entry (t, v) between joints it spans (2 <= t < v < j, 000 Eq. 23c) and r_t B on (t, j)
+    (Eq. 23d). Entry (t, v) of Eqs. (39) therefore reads r_t (B_v + r_v K_v) = 0, with
+    B_v the sum of B over springs ending on link v and K_v the stiffness of those reaching
+    past it: one condition per link v, the same for every t. A (+,-) spring ending on v
+    (B_v < 0) meets it, and S(1,n)'s pair meets it at v = n. The ground entries (1, v)
+    then read r_v (W_v - a_v K_v) = G_1v for 3 <= v < n, with W_v the sum of k a over the
+    springs reaching past v; r_2 W_2 = G_12; and k' b' (a' - a_n) = G_1n at v = n (' for
+    the (+,+) spring): triangular in the anchor heights a_v, solved link by link from the
+    tip. So n - 1 springs, where rules R1-R6 need 4 at n = 4 and 10 at n = 8.
+
+    :param max_extension: longest bracket (m): the anchor heights up the base column and
+        the extensions behind the joints (default the longest link)
+    :param max_stiffness: largest k (N/m), or None
+    """
+    chain = spec_or_chain.chain() if isinstance(spec_or_chain, ArmSpec) else spec_or_chain
+    if isinstance(spec_or_chain, ArmSpec):
+        max_extension = spec_or_chain.max_attachment if max_extension is None else max_extension
+        max_stiffness = spec_or_chain.max_stiffness if max_stiffness is None else max_stiffness
+    cfg = ground_springs(chain.n)
+    springs = find_design(chain, cfg, seed=seed, restarts=restarts, max_extension=max_extension,
+                          max_stiffness=max_stiffness)
+    springs = minimise_largest_force(chain, cfg, springs, max_extension=max_extension, max_stiffness=max_stiffness)
+    return evaluate("ground springs", chain, cfg, springs, random_poses(chain, samples, seed))
 
 
 # --- other methods, for comparison ------------------------------------------------------------
@@ -325,7 +393,8 @@ def pseudobase_summary(spec: ArmSpec, *, aux_mass_ratio: float = 0.09, pseudobas
 
 def compare_methods(spec: ArmSpec, report: DesignReport | None = None, **pseudobase_options) -> list[MethodSummary]:
     """The best design of each method that applies to the arm: 000's (no auxiliary links, the
-    top of ``report``), 001's pseudobases (idealised), and 004's two springs where the arm has
+    top of ``report``), the n - 1 ground springs (:func:`ground_spring_design`), 001's
+    pseudobases (idealised), and 004's two springs where the arm has
     two moving links (n = 3), which are 000's configurations S(1,3) + S(2,3) (Lenzo's layouts
     a and b; c and d need a COM off the link)."""
     report = report or design_arm(spec, max_designs=5)
@@ -334,6 +403,13 @@ def compare_methods(spec: ArmSpec, report: DesignReport | None = None, **pseudob
         d = report.designs[0]
         out.append(MethodSummary("no auxiliary links (000)", d.spring_count, d.stiffness_sum, d.max_force, 0.0,
                                  d.efficiency, d.energy_variation))
+    try:
+        d = ground_spring_design(spec, samples=spec.samples, seed=spec.seed)
+        out.append(MethodSummary("ground springs, n - 1 (any signs)", d.spring_count, d.stiffness_sum, d.max_force, 0.0,
+                                 d.efficiency, d.energy_variation, "Eq. (41) forbids the (+,-) ground springs"))
+    except (UnbalanceableError, SpringlabError) as err:
+        out.append(MethodSummary("ground springs, n - 1 (any signs)", spec.n - 1, float("nan"), float("nan"), 0.0,
+                                 float("nan"), float("nan"), f"none within the limits: {err}"[:120]))
     out.append(pseudobase_summary(spec, **pseudobase_options))
     if spec.n == 3:  # Lenzo's two springs are 000's S(1,3) + S(2,3): layouts b (+,+) and a (-,-)
         two = [d for d in report.designs if [(s.i, s.j) for s in d.springs] == [(1, 3), (2, 3)]]

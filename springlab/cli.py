@@ -19,8 +19,8 @@ def _design(args) -> int:
     from springlab.armfile import load_arm
 
     spec = load_arm(args.arm_file, allow_large=args.allow_large)
-    report = design_arm(spec, max_designs=args.max_designs, max_configurations=args.max_configurations,
-                        seed=args.seed, progress=not args.quiet)
+    report = design_arm(spec, method=args.method, max_designs=args.max_designs,
+                        max_configurations=args.max_configurations, seed=args.seed, progress=not args.quiet)
     print(f"# {spec.name}: n = {spec.n} links (ground included), payload {spec.payload:g} kg")
     print(f"{report.configurations_tried} configurations tried in {report.seconds:.1f} s, "
           f"{len(report.designs)} verified designs, {len(report.rejected)} rejected\n")
@@ -45,6 +45,8 @@ def main(argv=None) -> int:
     p.add_argument("arm_file")
     p.add_argument("--json", help="where to write the chosen design (default: <arm>.design.json here)")
     p.add_argument("--pick", type=int, default=1, help="which ranked design to write (default 1)")
+    p.add_argument("--method", default="no auxiliary links", choices=("no auxiliary links", "ground springs"),
+                   help="paper 000's configurations (default), or n - 1 springs from the base column")
     p.add_argument("--max-designs", type=int, default=10)
     p.add_argument("--max-configurations", type=int, default=None)
     p.add_argument("--seed", type=int, default=0)

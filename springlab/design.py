@@ -278,7 +278,8 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         return np.stack([P, A, B, k], axis=1).ravel()
 
     def residual(z):  # Eqs. (39), linear in (P, A, B, k)
-        return M @ values(z) + g_keys
+        with np.errstate(over="ignore", invalid="ignore"):  # a wild step: least squares backs off
+            return M @ values(z) + g_keys
 
     # d v / d z: every value scales with k (z_0); P and A with |a| (z_1); P and B with |b| (z_2)
     uses = np.zeros((4 * m, 3 * m))
@@ -290,7 +291,8 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
 
 
     def jacobian(z):
-        return M @ (values(z)[:, None] * uses)
+        with np.errstate(over="ignore", invalid="ignore"):
+            return M @ (values(z)[:, None] * uses)
 
     best = None
     starts = []

@@ -200,6 +200,51 @@ def test_three_springs_balance_the_paper000_arm_with_a_forbidden_pattern():
         ad.fewer_springs(spec, 0)
 
 
+def test_n_minus_one_ground_springs_balance_random_arms_up_to_n8():
+    from springlab.chain import serial_chain
+    from springlab.configurations import best_first_configurations, rule_violations
+
+    rng = np.random.default_rng(11)
+    for n in range(3, 9):
+        r = rng.uniform(0.1, 0.5, n - 1)
+        arm = serial_chain(r=list(r), d=list(r * rng.uniform(0.2, 0.9, n - 1)), m=list(rng.uniform(0.5, 8.0, n - 1)), g=9.81)
+        design = ad.ground_spring_design(arm, max_extension=0.4, samples=500, seed=n)
+        assert design.spring_count == n - 1 and all(s.i == 1 for s in design.springs)
+        assert design.energy_variation < ad.VERIFY_TOLERANCE
+        for s in design.springs:  # anchors up the column and brackets behind a joint within 0.4 m; ends on links
+            assert 0 < s.a <= 0.4 + 1e-9 and (-0.4 - 1e-9 <= s.b if s.b < 0 else s.b <= arm.length(s.j) + 1e-12)
+        if n >= 4:
+            assert rule_violations(n, design.configuration)  # Eq. (41) forbids the (+,-) ground springs
+            assert design.spring_count < next(best_first_configurations(n))[0]
+    with pytest.raises(SpringlabError, match="n"):
+        ad.ground_springs(2)
+
+
+def test_relaxation_screen_proves_the_minimum_for_the_paper000_arm():
+    spec = load_arm(ARMS / "paper000_arm.toml")
+    assert ad.relaxation_screen(spec, 2) == (44, 0)  # no two springs, any signs, any attachments
+    candidates, survivors = ad.relaxation_screen(spec, 3)
+    assert survivors > 0 and candidates > survivors  # three do (the screen is not vacuous)
+
+
+def test_ground_springs_method_and_exudyn_hold_for_an_eight_link_arm():
+    from springlab import sim
+    from springlab.chain import random_directions
+
+    data = {"link": [{"length": f"{r} m", "com": f"{r / 2} m", "mass": f"{m} kg"}
+                     for r, m in zip([0.30, 0.24, 0.20, 0.15, 0.12, 0.10, 0.08], [4.0, 3.2, 2.8, 1.5, 1.2, 1.0, 0.8], strict=True)],
+            "g": "9.8 m/s^2", "limits": {"max_attachment": "0.3 m"}}
+    spec = arm_from_dict(data, source="eight links")
+    report = ad.design_arm(spec, method="ground springs")
+    (design,) = report.designs
+    assert design.spring_count == 7 and design.method == "ground springs"
+    chain = spec.chain()
+    hold = sim.hold_test(chain, list(design.springs), random_directions(chain.n, 1, 8), duration=1.0)
+    assert hold.balanced.max_tip_drift < 1e-8 < 1e-3 < hold.control.max_tip_drift
+    with pytest.raises(SpringlabError, match="method"):
+        ad.design_arm(spec, method="springs everywhere")
+
+
 def test_pseudobase_method_summary():
     spec = load_arm(ARMS / "paper000_arm.toml")
     row = ad.pseudobase_summary(spec, aux_mass_ratio=0.0, pseudobase_mass=0.0)
