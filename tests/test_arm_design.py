@@ -260,7 +260,9 @@ def test_pseudobase_method_summary():
     heavy = ad.pseudobase_summary(spec)
     assert heavy.added_mass > 0 and heavy.stiffness_sum > row.stiffness_sum
     rows = ad.compare_methods(spec)
-    assert [r.method for r in rows][:2] == ["no auxiliary links (000)", "pseudobases (001), idealised"]
+    assert [r.method for r in rows] == ["no auxiliary links (000)", "ground springs, n - 1 (any signs)",
+                                        "pseudobases (001), idealised"]
+    assert rows[1].springs == rows[0].springs - 1 and rows[1].energy_variation < ad.VERIFY_TOLERANCE
     assert "| pseudobases (001)" in ad.comparison_table(rows)
     with pytest.raises(SpringlabError, match="post"):
         ad.pseudobase_summary(spec, post=0.0)
@@ -271,7 +273,8 @@ def test_two_link_arm_compares_three_methods():
                                               {"length": 0.35, "com": 0.18, "mass": 1.5, "joint": [0, 0, 1]}]})
     rows = ad.compare_methods(spec)
     names = [r.method for r in rows]
-    assert names == ["no auxiliary links (000)", "pseudobases (001), idealised", "two springs (004)"]
+    assert names == ["no auxiliary links (000)", "ground springs, n - 1 (any signs)", "pseudobases (001), idealised",
+                     "two springs (004)"]
     two = rows[-1]
     assert two.springs == 2 and two.energy_variation < ad.VERIFY_TOLERANCE and "layout" in two.note
 
