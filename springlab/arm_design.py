@@ -154,7 +154,7 @@ def _rank_key(d: RankedDesign):
 
 def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10, max_configurations: int | None = None,
                restarts: int = 8, seed: int = 0, progress: bool = False, finder=None,
-               minimise_force: bool = True) -> DesignReport:
+               minimise_force: bool = True, force_starts: int = 2) -> DesignReport:
     """Ranked, verified spring designs for an arm.
 
     :param arm: an :class:`~springlab.armfile.ArmSpec` or the path of an arm file
@@ -168,7 +168,8 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
     :param finder: the solver (default :func:`springlab.design.find_design`); any design it
         returns is verified before it is kept
     :param minimise_force: spend each configuration's free choices on the smallest largest
-        spring force (:func:`springlab.design.minimise_largest_force`), within the limits
+        spring force (:func:`springlab.design.minimise_largest_force`), within the limits,
+        from ``force_starts`` solutions of the finder (the problem has local minima)
     """
     from tqdm import tqdm
 
@@ -200,14 +201,36 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
             if stiff:
                 raise UnbalanceableError(f"{stiff[0].label} needs k = {stiff[0].k:.0f} N/m > {spec.max_stiffness:.0f} N/m")
             if minimise_force:
-                springs = minimise_largest_force(chain, cfg, springs, max_extension=spec.max_attachment,
-                                                 max_stiffness=spec.max_stiffness)
+                springs = _least_force(chain, cfg, springs, finder, seed, restarts, force_starts,
+                                       max_extension=spec.max_attachment, max_stiffness=spec.max_stiffness)
             report.designs.append(evaluate(method, chain, cfg, springs, X))
         except (UnbalanceableError, SpringlabError) as err:
             report.rejected.append((cfg, str(err)))
     report.designs.sort(key=_rank_key)
     report.seconds = time.perf_counter() - t0
     return report
+
+
+def _least_force(chain, cfg, springs, finder, seed, restarts, starts, *, max_extension, max_stiffness):
+    """The smallest largest force of ``minimise_largest_force`` from ``springs`` and from
+    ``starts - 1`` more solutions of the finder (other seeds)."""
+    from springlab.design import longest_stretch
+
+    candidates = [springs]
+    for extra in range(1, max(1, int(starts))):
+        try:
+            candidates.append(finder(chain, cfg, seed=seed + extra, restarts=restarts, max_extension=max_extension))
+        except (UnbalanceableError, SpringlabError):
+            continue
+    best, best_force = springs, np.inf
+    for start in candidates:
+        if max_stiffness is not None and any(s.k > max_stiffness for s in start):
+            continue
+        out = minimise_largest_force(chain, cfg, start, max_extension=max_extension, max_stiffness=max_stiffness)
+        force = max(s.k * longest_stretch(chain, s) for s in out)
+        if force < best_force:
+            best, best_force = out, force
+    return best
 
 
 def configuration_of(springs) -> tuple[SpringSlot, ...]:
@@ -323,7 +346,8 @@ def ground_spring_design(spec_or_chain, *, max_extension: float | None = None, m
     cfg = ground_springs(chain.n)
     springs = find_design(chain, cfg, seed=seed, restarts=restarts, max_extension=max_extension,
                           max_stiffness=max_stiffness)
-    springs = minimise_largest_force(chain, cfg, springs, max_extension=max_extension, max_stiffness=max_stiffness)
+    springs = _least_force(chain, cfg, springs, find_design, seed, restarts, 2, max_extension=max_extension,
+                           max_stiffness=max_stiffness)
     return evaluate("ground springs", chain, cfg, springs, random_poses(chain, samples, seed))
 
 
