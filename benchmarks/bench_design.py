@@ -4,7 +4,10 @@
   n = 3..6 (n = 5 target: under 10 s), and the count per n;
 * best first: the first 10 configurations (fewest springs, then fewest spanned joints)
   for n = 3..8 (n = 8 target: under 10 s);
-* design_arm on the two example arm files (verified designs, route 2).
+* design_arm on the two example arm files (verified designs, route 2), with and without
+  the largest-force minimisation of the free choices;
+* the n - 1 ground springs for n = 3..8, and the relaxation screen that proves n - 2
+  impossible (n = 3..6).
 
     make bench
     python benchmarks/bench_design.py
@@ -16,7 +19,8 @@ import itertools
 import time
 from pathlib import Path
 
-from springlab.arm_design import design_arm
+from springlab.arm_design import design_arm, ground_spring_design, relaxation_screen
+from springlab.chain import serial_chain
 from springlab.configurations import best_first_configurations, iter_configurations
 
 ARMS = Path(__file__).resolve().parents[1] / "notebooks" / "arms"
@@ -36,11 +40,26 @@ def main() -> None:
         first = list(itertools.islice(best_first_configurations(n), 10))
         dt = time.perf_counter() - t0
         print(f"  n = {n}: {dt:6.2f} s, {first[0][0]} springs spanning {first[0][1]} joints first")
-    for name, kw in (("paper000_arm.toml", {}), ("industrial_6link.toml", {"max_designs": 5})):
+    for name in ("paper000_arm.toml", "industrial_6link.toml"):
+        for minimise in (False, True):
+            t0 = time.perf_counter()
+            report = design_arm(ARMS / name, max_designs=10, minimise_force=minimise)
+            print(f"design_arm({name}, minimise_force={minimise}): {len(report.designs)} verified designs from "
+                  f"{report.configurations_tried} configurations in {time.perf_counter() - t0:.1f} s; "
+                  f"best largest force {report.designs[0].max_force:.0f} N")
+    lengths, masses = [0.30, 0.24, 0.20, 0.15, 0.12, 0.10, 0.08], [4.0, 3.2, 2.8, 1.5, 1.2, 1.0, 0.8]
+    print("n - 1 ground springs (solved, force minimised, verified on 1000 poses), and n - 2 screened:")
+    for n in range(3, 9):
+        arm = serial_chain(r=lengths[:n - 1], d=[x / 2 for x in lengths[:n - 1]], m=masses[:n - 1], g=9.8)
         t0 = time.perf_counter()
-        report = design_arm(ARMS / name, **kw)
-        print(f"design_arm({name}): {len(report.designs)} verified designs from {report.configurations_tried} "
-              f"configurations in {time.perf_counter() - t0:.1f} s")
+        design = ground_spring_design(arm, max_extension=0.3, samples=1000, seed=n)
+        dt = time.perf_counter() - t0
+        line = f"  n = {n}: {design.spring_count} springs in {dt:5.2f} s, largest force {design.max_force:5.0f} N"
+        if n <= 6:
+            t0 = time.perf_counter()
+            candidates, survivors = relaxation_screen(arm, n - 2)
+            line += f"; {n - 2} springs: {candidates:,} sets, {survivors} pass, in {time.perf_counter() - t0:.1f} s"
+        print(line)
 
 
 if __name__ == "__main__":

@@ -135,6 +135,10 @@ def test_cli_prints_and_writes_json(tmp_path, capsys):
     springs = ad.springs_from_dict(data["springs"])
     spec = load_arm(ARMS / "paper000_arm.toml")
     assert ad.verify(spec.chain(), springs, ad.workspace_poses(spec, spec.chain())) < 1e-10
+    ground = tmp_path / "ground.json"
+    assert main(["design", str(ARMS / "paper000_arm.toml"), "--json", str(ground), "--quiet", "--method", "ground springs"]) == 0
+    data = json.loads(ground.read_text())
+    assert data["method"] == "ground springs" and len(data["springs"]) == 3
     bad = tmp_path / "bad.toml"
     bad.write_text("[[link]]\nlength = '1 m'\n")
     assert main(["design", str(bad), "--quiet"]) == 2
