@@ -217,6 +217,27 @@ def _linear_system(chain: Chain, slots, keys) -> tuple[np.ndarray, np.ndarray]:
     return M, np.array([G.get(key, 0.0) for key in keys])
 
 
+def _scales(chain: Chain) -> tuple[float, float, float]:
+    """(largest G_1,j in J, mean link length in m, their stiffness scale in N/m): the units
+    the numeric searches work in."""
+    G = np.array(list(gravity_entries(chain.r, chain.d, chain.m, chain.g).values()))
+    scale_u = float(np.max(np.abs(G)))
+    if scale_u <= 0:
+        raise UnbalanceableError("the arm has no gravity moment to balance (all G_1,j = 0)")
+    length = float(np.mean(chain.r))
+    return scale_u, length, scale_u / length**2
+
+
+def _end_limits(chain: Chain, slots, max_extension: float | None) -> tuple[np.ndarray, np.ndarray]:
+    """Largest |a| and |b| (m) per slot: the link's length for an end on its link (a < 0 on
+    link i >= 2, b > 0 on link j), else the bracket limit ``max_extension`` (default the
+    longest link; see :func:`check_attachments`)."""
+    reach = max_extension if max_extension is not None else max(chain.r)
+    lim_a = np.array([chain.length(s.i) if (s.i >= 2 and s.sa < 0) else reach for s in slots], dtype=float)
+    lim_b = np.array([chain.length(s.j) if s.sb > 0 else reach for s in slots], dtype=float)
+    return lim_a, lim_b
+
+
 def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float = 1e-13,
                 within_links: bool = True, max_extension: float | None = None,
                 max_stiffness: float | None = None, start=None) -> tuple[Spring, ...]:
@@ -238,12 +259,7 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         if s.j > chain.n:
             raise SpringlabError(f"{s} attaches to link {s.j}, but the chain has {chain.n} links")
     rng = np.random.default_rng(seed)
-    G = np.array(list(gravity_entries(chain.r, chain.d, chain.m, chain.g).values()))
-    scale_u = float(np.max(np.abs(G)))
-    if scale_u <= 0:
-        raise UnbalanceableError("the arm has no gravity moment to balance (all G_1,j = 0)")
-    length = float(np.mean(chain.r))
-    scale_k = scale_u / length**2
+    scale_u, length, scale_k = _scales(chain)
     signs = np.array([(s.sa, s.sb) for s in slots], dtype=float)
     keys = _residual_entries(chain, slots)
     upper = np.full(3 * len(slots), 20.0)
@@ -251,10 +267,8 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         upper[0::3] = np.log(max_stiffness / scale_k)
     if within_links:
         reach = max_extension if max_extension is not None else max(chain.r)
-        for idx, s in enumerate(slots):
-            on_link_a = s.i >= 2 and s.sa < 0  # a < 0 lies on link i
-            upper[3 * idx + 1] = np.log((chain.length(s.i) if on_link_a else reach) / length)
-            upper[3 * idx + 2] = np.log((chain.length(s.j) if s.sb > 0 else reach) / length)
+        lim_a, lim_b = _end_limits(chain, slots, reach)
+        upper[1::3], upper[2::3] = np.log(lim_a / length), np.log(lim_b / length)
     lower = np.full_like(upper, -20.0)
 
     def springs_of(z):
@@ -368,22 +382,15 @@ def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = 
     springs = tuple(springs)
     if len(springs) != len(slots):
         raise SpringlabError(f"{len(springs)} springs for {len(slots)} slots")
-    G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
-    scale_u = float(max(abs(v) for v in G.values()))
-    length = float(np.mean(chain.r))
-    scale_k = scale_u / length**2
+    scale_u, length, scale_k = _scales(chain)
     reach = max_extension if max_extension is not None else max(chain.r)
     keys = _residual_entries(chain, slots)
-    row = {key: idx for idx, key in enumerate(keys)}
     m = len(slots)
     # unknowns, scaled: x = [P / scale_u, A / (scale_k L), B / (scale_k L), k / scale_k] per spring, then t
-    A_eq = np.zeros((len(keys), 4 * m + 1))
-    for idx, cols in enumerate(_linear_columns(chain, slots)):
-        for c, name in enumerate("PABK"):
-            unit = {"P": scale_u, "A": scale_k * length, "B": scale_k * length, "K": scale_k}[name]
-            for key, coef in cols[name].items():
-                A_eq[row[key], 4 * idx + c] += coef * unit / scale_u
-    b_eq = np.array([-G.get(key, 0.0) / scale_u for key in keys])
+    M, g_keys = _linear_system(chain, slots, keys)
+    units = np.tile([scale_u, scale_k * length, scale_k * length, scale_k], m)
+    A_eq = np.hstack([M * units / scale_u, np.zeros((len(keys), 1))])
+    b_eq = -g_keys / scale_u
     # Eqs. (39) repeat themselves (springs spanning the same joints give proportional rows):
     # keep independent combinations, or SLSQP's subproblem is singular
     U, S, Vt = np.linalg.svd(A_eq, full_matrices=False)
@@ -392,8 +399,7 @@ def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = 
     sa = np.array([s.sa for s in slots], dtype=float)
     sb = np.array([s.sb for s in slots], dtype=float)
     R = np.array([sum(chain.length(t) for t in range(s.i + 1, s.j)) for s in slots]) / length
-    reach_a = np.array([(chain.length(s.i) if (s.i >= 2 and s.sa < 0) else reach) for s in slots]) / length
-    reach_b = np.array([(chain.length(s.j) if s.sb > 0 else reach) for s in slots]) / length
+    reach_a, reach_b = (lim / length for lim in _end_limits(chain, slots, reach))
 
     def parts(x):
         y = x[:-1].reshape(m, 4)
@@ -480,19 +486,12 @@ def relaxation_margin(chain: Chain, slots) -> float:
     keys = _residual_entries(chain, slots)
     row = {key: idx for idx, key in enumerate(keys)}
     columns, col_signs = [], []
-    rr = {t: chain.r[t - 2] for t in range(2, chain.n + 1)}
-    for s in slots:
-        span = s.j - s.i
-        col = {"P": {(s.i, s.j): -1.0}}
-        col_signs.append(s.sa * s.sb)
-        if span >= 2:
-            col["A"] = {(s.i, t): -rr[t] for t in range(s.i + 1, s.j)}
-            col["B"] = {(t, s.j): rr[t] for t in range(s.i + 1, s.j)}
-            col_signs += [s.sa, s.sb]
-        if span >= 3:
-            col["K"] = {(t, v): rr[t] * rr[v] for t in range(s.i + 1, s.j) for v in range(t + 1, s.j)}
-            col_signs.append(1)
-        columns += list(col.values())
+    for s, cols in zip(slots, _linear_columns(chain, slots), strict=True):
+        # A and B enter only for springs spanning 2 or more links, k for 3 or more
+        for name, sign in (("P", s.sa * s.sb), ("A", s.sa), ("B", s.sb), ("K", 1)):
+            if cols[name]:
+                columns.append(cols[name])
+                col_signs.append(sign)
     n_var = len(columns)
     A_eq = np.zeros((len(keys), n_var + 1))
     for c, entries in enumerate(columns):
