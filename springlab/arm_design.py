@@ -35,7 +35,7 @@ import numpy as np
 from springlab.armfile import ArmSpec, load_arm
 from springlab.chain import Chain
 from springlab.configurations import SpringSlot, as_slots, best_first_configurations
-from springlab.design import find_design, minimise_largest_force, relaxation_margin
+from springlab.design import find_design, longest_stretch, minimise_largest_force, relaxation_margin
 from springlab.energy import attachment_points, energy_breakdown
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.quadratic import gravity_entries, spring_entries
@@ -214,8 +214,6 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
 def _least_force(chain, cfg, springs, finder, seed, restarts, starts, *, max_extension, max_stiffness):
     """The smallest largest force of ``minimise_largest_force`` from ``springs`` and from
     ``starts - 1`` more solutions of the finder (other seeds)."""
-    from springlab.design import longest_stretch
-
     candidates = [springs]
     for extra in range(1, max(1, int(starts))):
         try:

@@ -282,7 +282,6 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
     M, g_keys = M / scale_u, g_keys / scale_u
     m = len(slots)
 
-
     def values(z):  # (P, A, B, k) per spring, SI units
         z = z.reshape(-1, 3)
         k = scale_k * np.exp(z[:, 0])
