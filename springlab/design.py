@@ -344,7 +344,7 @@ def longest_stretch(chain: Chain, spring: Spring) -> float:
 
 
 def minimise_largest_force(chain: Chain, slots, springs, *, max_extension: float | None = None,
-                           max_stiffness: float | None = None, tol: float = 1e-13, rounds: int = 3) -> tuple[Spring, ...]:
+                           max_stiffness: float | None = None, tol: float = 1e-12, rounds: int = 3) -> tuple[Spring, ...]:
     """Spend a configuration's free choices on the smallest largest spring force: up to
     ``rounds`` rounds of :func:`_force_round`, each from the last one's polished design,
     while a round gains more than 1 %. See :func:`_force_round` for the formulation."""
@@ -362,7 +362,7 @@ def minimise_largest_force(chain: Chain, slots, springs, *, max_extension: float
 
 
 def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = None,
-                 max_stiffness: float | None = None, tol: float = 1e-13) -> tuple[Spring, ...]:
+                 max_stiffness: float | None = None, tol: float = 1e-12) -> tuple[Spring, ...]:
     """Spend a configuration's free choices on the smallest largest spring force.
 
     A spring's force over the workspace is at most k (|a| + R + |b|) =
