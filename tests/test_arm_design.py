@@ -229,6 +229,13 @@ def test_relaxation_screen_proves_the_minimum_for_the_paper000_arm():
     assert ad.relaxation_screen(spec, 2) == (44, 0)  # no two springs, any signs, any attachments
     candidates, survivors = ad.relaxation_screen(spec, 3)
     assert survivors > 0 and candidates > survivors  # three do (the screen is not vacuous)
+    from springlab.chain import serial_chain
+
+    rng = np.random.default_rng(0)
+    for _ in range(5):  # not the example arm's numbers: random four-link arms cannot do with two either
+        r = rng.uniform(0.1, 0.6, 3)
+        arm = serial_chain(r=list(r), d=list(r * rng.uniform(0.05, 0.95, 3)), m=list(rng.uniform(0.2, 10, 3)), g=9.81)
+        assert ad.relaxation_screen(arm, 2) == (44, 0)
 
 
 def test_ground_springs_method_and_exudyn_hold_for_an_eight_link_arm():
