@@ -35,7 +35,12 @@ import numpy as np
 from springlab.armfile import ArmSpec, load_arm
 from springlab.chain import Chain
 from springlab.configurations import SpringSlot, as_slots, best_first_configurations
-from springlab.design import find_design, longest_stretch, minimise_largest_force, relaxation_margin
+from springlab.design import (
+    find_design,
+    largest_force_bound,
+    minimise_largest_force,
+    relaxation_margin,
+)
 from springlab.energy import attachment_points, energy_breakdown
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.quadratic import gravity_entries, spring_entries
@@ -225,7 +230,7 @@ def _least_force(chain, cfg, springs, finder, seed, restarts, starts, *, max_ext
         if max_stiffness is not None and any(s.k > max_stiffness for s in start):
             continue
         out = minimise_largest_force(chain, cfg, start, max_extension=max_extension, max_stiffness=max_stiffness)
-        force = max(s.k * longest_stretch(chain, s) for s in out)
+        force = largest_force_bound(chain, out)
         if force < best_force:
             best, best_force = out, force
     return best

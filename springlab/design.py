@@ -343,16 +343,21 @@ def longest_stretch(chain: Chain, spring: Spring) -> float:
     return abs(spring.a) + sum(chain.length(t) for t in range(spring.i + 1, spring.j)) + abs(spring.b)
 
 
+def largest_force_bound(chain: Chain, springs) -> float:
+    """The largest of the springs' force bounds k * :func:`longest_stretch` (N)."""
+    return max(s.k * longest_stretch(chain, s) for s in springs)
+
+
 def minimise_largest_force(chain: Chain, slots, springs, *, max_extension: float | None = None,
                            max_stiffness: float | None = None, tol: float = 1e-12, rounds: int = 3) -> tuple[Spring, ...]:
     """Spend a configuration's free choices on the smallest largest spring force: up to
     ``rounds`` rounds of :func:`_force_round`, each from the last one's polished design,
     while a round gains more than 1 %. See :func:`_force_round` for the formulation."""
     springs = tuple(springs)
-    best = max(s.k * longest_stretch(chain, s) for s in springs)
+    best = largest_force_bound(chain, springs)
     for _ in range(max(1, int(rounds))):
         out = _force_round(chain, slots, springs, max_extension=max_extension, max_stiffness=max_stiffness, tol=tol)
-        force = max(s.k * longest_stretch(chain, s) for s in out)
+        force = largest_force_bound(chain, out)
         if not force < best:
             break
         gain, best, springs = 1 - force / best, force, out
@@ -455,7 +460,7 @@ def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = 
                           max_stiffness=max_stiffness)
     except UnbalanceableError:
         return springs
-    force = max(s.k * longest_stretch(chain, s) for s in out) / (scale_k * length)
+    force = largest_force_bound(chain, out) / (scale_k * length)
     return out if force < start else springs
 
 
