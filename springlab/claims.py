@@ -6,11 +6,20 @@ and writes them to ``figures/<notebook-stem>/claims.json`` for the report.
 
 Statuses:
 
-* ``reproduced``: |ours - paper| <= tolerance;
-* ``rounding``: not within the tolerance, but within half a unit of the paper's
-  last printed digit: the paper printed a rounded value;
-* ``discrepancy``: further off than the printed rounding explains;
-* ``not reproducible``: the paper gives too little to recompute it.
+* ``reproduced``: |ours - paper| <= tolerance (the tolerance's basis recorded);
+* ``rounding``: not within the tolerance, but within a rounding band (recorded as
+  ``band``: half a unit of the paper's last printed digit, or the paper's rounded
+  inputs propagated): the paper printed a rounded value;
+* ``discrepancy``: further off than the printed rounding explains; ``cause`` names
+  the cause when one was found, else the note says what was tried;
+* ``not reproducible``: the paper gives too little to recompute it;
+* ``input``: a value the notebook chose or fed in (a design's free choice, a value
+  equal by construction): shown, never counted as reproduced;
+* ``consistent`` / ``inconsistent``: a number recomputed from the paper's own printed
+  numbers (a percentage from printed maxima): a check of the paper against itself,
+  not a reproduction.
+
+Every claim records ``tolerance_basis``: why its tolerance is what it is.
 """
 
 from __future__ import annotations
@@ -20,7 +29,12 @@ import math
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-STATUSES = ("reproduced", "rounding", "discrepancy", "not reproducible")
+from springlab.errors import SpringlabError
+
+STATUSES = ("reproduced", "rounding", "discrepancy", "not reproducible", "input", "consistent", "inconsistent")
+REPORT_COLUMNS = ("reproduced", "rounding", "discrepancy, cause found", "discrepancy, no cause found",
+                  "not reproducible", "input", "consistent", "inconsistent")
+"""The columns of the reproduction report: the statuses, discrepancies split by cause."""
 
 
 @dataclass(frozen=True)
@@ -30,15 +44,25 @@ class Claim:
     paper: float | None
     ours: float | None
     unit: str
-    tolerance: float
+    tolerance: float | None
     status: str
     note: str = ""
+    tolerance_basis: str = ""
+    band: dict | None = None  # {"value": the rounding band, "basis": how it was propagated}
+    cause: str = ""  # a discrepancy's cause, when one was found
 
     @property
     def difference(self) -> float | None:
         if self.paper is None or self.ours is None:
             return None
         return self.ours - self.paper
+
+
+def report_column(record: dict) -> str:
+    """The report column a claim record counts in (see :data:`REPORT_COLUMNS`)."""
+    if record["status"] == "discrepancy":
+        return "discrepancy, cause found" if record.get("cause") else "discrepancy, no cause found"
+    return record["status"]
 
 
 def half_unit(decimals: int) -> float:
@@ -73,13 +97,27 @@ def _number(value) -> str:
 
 def markdown_table(records: list[dict]) -> str:
     """Claim records (as in claims.json) as a Markdown table: paper, ours, difference, status."""
-    lines = ["| quantity | where | paper | ours | difference | unit | tolerance | status | note |",
+    lines = ["| quantity | where | paper | ours | difference | unit | tolerance (basis) | status | note |",
              "|---|---|---|---|---|---|---|---|---|"]
     for r in records:
+        band = f"; band {_number(r['band']['value'])} ({r['band']['basis']})" if r.get("band") else ""
+        cause = f" Cause: {r['cause']}" if r.get("cause") else ""
         lines.append(f"| {r['quantity']} | {r['where']} | {_number(r['paper'])} | {_number(r['ours'])} | "
-                     f"{_number(r['difference'])} | {r['unit']} | {_number(r['tolerance'])} | **{r['status']}** | "
-                     f"{r['note']} |".replace("\n", " "))
+                     f"{_number(r['difference'])} | {r['unit']} | {_number(r['tolerance'])} "
+                     f"({r.get('tolerance_basis', '')}{band}) | **{r['status']}** | "
+                     f"{r['note']}{cause} |".replace("\n", " "))
     return "\n".join(lines)
+
+
+def _finite(name: str, value, quantity: str) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise SpringlabError(f"claim {quantity!r}: {name} must be a number, got {value!r}") from None
+    if not math.isfinite(value):
+        raise SpringlabError(f"claim {quantity!r}: {name} is {value}; a claim records finite numbers only "
+                             "(record a value that cannot be computed with Claims.not_reproducible)")
+    return value
 
 
 class Claims:
@@ -89,36 +127,107 @@ class Claims:
         self.source = source
         self.records: list[Claim] = []
 
-    def compare(self, quantity: str, where: str, paper: float, ours: float, *, unit: str,
-                tolerance: float, decimals: int | None = None, rounding: float | None = None,
-                expect: str = "reproduced", note: str = "") -> Claim:
-        """Record ours against the paper's printed value and assert the status.
+    def _check_expect(self, quantity: str, expect: str) -> None:
+        if expect not in STATUSES:
+            raise SpringlabError(f"claim {quantity!r}: expect must be one of {STATUSES}, got {expect!r}")
 
-        :param tolerance: absolute tolerance for 'reproduced', in ``unit``
-        :param decimals: the paper's printed decimals, for the 'rounding' status
-        :param rounding: instead of ``decimals``, the largest difference the paper's
-            rounding explains (e.g. its rounded inputs propagated, :func:`propagated_rounding`)
-        :param expect: the status this claim must have; anything else raises AssertionError
-        """
-        diff = abs(float(ours) - float(paper))
+    def _classify(self, quantity, paper, ours, tolerance, decimals, rounding, band_basis):
+        paper = _finite("paper", paper, quantity)
+        ours = _finite("ours", ours, quantity)
+        tolerance = _finite("tolerance", tolerance, quantity)
+        if tolerance < 0:
+            raise SpringlabError(f"claim {quantity!r}: tolerance must be >= 0, got {tolerance}")
+        band = None
+        if rounding is not None:
+            rounding = _finite("rounding", rounding, quantity)
+            if rounding < 0:
+                raise SpringlabError(f"claim {quantity!r}: rounding must be >= 0, got {rounding}")
+            if not band_basis:
+                raise SpringlabError(f"claim {quantity!r}: a rounding band needs band_basis, the way it was "
+                                     "propagated (e.g. 'Table 2's inputs rounded, propagated to first order')")
+            band = {"value": rounding, "basis": band_basis}
+        elif decimals is not None:
+            band = {"value": half_unit(decimals),
+                    "basis": band_basis or f"half a unit of the last printed digit ({decimals} decimals)"}
+        diff = abs(ours - paper)
         if diff <= tolerance:
             status = "reproduced"
-        elif rounding is not None and diff <= rounding:
-            status = "rounding"
-        elif decimals is not None and diff <= half_unit(decimals):
+        elif band is not None and diff <= band["value"]:
             status = "rounding"
         else:
             status = "discrepancy"
-        claim = Claim(quantity, where, float(paper), float(ours), unit, float(tolerance), status, note)
+        return paper, ours, tolerance, band, status, diff
+
+    def compare(self, quantity: str, where: str, paper: float, ours: float, *, unit: str,
+                tolerance: float, tolerance_basis: str, decimals: int | None = None,
+                rounding: float | None = None, band_basis: str | None = None,
+                expect: str = "reproduced", note: str = "", cause: str = "") -> Claim:
+        """Record ours against the paper's printed value and assert the status.
+
+        :param tolerance: absolute tolerance for 'reproduced', in ``unit``
+        :param tolerance_basis: why the tolerance is what it is (a solver's stated
+            tolerance, half a unit of the last printed digit, ...)
+        :param decimals: the paper's printed decimals, for the 'rounding' status (band:
+            half a unit of the last digit)
+        :param rounding: instead of ``decimals``, the largest difference the paper's
+            rounding explains (e.g. its rounded inputs propagated, :func:`propagated_rounding`),
+            with ``band_basis`` saying how it was propagated
+        :param expect: the status this claim must have; anything else raises AssertionError
+        :param cause: for a discrepancy, its cause when one was found
+        :raises SpringlabError: for NaN or infinite numbers, a negative tolerance, an
+            unknown status, or a claim without ``tolerance_basis``
+        """
+        self._check_expect(quantity, expect)
+        if not tolerance_basis:
+            raise SpringlabError(f"claim {quantity!r}: tolerance_basis must say why the tolerance is {tolerance}")
+        paper, ours, tolerance, band, status, diff = self._classify(
+            quantity, paper, ours, tolerance, decimals, rounding, band_basis)
+        claim = Claim(quantity, where, paper, ours, unit, tolerance, status, note, tolerance_basis,
+                      band, cause if status == "discrepancy" else "")
         self.records.append(claim)
         assert status == expect, (
             f"{quantity} ({where}): paper {paper}, ours {ours:.10g}, |difference| {diff:.3g} {unit}: "
             f"status {status}, expected {expect} (tolerance {tolerance:g})")
         return claim
 
+    def consistency(self, quantity: str, where: str, paper: float, recomputed: float, *, unit: str,
+                    tolerance: float, tolerance_basis: str, decimals: int | None = None,
+                    rounding: float | None = None, band_basis: str | None = None,
+                    expect: str = "consistent", note: str = "") -> Claim:
+        """Record a number recomputed from the paper's own printed numbers against the
+        paper's: 'consistent' (within the tolerance or the rounding band) or 'inconsistent'.
+        A check of the paper against itself, never a reproduction."""
+        self._check_expect(quantity, expect)
+        if not tolerance_basis:
+            raise SpringlabError(f"claim {quantity!r}: tolerance_basis must say why the tolerance is {tolerance}")
+        paper, ours, tolerance, band, status, diff = self._classify(
+            quantity, paper, recomputed, tolerance, decimals, rounding, band_basis)
+        status = "inconsistent" if status == "discrepancy" else "consistent"
+        claim = Claim(quantity, where, paper, ours, unit, tolerance, status, note, tolerance_basis, band)
+        self.records.append(claim)
+        assert status == expect, (
+            f"{quantity} ({where}): paper {paper}, from its own numbers {ours:.10g}, |difference| "
+            f"{diff:.3g} {unit}: {status}, expected {expect}")
+        return claim
+
+    def input(self, quantity: str, where: str, paper: float | None, ours: float, *, unit: str,
+              note: str) -> Claim:
+        """Record a value the notebook chose or fed in (a design's free choice, a value equal
+        by construction): shown beside the paper's, not counted as reproduced."""
+        ours = _finite("ours", ours, quantity)
+        paper = None if paper is None else _finite("paper", paper, quantity)
+        claim = Claim(quantity, where, paper, ours, unit, None, "input", note,
+                      "none: a value fed in is shown, not compared")
+        self.records.append(claim)
+        return claim
+
     def not_reproducible(self, quantity: str, where: str, paper: float | None, *, unit: str,
                          note: str) -> Claim:
-        claim = Claim(quantity, where, paper, None, unit, math.nan, "not reproducible", note)
+        """Record a printed value the paper gives too little to recompute; ``note`` says
+        what is missing and what was tried."""
+        paper = None if paper is None else _finite("paper", paper, quantity)
+        claim = Claim(quantity, where, paper, None, unit, None, "not reproducible", note,
+                      "none: no value could be computed")
         self.records.append(claim)
         return claim
 
@@ -135,14 +244,13 @@ class Claims:
             rec = asdict(c)
             rec["difference"] = c.difference
             rec["source"] = self.source
-            if isinstance(rec["tolerance"], float) and math.isnan(rec["tolerance"]):
-                rec["tolerance"] = None
             out.append(rec)
         return out
 
     def write(self, directory) -> Path:
-        """Write ``directory/claims.json`` (deterministic: fixed key order and formatting)."""
+        """Write ``directory/claims.json`` (deterministic: fixed key order and formatting;
+        strict JSON, no NaN)."""
         path = Path(directory) / "claims.json"
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(json.dumps(self.to_records(), indent=1, sort_keys=True) + "\n")
+        path.write_text(json.dumps(self.to_records(), indent=1, sort_keys=True, allow_nan=False) + "\n")
         return path

@@ -24,7 +24,7 @@ import sys
 from collections import Counter
 from pathlib import Path
 
-from springlab.claims import STATUSES, markdown_table
+from springlab.claims import REPORT_COLUMNS, markdown_table, report_column
 from springlab.papers import PAPERS
 
 MATHJAX_URL = "mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe"
@@ -46,13 +46,18 @@ def write_report(figures_dir) -> Path:
     lines = ["# Reproduction report", "",
              "Every number the notebooks reproduce, beside the paper's (written by `make figures` "
              "from `figures/<notebook>/claims.json`).", "",
-             "| notebook | paper | " + " | ".join(STATUSES) + " | total |",
-             "|---|---|" + "---|" * len(STATUSES) + "---|"]
+             "Statuses: **reproduced** within a stated tolerance; **rounding** within the band the paper's "
+             "printed rounding explains; **discrepancy**, its cause found or not; **not reproducible** from "
+             "what the paper gives; **input**, a value the notebook fed in (shown, not counted as "
+             "reproduced); **consistent** / **inconsistent**, a number recomputed from the paper's own "
+             "printed numbers (a check of the paper against itself).", "",
+             "| notebook | paper | " + " | ".join(REPORT_COLUMNS) + " | total |",
+             "|---|---|" + "---|" * len(REPORT_COLUMNS) + "---|"]
     for stem, records in claims.items():
-        count = Counter(r["status"] for r in records)
+        count = Counter(report_column(r) for r in records)
         paper = PAPERS.get(stem, {})
         lines.append(f"| {stem} | {paper.get('authors', '')} ({paper.get('year', '')}) | "
-                     + " | ".join(str(count.get(s, 0)) for s in STATUSES) + f" | {len(records)} |")
+                     + " | ".join(str(count.get(s, 0)) for s in REPORT_COLUMNS) + f" | {len(records)} |")
     for stem, records in claims.items():
         lines += ["", f"## {stem}", "", markdown_table(records)]
     path = Path(figures_dir) / "REPRODUCTION.md"
@@ -121,8 +126,8 @@ def build_site(notebooks_dir="build/notebooks", site_dir="build/site", figures_d
                if paper.get("doi") else "no DOI given")
         run = _run_time(executed)
         run_text = f"{run:.1f} s" if run is not None else "unknown"
-        count = Counter(r["status"] for r in claims.get(stem, []))
-        tally = ", ".join(f"{count[s]} {s}" for s in STATUSES if count.get(s))
+        count = Counter(report_column(r) for r in claims.get(stem, []))
+        tally = ", ".join(f"{count[s]} {s}" for s in REPORT_COLUMNS if count.get(s))
         rows.append(
             f"<tr><td>{thumb}</td><td><b>{html.escape(paper['authors'])} ({paper['year']})</b><br>"
             f"<i>{html.escape(paper['title'])}</i><br>{html.escape(paper.get('venue') or '')} {doi}<br>"

@@ -1,0 +1,411 @@
+"""Which spring multisets balance an arm: paper 000's rules R1-R6 tested against Eqs. (39).
+
+A configuration is a **multiset** of springs over the paper's sign alphabet
+(:func:`alphabet`): ground springs S(1,j) (+,+), S(1,2) also (-,-); every other
+pair (+,+), (-,-) or (+,-); two springs on one pair in different patterns, and on
+a pair spanning three or more joints (j - i >= 3) the same pattern twice.
+
+It is **balanceable** when Eqs. (39) have a solution with every k > 0 and every
+a, b of its pattern's sign. Eqs. (39) are linear in P = k a b, A = k a, B = k b
+and k of each spring (000 Eqs. 23a-d) except for P k = A B, which binds only for
+springs spanning three or more joints. So:
+
+* the **linear relaxation** (drop P k = A B, keep the signs strict) is necessary:
+  where it has no solution the multiset is not balanceable (a proof);
+* a multiset the relaxation admits is confirmed by a design found by least squares
+  (:func:`springlab.design.find_design`, signs only) and checked entry by entry.
+
+**Minimal** has two meanings, both counted (:func:`rules_against_physics`):
+
+* *inclusion-minimal*: balanceable, and no proper sub-multiset is;
+* *no single spring removable*: balanceable, and removing any one spring leaves a
+  multiset that is not (the paper's enumeration of Table 1 keeps configurations in
+  this sense, with "balanceable" replaced by "admitted by R1-R6").
+
+The inclusion-minimal multisets of the relaxation are enumerated exactly, fewest
+springs first, by a mixed-integer programme (scipy's HiGHS): a binary z per spring
+of the alphabet, each of the spring's linear quantities carrying its sign by at
+least ``eps`` when z = 1 and zero when z = 0, minimise sum z, and after each find
+forbid every superset of it (sum of its z <= size - 1). When the programme becomes
+infeasible there is no further minimal multiset. If every one found is confirmed
+by a design, the relaxation's minimal multisets are exactly the true ones (a true
+balanceable multiset contains a relaxation-minimal one, which is then balanceable).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from springlab.chain import Chain
+from springlab.configurations import SpringSlot, rule_violations
+from springlab.errors import SpringlabError
+
+EPS = 1e-3
+"""Smallest |quantity| of a present spring in the programme, in units of the largest
+G_1,j (and the mean link length): a design needing a quantity smaller than a
+thousandth of gravity's scale is not counted. (The solver's feasibility tolerance is
+about 1e-7; a margin far above it keeps 'present' from meaning 'zero within tolerance'.)"""
+
+BOUND = 50.0
+"""Largest |quantity| in the same units. With the solver's integrality tolerance (1e-6)
+an absent spring can leak up to BOUND * 1e-6 = 5e-5 into the equations, far below
+EPS; every multiset the programme returns is re-checked by a plain linear programme
+(:func:`relaxation_feasible`) before it is counted."""
+
+
+def alphabet(n: int) -> list[SpringSlot]:
+    """The springs a multiset may contain on an n-link arm, one entry per copy.
+
+    Ground springs S(1,j) (+,+) and S(1,2) (-,-) (000 Eq. 41 and the note below
+    it); non-ground springs (+,+), (-,-), (+,-) (Fig. 10); a spring spanning three
+    or more joints appears twice (its k enters entries of its own, so a second copy
+    of one pattern is not the same as a stiffer first one).
+    """
+    if int(n) != n or n < 2:
+        raise SpringlabError(f"n must be an integer >= 2, got {n}")
+    out = [SpringSlot(1, 2, "(+,+)"), SpringSlot(1, 2, "(-,-)")]
+    for j in range(3, n + 1):
+        out += [SpringSlot(1, j)] * (2 if j - 1 >= 3 else 1)
+    for i in range(2, n):
+        for j in range(i + 1, n + 1):
+            for p in ("(+,+)", "(-,-)", "(+,-)"):
+                out += [SpringSlot(i, j, p)] * (2 if j - i >= 3 else 1)
+    return out
+
+
+def _quantities(chain: Chain, s: SpringSlot) -> list[tuple[int, dict[tuple[int, int], float]]]:
+    """The spring's linear quantities that enter Eqs. (39): (sign, {entry: coefficient}),
+    in units where lengths are measured in the mean link length."""
+    length = float(np.mean(chain.r))
+    rr = {t: chain.r[t - 2] / length for t in range(2, chain.n + 1)}
+    inner = range(s.i + 1, s.j)
+    out = [(s.sa * s.sb, {(s.i, s.j): -1.0})]  # 000 Eq. (23a): -k a b
+    if s.j - s.i >= 2:
+        out.append((s.sa, {(s.i, t): -rr[t] for t in inner}))  # 000 Eq. (23b): -r_t k a
+        out.append((s.sb, {(t, s.j): rr[t] for t in inner}))  # 000 Eq. (23d): r_t k b
+    if s.j - s.i >= 3:
+        out.append((1, {(t, v): rr[t] * rr[v] for t in inner for v in inner if t < v}))  # 000 Eq. (23c)
+    return out
+
+
+@dataclass
+class _Programme:
+    items: list[SpringSlot]
+    owner: np.ndarray  # quantity -> item
+    signs: np.ndarray
+    A_eq: np.ndarray
+    b_eq: np.ndarray
+
+
+def _programme(chain: Chain, items) -> _Programme:
+    from springlab.quadratic import gravity_entries
+
+    G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
+    scale = max(abs(v) for v in G.values())
+    if scale <= 0:
+        raise SpringlabError("the arm has no gravity moment to balance (all G_1,j = 0)")
+    keys = [(u, v) for u in range(1, chain.n + 1) for v in range(u + 1, chain.n + 1)]
+    row = {k: idx for idx, k in enumerate(keys)}
+    cols, owner, signs = [], [], []
+    for idx, s in enumerate(items):
+        for sign, entries in _quantities(chain, s):
+            cols.append(entries)
+            owner.append(idx)
+            signs.append(sign)
+    A_eq = np.zeros((len(keys), len(cols)))
+    for c, entries in enumerate(cols):
+        for key, coef in entries.items():
+            A_eq[row[key], c] = coef
+    b_eq = np.array([-G.get(k, 0.0) / scale for k in keys])  # 000 Eqs. (39a-b): G + sum K = 0
+    return _Programme(list(items), np.array(owner), np.array(signs, dtype=float), A_eq, b_eq)
+
+
+def relaxation_feasible(chain: Chain, slots) -> bool:
+    """True when the linear relaxation of Eqs. (39) has a solution in which every
+    spring's quantities carry their signs by at least :data:`EPS` (a necessary
+    condition for balance; False is a proof that the multiset cannot balance)."""
+    slots = list(slots)
+    return bool(slots) and _phase_one(_programme(chain, slots))[0] <= 1e-9
+
+
+def _entry_signs(chain: Chain, s: SpringSlot) -> dict[tuple[int, int], set[int]]:
+    """The signs of the terms a spring puts into each entry of Eqs. (39)."""
+    out: dict[tuple[int, int], set[int]] = {}
+    for sign, entries in _quantities(chain, s):
+        for key, coef in entries.items():
+            out.setdefault(key, set()).add(int(sign * np.sign(coef)))
+    return out
+
+
+_HIGHS = None
+
+
+def _phase_one(prog: _Programme):
+    """Least total violation of Eqs. (39) with every quantity in its sign box: (value, y),
+    y the equations' dual values (a subgradient of the value in the right-hand side).
+
+    Solved by HiGHS through highspy, which scipy's linprog also wraps: called directly it
+    costs about 0.7 ms per programme here against 1.7 ms through linprog, and the
+    rules-against-physics search solves thousands.
+    """
+    global _HIGHS
+    import highspy
+    from scipy.sparse import csc_matrix
+
+    if _HIGHS is None:
+        _HIGHS = highspy.Highs()
+        _HIGHS.setOptionValue("output_flag", False)
+    rows, m = prog.A_eq.shape
+    A = csc_matrix(np.hstack([prog.A_eq, np.eye(rows), -np.eye(rows)]))
+    lp = highspy.HighsLp()
+    lp.num_col_, lp.num_row_ = A.shape[1], rows
+    lp.col_cost_ = np.concatenate([np.zeros(m), np.ones(2 * rows)])
+    lp.col_lower_ = np.concatenate([np.where(prog.signs > 0, EPS, -BOUND), np.zeros(2 * rows)])
+    lp.col_upper_ = np.concatenate([np.where(prog.signs > 0, BOUND, -EPS), np.full(2 * rows, highspy.kHighsInf)])
+    lp.row_lower_ = lp.row_upper_ = prog.b_eq
+    lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
+    lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = A.indptr, A.indices, A.data
+    _HIGHS.passModel(lp)
+    _HIGHS.run()
+    if _HIGHS.getModelStatus() != highspy.HighsModelStatus.kOptimal:
+        raise RuntimeError(f"the phase-one programme failed: {_HIGHS.modelStatusToString(_HIGHS.getModelStatus())}")
+    return float(_HIGHS.getInfo().objective_function_value), np.array(_HIGHS.getSolution().row_dual)
+
+
+def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list[tuple[SpringSlot, ...]]:
+    """Every inclusion-minimal multiset over :func:`alphabet` whose linear relaxation of
+    Eqs. (39) is feasible, fewest springs first, then in label order.
+
+    Branch and prune on certificates: a multiset C whose relaxation is infeasible has
+    a phase-one dual y with value f > 0, and any feasible T containing C must add a
+    spring with a quantity of sign s and column c such that s y.c > 0 (since
+    0 = f_T >= f - sum over the added quantities of max(s y.c, 0) * BOUND). Branching
+    only on those springs, from the empty multiset, level by level, reaches every
+    minimal feasible multiset; a node containing a feasible multiset already found is
+    not minimal and is dropped.
+
+    :raises SpringlabError: after ``max_nodes`` programmes (the search says so rather
+        than returning a partial list)
+    """
+    items = alphabet(chain.n)
+    kinds = sorted(set(items))
+    most = np.array([items.count(k) for k in kinds])
+    full = _programme(chain, kinds)
+    keys = sorted({key for k in kinds for key in _entry_signs(chain, k)} | {(1, j) for j in range(2, chain.n + 1)})
+    # per kind and entry: does the spring put a positive (pos) / negative (neg) term there
+    pos = np.zeros((len(kinds), len(keys)), dtype=bool)
+    neg = np.zeros_like(pos)
+    for idx, k in enumerate(kinds):
+        for key, signs in _entry_signs(chain, k).items():
+            pos[idx, keys.index(key)] |= 1 in signs
+            neg[idx, keys.index(key)] |= -1 in signs
+    gravity = np.array([key[0] == 1 for key in keys])  # G_1,j > 0 (000 Eq. 18, d_j > 0)
+    level: set[tuple[int, ...]] = {tuple([0] * len(kinds))}
+    found: list[np.ndarray] = []
+    nodes = 0
+    while level:
+        nxt: set[tuple[int, ...]] = set()
+        F = np.array(found) if found else np.zeros((0, len(kinds)), dtype=int)
+        for counts in sorted(level):
+            c = np.array(counts)
+            if len(F) and np.any(np.all(F <= c, axis=1)):
+                continue  # contains a feasible multiset: not minimal
+            nodes += 1
+            if nodes > max_nodes:
+                raise SpringlabError(f"the search visited max_nodes = {max_nodes} multisets without finishing; "
+                                     "raise max_nodes")
+            present = c > 0
+            has_pos = gravity | pos[present].any(axis=0)
+            has_neg = neg[present].any(axis=0)
+            one_signed = np.flatnonzero(has_pos != has_neg)
+            if len(one_signed):  # an entry of one sign only: some spring must bring the other
+                e = one_signed[0]
+                wanted = np.flatnonzero(neg[:, e] if has_pos[e] else pos[:, e])
+            else:
+                cfg = [kinds[idx] for idx in np.flatnonzero(c) for _ in range(c[idx])]
+                value, y = _phase_one(_programme(chain, cfg))
+                if value <= 1e-9:
+                    found.append(c)
+                    F = np.array(found)
+                    continue
+                gain = y @ full.A_eq * full.signs  # s y.c per quantity of every kind of spring
+                wanted = [idx for idx in range(len(kinds)) if np.any(gain[full.owner == idx] > 1e-12)]
+            for idx in wanted:
+                if c[idx] < most[idx]:
+                    child = list(counts)
+                    child[idx] += 1
+                    nxt.add(tuple(child))
+        level = nxt
+    out = [tuple(kinds[idx] for idx in np.flatnonzero(c) for _ in range(c[idx])) for c in found]
+    return sorted(out, key=lambda cfg: (len(cfg), _label(cfg)))
+
+
+def confirm(chain: Chain, slots, *, starts: int = 3, seed=0):
+    """Springs with the slots' signs that satisfy Eqs. (39) exactly, or None.
+
+    Eqs. (39) are linear in (P, A, B, k) per spring; the coupling P k = A B binds for
+    springs spanning three or more joints (for shorter ones k, or a and b, are free to
+    meet it). SLSQP (scipy) minimises sum (P k - A B)^2 over the linear equations and
+    the sign boxes, from linear-programme vertices (random objectives); a zero is a
+    design. The springs are rebuilt (k = K, a = A / K, b = B / K; a shorter spring's k
+    from its P) and their balance residual (000 Eqs. 39, route 1) checked to 1e-9 of
+    the largest G_1,j.
+    """
+    from scipy.optimize import linprog, minimize
+
+    from springlab.quadratic import balance_residual, gravity_entries
+    from springlab.springs import Spring
+
+    slots = list(slots)
+    prog = _programme(chain, slots)
+    m = len(prog.signs)
+    box = [(EPS, BOUND) if sg > 0 else (-BOUND, -EPS) for sg in prog.signs]
+    where = {}  # per spring: column of each quantity
+    for col, own in enumerate(prog.owner):
+        where.setdefault(int(own), []).append(col)
+    long_ = [cols for idx, cols in sorted(where.items()) if slots[idx].j - slots[idx].i >= 3]
+    P, A, B, K = (np.array([c[q] for c in long_], dtype=int) for q in range(4)) if long_ else [np.zeros(0, int)] * 4
+
+    def bilinear(v):
+        return v[P] * v[K] - v[A] * v[B]
+
+    def objective(v):
+        r = bilinear(v)
+        return float(r @ r)
+
+    def gradient(v):
+        r = bilinear(v)
+        g = np.zeros_like(v)
+        np.add.at(g, P, 2 * r * v[K])
+        np.add.at(g, K, 2 * r * v[P])
+        np.add.at(g, A, -2 * r * v[B])
+        np.add.at(g, B, -2 * r * v[A])
+        return g
+
+    rng = np.random.default_rng(seed)
+    scale = max(abs(v) for v in gravity_entries(chain.r, chain.d, chain.m, chain.g).values())
+    length = float(np.mean(chain.r))
+    for _ in range(starts):
+        lp = linprog(rng.normal(size=m), A_eq=prog.A_eq, b_eq=prog.b_eq, bounds=box, method="highs")
+        if lp.status != 0:
+            return None
+        v = lp.x
+        if len(P) and objective(v) > 1e-24:
+            res = minimize(objective, v, jac=gradient, method="SLSQP", bounds=box,
+                           constraints=[{"type": "eq", "fun": lambda x: prog.A_eq @ x - prog.b_eq,
+                                         "jac": lambda x: prog.A_eq}],
+                           options={"maxiter": 500, "ftol": 1e-30})
+            v = res.x
+        springs = []
+        for idx, s in enumerate(slots):
+            cols = where[idx]
+            Pv = v[cols[0]] * scale  # J
+            if s.j - s.i == 1:  # only P = k a b enters: any k with a b = P / k
+                k = scale / length**2
+                a = s.sa * np.sqrt(abs(Pv) / k)
+                b = s.sb * np.sqrt(abs(Pv) / k)
+            else:
+                Av, Bv = v[cols[1]] * scale / length, v[cols[2]] * scale / length  # N
+                k = v[cols[3]] * scale / length**2 if s.j - s.i >= 3 else Av * Bv / Pv  # N/m
+                a, b = Av / k, Bv / k
+            springs.append(Spring(s.i, s.j, float(a), float(b), float(k)))
+        if np.abs(balance_residual(chain, springs)).max() <= 1e-9 * scale:
+            return tuple(springs)
+    return None
+
+
+def is_balanceable(chain: Chain, slots) -> str:
+    """'yes' (a design was found), 'no' (the relaxation proves it impossible) or
+    'undecided' (the relaxation allows it, the search found no design)."""
+    slots = list(slots)
+    if not relaxation_feasible(chain, slots):
+        return "no"
+    return "yes" if confirm(chain, slots) is not None else "undecided"
+
+
+def random_arm(n: int, rng) -> Chain:
+    """A generic n-link arm: lengths 0.15-0.45 m, centres of mass 0.2-0.8 of the length,
+    masses 0.5-5 kg, g = 9.81 m/s^2."""
+    from springlab.chain import serial_chain
+
+    rng = np.random.default_rng(rng)
+    r = rng.uniform(0.15, 0.45, n - 1)
+    return serial_chain(r, r * rng.uniform(0.2, 0.8, n - 1), rng.uniform(0.5, 5.0, n - 1), g=9.81)
+
+
+def _label(cfg) -> str:
+    return " ".join(str(s) for s in sorted(cfg))
+
+
+@dataclass
+class RulesAgainstPhysics:
+    """Per n: the rules' configurations and the balanceable multisets, compared."""
+
+    n: int
+    arms: int
+    minimal: list[tuple[SpringSlot, ...]]  # inclusion-minimal balanceable multisets
+    unconfirmed: list[tuple[SpringSlot, ...]]  # relaxation-minimal, no design found
+    admitted: list[tuple[SpringSlot, ...]]  # R1-R6's configurations with necessary springs
+    admitted_status: dict[str, str]  # per admitted configuration: 'yes', 'no', 'undecided'
+    admitted_single_minimal: int  # admitted, balanceable, no single spring removable
+    admitted_inclusion_minimal: int  # admitted and inclusion-minimal balanceable
+    rejected: dict[str, list[str]]  # minimal balanceable but rejected: label -> violations
+    same_on_every_arm: bool
+    counts_per_arm: list[int] = field(default_factory=list)
+
+    def row(self) -> dict[str, int | str]:
+        bad = sum(1 for v in self.admitted_status.values() if v == "no")
+        und = sum(1 for v in self.admitted_status.values() if v == "undecided")
+        return {"n": self.n, "minimal balanceable (inclusion)": len(self.minimal),
+                "R1-R6 admit": len(self.admitted),
+                "admitted, balanceable, no single spring removable": self.admitted_single_minimal,
+                "admitted, inclusion-minimal": self.admitted_inclusion_minimal,
+                "admitted, not balanceable": bad, "admitted, undecided": und,
+                "minimal balanceable, rejected by R1-R6": len(self.rejected),
+                "same on every arm": "yes" if self.same_on_every_arm else "no"}
+
+
+def _contains(big, small) -> bool:
+    b, s = Counter(big), Counter(small)
+    return all(b[k] >= v for k, v in s.items())
+
+
+def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0) -> RulesAgainstPhysics:
+    """Test R1-R6 both ways on ``arms`` random n-link arms (:func:`random_arm`).
+
+    The minimal balanceable multisets are those of the first arm, and the others must
+    give the same list (``same_on_every_arm``); the admitted configurations are
+    :func:`springlab.configurations.enumerate_configurations`, each decided on the
+    first arm, with both minimality notions.
+    """
+    from springlab.configurations import enumerate_configurations
+
+    rng = np.random.default_rng(seed)
+    chains = [random_arm(n, rng) for _ in range(arms)]
+    per_arm = [minimal_relaxed_multisets(c) for c in chains]
+    first = chains[0]
+    confirmed = [cfg for cfg in per_arm[0] if confirm(first, cfg) is not None]
+    unconfirmed = [cfg for cfg in per_arm[0] if cfg not in confirmed]
+    same = all(sorted(map(_label, x)) == sorted(map(_label, per_arm[0])) for x in per_arm[1:])
+    admitted = enumerate_configurations(n)
+    status, single, inclusion = {}, 0, 0
+    for cfg in admitted:
+        st = is_balanceable(first, cfg)
+        status[_label(cfg)] = st
+        if st != "yes":
+            continue
+        if all(is_balanceable(first, cfg[:k] + cfg[k + 1:]) != "yes"
+               for k in range(len(cfg))):
+            single += 1
+        if any(sorted(cfg) == sorted(m) for m in confirmed):
+            inclusion += 1
+    rejected = {}
+    for cfg in confirmed:
+        v = rule_violations(n, cfg)
+        if v:
+            rejected[_label(cfg)] = [str(x) for x in v]
+    return RulesAgainstPhysics(n, arms, confirmed, unconfirmed, admitted, status, single, inclusion,
+                               rejected, same, [len(x) for x in per_arm])
