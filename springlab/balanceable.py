@@ -409,3 +409,12 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0) -> RulesAgain
             rejected[_label(cfg)] = [str(x) for x in v]
     return RulesAgainstPhysics(n, arms, confirmed, unconfirmed, admitted, status, single, inclusion,
                                rejected, same, [len(x) for x in per_arm])
+
+
+def counts_markdown(results) -> str:
+    """The per-n rows of :meth:`RulesAgainstPhysics.row` as one Markdown table."""
+    rows = [r.row() for r in results]
+    head = list(rows[0])
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    lines += ["| " + " | ".join(str(row[h]) for h in head) + " |" for row in rows]
+    return "\n".join(lines)

@@ -451,3 +451,167 @@ def simulate_drive(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: flo
     # a joint driven by an offset function holds with diag(-1, 1, 1) @ TorqueLocal (measured, see
     # springlab.sim); z turns the link by -phi, so the drive's torque towards larger phi is -TorqueLocal_z
     return Drive(t, phi, -data[:, 3], cpu)
+
+
+# --- the readings the paper allows, searched in batches -----------------------------
+def synthesis_path(comp: Compensator, phi, Cs, *, branch: int = -1) -> dict[str, np.ndarray]:
+    """The dyads Eqs. (6)-(19) give for every energy constant in ``Cs`` (J) at the
+    positions ``phi`` (rad), in one batch: {'C', 'r', 'l', 'beta', 'ok'}. ``ok`` is False
+    where a slider position is imaginary (Eq. 6), the system is singular or l^2 <= 0
+    (Eq. 19); the other entries there are 0, never NaN."""
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    Cs = np.atleast_1d(np.asarray(Cs, dtype=float))
+    radicand = (2.0 * Cs[:, None] - 2.0 * comp.gravity_energy(phi)[None, :]) / comp.k  # Eq. (6)
+    ok = np.all(radicand >= 0, axis=1)
+    y = comp.l0 + branch * np.sqrt(np.where(ok[:, None], radicand, 0.0))  # Eq. (7)
+    A = np.stack([2 * y * np.cos(phi), 2 * y * np.sin(phi), np.ones_like(y)], axis=2)  # Eq. (16)
+    c = y**2
+    AT = np.transpose(A, (0, 2, 1))
+    normal = AT @ A
+    ok &= np.abs(np.linalg.det(normal)) > 1e-12 * np.linalg.norm(normal, axis=(1, 2)) ** 3
+    safe = np.where(ok[:, None, None], normal, np.eye(3))
+    z = np.linalg.solve(safe, (AT @ c[:, :, None]))[:, :, 0]  # least squares (exact for 3 positions)
+    r = np.hypot(z[:, 0], z[:, 1])  # Eqs. (12)-(13), (18)
+    beta = np.arctan2(z[:, 1], z[:, 0])  # Eq. (17)
+    l_sq = z[:, 2] + r**2  # Eq. (19)
+    ok &= (l_sq > 0) & (r > 0)
+    zero = lambda v: np.where(ok, v, 0.0)  # noqa: E731
+    return {"C": Cs, "r": zero(r), "l": zero(np.sqrt(np.maximum(l_sq, 0.0))), "beta": zero(beta), "ok": ok}
+
+
+def batch_moments(comp: Compensator, r, l, beta, phi, moment: str = "virtual work") -> tuple[np.ndarray, np.ndarray]:
+    """Unbalanced moments (N m) of many dyads (arrays r, l, beta of one shape (D,)) at the
+    angles phi (P,): (moments (D, P), closes (D,)), where a dyad that cannot close at some
+    angle has closes False and zero moments. ``moment`` is a key of :data:`MOMENTS`."""
+    if moment not in MOMENTS:
+        raise SpringlabError(f"moment must be one of {tuple(MOMENTS)}, got {moment!r}")
+    r, l, beta = (np.asarray(v, dtype=float)[:, None] for v in (r, l, beta))
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))[None, :]
+    u = phi - beta
+    closing = l**2 - (r * np.sin(u)) ** 2
+    closes = np.all(closing > 0, axis=1) & (l[:, 0] > 0)
+    l_cos = np.sqrt(np.where(closes[:, None], closing, 1.0))  # l cos(theta)
+    y = r * np.cos(u) + l_cos  # Eq. (24)
+    F_sp = comp.k * (y - comp.l0)  # Eq. (25)
+    gravity = comp.G * comp.s * np.sin(phi)
+    vw = gravity + F_sp * r * np.sin(u) * y / l_cos  # -dP/dphi
+    if moment == "virtual work":
+        out = vw
+    else:
+        cos_theta = l_cos / np.where(closes[:, None], l, 1.0)
+        spring_printed = (vw - gravity) * cos_theta**2  # Eq. (26)'s F_sp cos(theta): the true share x cos^2
+        # Eq. (30) as printed, -(M_sp + M_G) with M_G = -G s sin(phi), subtracts the spring's share
+        out = gravity + spring_printed if moment.endswith("sign corrected") else gravity - spring_printed
+    return np.where(closes[:, None], out, 0.0), closes
+
+
+def _candidate_Cs(comp: Compensator, phi, step: float, span: float | None, branch: int, moment_names):
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    if not (np.isfinite(step) and step > 0):
+        raise SpringlabError(f"step must be > 0 J, got {step}")
+    C_min = float(np.max(comp.gravity_energy(phi)))
+    span = 4 * comp.G * comp.s if span is None else span
+    path = synthesis_path(comp, phi, np.arange(C_min + step, C_min + span, step), branch=branch)
+    out = {}
+    for moment in moment_names:
+        m, closes = batch_moments(comp, path["r"], path["l"], path["beta"], phi, moment)
+        ok = path["ok"] & closes
+        out[moment] = (path["C"][ok], m[ok])
+    return out
+
+
+def _select(Cs: np.ndarray, m: np.ndarray, reading: str) -> float:
+    if not len(Cs):
+        raise SpringlabError("no C in the search range gives a dyad that closes at every position")
+    if reading == "signed sum stationary":  # d(sum M)/dC = 0 read literally: the first turn of the sum
+        slope = np.diff(m.sum(axis=1))
+        flips = np.flatnonzero(np.sign(slope[:-1]) != np.sign(slope[1:]))
+        if not len(flips):
+            raise SpringlabError("the signed sum of Eq. (31) has no stationary point in the search range")
+        return float(Cs[flips[0] + 1])
+    value = {"smallest |signed sum|": lambda: np.abs(m.sum(axis=1)),
+             "sum of magnitudes": lambda: np.abs(m).sum(axis=1),
+             "sum of squares": lambda: (m**2).sum(axis=1),
+             "maximum magnitude": lambda: np.abs(m).max(axis=1)}[reading]()
+    return float(Cs[int(np.argmin(value))])
+
+
+def select_C(comp: Compensator, phi, reading: str, moment: str = "virtual work", *, step: float = 0.05,
+             span: float | None = None, branch: int = -1) -> float:
+    """The energy constant C (J) one reading of Eq. (32) selects, on a grid of ``step`` J
+    from the smallest C with real slider positions to that plus ``span`` (default 4 G s):
+    the batch counterpart of :func:`choose_C` (same readings, :data:`C_READINGS`), without
+    its final refinement.
+
+    :raises SpringlabError: an unknown reading or moment, or no C gives a dyad that closes
+        at every position (or, read literally, the signed sum has no stationary point)
+    """
+    if reading not in C_READINGS:
+        raise SpringlabError(f"reading must be one of {C_READINGS}, got {reading!r}")
+    Cs, m = _candidate_Cs(comp, phi, step, span, branch, [moment])[moment]
+    return _select(Cs, m, reading)
+
+
+def position_sets(low_deg: float = 30.0, high_deg: float = 150.0, step_deg: float = 10.0) -> dict[str, np.ndarray]:
+    """Every set of three prescribed angles on a grid of ``step_deg`` over [low, high] (deg),
+    keyed '30, 60, 120 deg', in rad."""
+    import itertools
+
+    grid = np.arange(low_deg, high_deg + step_deg / 2, step_deg)
+    return {", ".join(f"{a:g}" for a in trio) + " deg": np.radians(trio) for trio in itertools.combinations(grid, 3)}
+
+
+def readings_search(comp: Compensator, sets: dict[str, np.ndarray], printed: dict[str, tuple[float, float]], *,
+                    rules=None, step: float = 0.05, refine: int = 10) -> list[dict]:
+    """For every set of prescribed positions and every rule (reading of Eq. 32, moment
+    definition) for C: the C it selects, the dyad Eqs. (6)-(19) give there, and how far
+    each of C, r, l, beta is from the printed value in half-units of its last printed
+    digit (``printed``: {'C': (value, decimals), 'r': ..., 'l': ..., 'beta_deg': ...}).
+    ``worst`` <= 1 means all four reproduce to the printed rounding. C is first chosen
+    on a grid of ``step`` J for every row; the ``refine`` closest rows are then recomputed
+    with C refined off the grid (:func:`choose_C`). Rows sorted by worst.
+    """
+    rules = rules or [(reading, moment) for moment in MOMENTS for reading in C_READINGS]
+    rows = []
+
+    def row(label, phi, reading, moment, C):
+        fit = synthesise(phi, slider_positions(comp, C, phi))
+        ours = {"C": C, "r": fit.dyad.r, "l": fit.dyad.l, "beta_deg": float(np.degrees(fit.dyad.beta))}
+        miss = {k: abs(ours[k] - v) / (0.5 * 10.0 ** -d) for k, (v, d) in printed.items()}
+        return {"positions": label, "reading": reading, "moment": moment, **ours,
+                "worst": max(miss.values()), "miss": miss, "why": ""}
+
+    for label, phi in sets.items():
+        candidates = _candidate_Cs(comp, phi, step, None, -1, sorted({m for _, m in rules}))
+        for reading, moment in rules:
+            try:
+                rows.append(row(label, phi, reading, moment, _select(*candidates[moment], reading)))
+            except SpringlabError as err:
+                rows.append({"positions": label, "reading": reading, "moment": moment, "C": None,
+                             "r": None, "l": None, "beta_deg": None, "worst": np.inf, "why": str(err)})
+    rows.sort(key=lambda r: (r["worst"], r["positions"], r["reading"], r["moment"]))
+    for k, r in enumerate(rows[:refine]):  # the closest: C refined off the grid (choose_C)
+        if np.isfinite(r["worst"]):
+            phi = sets[r["positions"]]
+            rows[k] = row(r["positions"], phi, r["reading"], r["moment"],
+                          choose_C(comp, phi, r["reading"], moment=r["moment"]))
+    return sorted(rows, key=lambda row: (row["worst"], row["positions"], row["reading"], row["moment"]))
+
+
+def optimise_from_many(comp: Compensator, phi, starts, *, free_l0: bool = False) -> tuple[Optimum, list[Optimum]]:
+    """:func:`optimise` from every dyad in ``starts``: (the best optimum, all of them).
+    Starting from several points shows whether the minimax has one optimum or several."""
+    runs = []
+    for start in starts:
+        try:
+            runs.append(optimise(comp, phi, start, free_l0=free_l0))
+        except SpringlabError:
+            continue
+    if not runs:
+        raise SpringlabError("the optimiser failed from every start; give starts whose dyad closes over phi")
+    return min(runs, key=lambda o: o.max_moment), runs
+
+
+def start_grid(r=(0.08, 0.13, 0.2), l=(0.4, 0.55, 0.8), beta_deg=(-10.0, 0.0, 10.0)) -> list[Dyad]:
+    """Starting dyads on a grid of r (m), l (m) and beta (deg), for :func:`optimise_from_many`."""
+    return [Dyad(ri, li, np.radians(bi)) for ri in r for li in l for bi in beta_deg if li > ri]

@@ -109,6 +109,22 @@ def energy_breakdown(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) ->
     return {"gravity": gravity, "springs": elastic, "total": gravity + elastic}
 
 
+def rotation_order_spread(chain: Chain, springs, angles) -> dict[str, float]:
+    """How much each energy depends on the order of a joint's three turns: the largest
+    |E_order - E_xyz| (J) over the six orders (:data:`springlab.rotations.ORDERS`) and
+    the poses, for 'gravity', 'springs' and 'total'. ``angles`` (N, n-1, 3) in rad,
+    spherical joints."""
+    from springlab.rotations import ORDERS, directions_in_order
+
+    ref = energy_breakdown(chain, springs, directions_in_order(angles, "xyz"))
+    out = dict.fromkeys(ref, 0.0)
+    for order in ORDERS[1:]:
+        e = energy_breakdown(chain, springs, directions_in_order(angles, order))
+        for key in out:
+            out[key] = max(out[key], float(np.max(np.abs(e[key] - ref[key]))))
+    return out
+
+
 def holding_torques(chain: Chain, springs, X) -> np.ndarray:
     """Joint torques (N m) that hold each pose against gravity and the springs.
 

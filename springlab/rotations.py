@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from springlab.errors import SpringlabError
+
 
 def _basic(angle, axis: int) -> np.ndarray:
     angle = np.asarray(angle, dtype=float)
@@ -74,6 +76,32 @@ def rot_xyz(theta, phi, psi) -> np.ndarray:
     Broadcasts over the angle arrays; returns shape ``broadcast.shape + (3, 3)``.
     """
     return rot_x(theta) @ rot_y(phi) @ rot_z(psi)
+
+
+ORDERS = ("xyz", "xzy", "yxz", "yzx", "zxy", "zyx")
+"""The six orders in which a joint's three turns (theta about x, phi about y, psi about z)
+can be composed."""
+
+
+def rot_ordered(theta, phi, psi, order: str = "xyz") -> np.ndarray:
+    """The intrinsic rotation composed in ``order``: "zyx" is Rz(psi) @ Ry(phi) @ Rx(theta).
+    theta always turns about x, phi about y, psi about z; angles in rad.
+
+    >>> bool(np.allclose(rot_ordered(0.1, 0.2, 0.3, "xyz"), rot_xyz(0.1, 0.2, 0.3)))
+    True
+    """
+    if order not in ORDERS:
+        raise SpringlabError(f"order must be one of {ORDERS}, got {order!r}")
+    turn = {"x": rot_x(theta), "y": rot_y(phi), "z": rot_z(psi)}
+    return turn[order[0]] @ turn[order[1]] @ turn[order[2]]
+
+
+def directions_in_order(angles, order: str) -> np.ndarray:
+    """Link directions (N, n, 3) of a spherical chain from joint angles (N, n-1, 3) (rad),
+    each joint's turns composed in ``order`` (see :func:`rot_ordered`)."""
+    angles = np.asarray(angles, dtype=float)
+    rel = rot_ordered(angles[..., 0], angles[..., 1], angles[..., 2], order)
+    return directions_from_relative(rel)
 
 
 def frames_from_relative(rel) -> np.ndarray:

@@ -113,3 +113,19 @@ def check_springs(chain, springs) -> tuple[Spring, ...]:
                 f"{s.label} attaches to link {s.j}, but the chain has only {chain.n} links"
             )
     return springs
+
+
+def measured_from_other_joints(chain, springs) -> tuple[Spring, ...]:
+    """The springs as they would be built if a and b were read from the other joint of each
+    link: end A at a from link i's **proximal** joint (A = J_{i-1} + a x_i, i.e. a - r_i in
+    the convention above; a ground spring keeps its a, the ground having one joint), end B at
+    b from link j's **distal** joint (B = J_j + b x_j, i.e. b + r_j). 000 Eq. (19) and the
+    text below it fix the reading of this module; this one shows why it matters.
+
+    :returns: springs in this module's convention (m, N/m)
+    """
+    out = []
+    for s in check_springs(chain, springs):
+        a = s.a - chain.length(s.i) if s.i >= 2 else s.a
+        out.append(Spring(s.i, s.j, a, s.b + chain.length(s.j), s.k, s.free_length))
+    return tuple(out)
