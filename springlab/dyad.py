@@ -615,3 +615,37 @@ def optimise_from_many(comp: Compensator, phi, starts, *, free_l0: bool = False)
 def start_grid(r=(0.08, 0.13, 0.2), l=(0.4, 0.55, 0.8), beta_deg=(-10.0, 0.0, 10.0)) -> list[Dyad]:
     """Starting dyads on a grid of r (m), l (m) and beta (deg), for :func:`optimise_from_many`."""
     return [Dyad(ri, li, np.radians(bi)) for ri in r for li in l for bi in beta_deg if li > ri]
+
+
+def readings_markdown(rows: list[dict], *, top: int = 12, always=()) -> str:
+    """The first ``top`` rows of :func:`readings_search` (and every row whose positions are
+    in ``always``) as a Markdown table, with each quantity's miss in half-units."""
+    keep = rows[:top] + [r for r in rows[top:] if r["positions"] in always]
+    lines = ["| positions | reading of Eq. (32) | moment | C (J) | r (m) | l (m) | beta (deg) | worst miss (half-units) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in keep:
+        if r["C"] is None:
+            lines.append(f"| {r['positions']} | {r['reading']} | {r['moment']} | none: {r['why']} | | | | |")
+            continue
+        lines.append(f"| {r['positions']} | {r['reading']} | {r['moment']} | {r['C']:.2f} | {r['r']:.5f} | "
+                     f"{r['l']:.5f} | {r['beta_deg']:.4f} | {r['worst']:.2f} |")
+    return "\n".join(lines)
+
+
+def residual_readings(comp: Compensator, dyad: Dyad, phi) -> dict[str, float]:
+    """The largest residual moment (N m) of one dyad over the angles ``phi`` (rad) under the
+    computations a reader of Section IV might make: each moment of :data:`MOMENTS`, beta with
+    its sign flipped, beta read in degrees where radians were meant, and the spring's moment
+    F_sp r sin(psi) with Eq. (26)'s cos(theta) left out. Used to look for the computation
+    behind the printed maxima."""
+    out = {}
+    for name, f in MOMENTS.items():
+        out[name] = float(np.max(np.abs(f(comp, dyad, phi))))
+    out["virtual work, beta sign flipped"] = float(np.max(np.abs(unbalanced_moment(comp, Dyad(dyad.r, dyad.l, -dyad.beta), phi))))
+    misread = Dyad(dyad.r, dyad.l, np.radians(np.radians(np.degrees(dyad.beta))))
+    out["virtual work, beta in degrees read as radians"] = float(np.max(np.abs(unbalanced_moment(comp, misread, phi))))
+    y = slider_height(dyad, phi)
+    psi = np.arcsin(np.clip(y * np.sin(phi - dyad.beta) / dyad.l, -1, 1))  # Eq. (29)
+    no_cos = comp.gravity_moment(phi) + comp.k * (y - comp.l0) * dyad.r * np.sin(psi)
+    out["Eqs. (25)-(30) without Eq. (26)'s cos(theta), sign corrected"] = float(np.max(np.abs(no_cos)))
+    return out

@@ -20,7 +20,9 @@ def compensator() -> Compensator:
 EXAMPLE_A_POSITIONS = np.radians([30.0, 60.0, 120.0])  # Section V.A
 EXAMPLE_B_POSITIONS = {
     # "n = 120 positions between 30 deg and 150 deg, i.e., with a step of one degree":
-    # 120 positions and a 1 deg step over 30-150 cannot both hold; three readings.
+    # 120 positions and a 1 deg step over 30-150 cannot both hold. The step gives 121 (used);
+    # the other readings are kept for comparison.
+    "1 deg steps, 30-150 deg (121)": np.radians(np.arange(30.0, 151.0, 1.0)),
     "120 evenly spaced, 30-150 deg": np.radians(np.linspace(30.0, 150.0, 120)),
     "1 deg steps, 30-149 deg": np.radians(np.arange(30.0, 150.0, 1.0)),
     "1 deg steps, 31-150 deg": np.radians(np.arange(31.0, 151.0, 1.0)),

@@ -1,0 +1,39 @@
+"""The rules against physics: which spring multisets balance an arm (000 Eqs. 39)."""
+
+import numpy as np
+import pytest
+
+from springlab import balanceable as bal
+from springlab import energy
+from springlab.chain import random_directions
+from springlab.configurations import enumerate_configurations, slot
+from springlab.papers import juang2023 as paper
+
+
+def test_n4_rules_are_exactly_the_minimal_balanceable_multisets():
+    arm = bal.random_arm(4, 3)
+    minimal = bal.minimal_relaxed_multisets(arm)
+    assert sorted(map(bal._label, minimal)) == sorted(map(bal._label, enumerate_configurations(4)))
+
+
+def test_a_confirmed_design_balances_by_direct_geometry():
+    arm = paper.example_arm()
+    springs = bal.confirm(arm, [slot(s) for s in ("S(1,2)", "S(1,4)", "S(2,4)", "S(3,4)(-,-)")])
+    assert springs is not None
+    X = random_directions(arm.n, 500, np.random.default_rng(0))
+    assert np.ptp(energy.total_energy(arm, springs, X)) < 1e-9 * np.ptp(energy.gravity_energy(arm, X))
+    spoiled = [s.scaled(0.9) for s in springs]  # negative control
+    assert np.ptp(energy.total_energy(arm, spoiled, X)) > 1e-2 * np.ptp(energy.gravity_energy(arm, X))
+
+
+@pytest.mark.parametrize("config", [["S(1,4)"], ["S(1,2)", "S(1,4)", "S(3,4)(-,-)"], ["S(1,3)", "S(2,3)(+,-)"]])
+def test_unbalanceable_multisets_are_refused(config):
+    n = max(slot(s).j for s in config)
+    assert bal.is_balanceable(bal.random_arm(n, 1), [slot(s) for s in config]) == "no"
+
+
+def test_the_alphabet_and_bad_n():
+    assert len(bal.alphabet(3)) == 2 + 1 + 3  # S(1,2) two ways, S(1,3), S(2,3) three ways
+    assert bal.alphabet(4).count(slot("S(1,4)")) == 2  # spans three joints: twice
+    with pytest.raises(ValueError, match="n must be an integer >= 2"):
+        bal.alphabet(1)

@@ -1,0 +1,94 @@
+"""Claims that say what they are: every claims.json holds its verdicts to their own rules,
+and Claims refuses what would make a verdict untrustworthy."""
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from springlab.claims import STATUSES, Claims
+from springlab.errors import SpringlabError
+from springlab.notebooks import notebook_paths
+
+ROOT = Path(__file__).resolve().parents[1]
+STEMS = [p.stem for p in notebook_paths(ROOT / "notebooks")]
+
+
+def _no_nan(value, where):
+    if isinstance(value, float):
+        assert math.isfinite(value), f"NaN or inf in {where}"
+    elif isinstance(value, dict):
+        for k, v in value.items():
+            _no_nan(v, f"{where}.{k}")
+    elif isinstance(value, list):
+        for k, v in enumerate(value):
+            _no_nan(v, f"{where}[{k}]")
+
+
+def check_records(records, where):
+    """The rules every claims.json obeys; returns the problems found."""
+    problems = []
+    for c in records:
+        label = f"{where}: {c.get('quantity')}"
+        if c.get("status") not in STATUSES:
+            problems.append(f"{label}: unknown status {c.get('status')!r}")
+        if not c.get("tolerance_basis"):
+            problems.append(f"{label}: no tolerance_basis")
+        if c.get("status") == "rounding" and not (c.get("band") and c["band"].get("basis")
+                                                  and c["band"].get("value") is not None):
+            problems.append(f"{label}: a rounding claim without its band")
+        if c.get("status") == "reproduced" and not abs(c["ours"] - c["paper"]) <= c["tolerance"]:
+            problems.append(f"{label}: reproduced, but |ours - paper| > tolerance")
+        try:
+            _no_nan(c, label)
+        except AssertionError as err:
+            problems.append(str(err))
+    return problems
+
+
+@pytest.mark.parametrize("stem", STEMS)
+def test_every_claims_file_keeps_its_rules(stem):
+    path = ROOT / "figures" / stem / "claims.json"
+    text = path.read_text()
+    assert "NaN" not in text and "Infinity" not in text
+    records = json.loads(text)
+    assert records
+    assert check_records(records, stem) == []
+
+
+def test_the_check_catches_each_kind_of_bad_claim():  # negative controls: the check above can fail
+    good = {"quantity": "x", "status": "reproduced", "paper": 1.0, "ours": 1.0, "tolerance": 0.1,
+            "tolerance_basis": "half a unit"}
+    assert check_records([good], "t") == []
+    bad = [dict(good, ours=2.0), dict(good, tolerance_basis=""), dict(good, status="rounding", band=None),
+           dict(good, note=float("nan")), dict(good, status="echoed")]
+    assert all(len(check_records([b], "t")) >= 1 for b in bad)
+
+
+def test_compare_refuses_nan_negative_tolerance_unknown_status_and_a_missing_basis():
+    claims = Claims("t")
+    with pytest.raises(SpringlabError, match="ours is nan"):
+        claims.compare("q", "w", 1.0, float("nan"), unit="m", tolerance=0.1, tolerance_basis="b")
+    with pytest.raises(SpringlabError, match="tolerance must be >= 0"):
+        claims.compare("q", "w", 1.0, 1.0, unit="m", tolerance=-0.1, tolerance_basis="b")
+    with pytest.raises(SpringlabError, match="expect must be one of"):
+        claims.compare("q", "w", 1.0, 1.0, unit="m", tolerance=0.1, tolerance_basis="b", expect="fine")
+    with pytest.raises(SpringlabError, match="tolerance_basis"):
+        claims.compare("q", "w", 1.0, 1.0, unit="m", tolerance=0.1, tolerance_basis="")
+    with pytest.raises(SpringlabError, match="band_basis"):
+        claims.compare("q", "w", 1.0, 1.0, unit="m", tolerance=0.1, tolerance_basis="b", rounding=0.2)
+    assert claims.records == []
+
+
+def test_statuses_and_the_written_file(tmp_path):
+    claims = Claims("t")
+    assert claims.compare("a", "w", 1.0, 1.004, unit="m", tolerance=1e-9, tolerance_basis="exact",
+                          decimals=2, expect="rounding").band["value"] > 0.004
+    claims.input("b", "w", 0.06, 0.06, unit="m", note="free choice")
+    claims.consistency("c", "w", 95.37, 95.365, unit="%", tolerance=0.005, tolerance_basis="half a unit")
+    with pytest.raises(AssertionError):
+        claims.compare("d", "w", 1.0, 2.0, unit="m", tolerance=0.1, tolerance_basis="b")  # a discrepancy
+    records = json.loads(claims.write(tmp_path).read_text())
+    assert [r["status"] for r in records] == ["rounding", "input", "consistent", "discrepancy"]
+    assert check_records(records, "t") == []
