@@ -7,7 +7,10 @@
 * design_arm on the two example arm files (verified designs, route 2), with and without
   the largest-force minimisation of the free choices;
 * the n - 1 ground springs for n = 3..8, and the relaxation screen that proves n - 2
-  impossible (n = 3..6).
+  impossible (n = 3..6);
+* the rules against physics: every inclusion-minimal multiset of springs whose linear
+  relaxation of 000 Eqs. (39) is feasible, on a random arm, n = 2..5 (n = 5 target:
+  under 10 s), beside the rules' enumeration.
 
     make bench
     python benchmarks/bench_design.py
@@ -19,6 +22,7 @@ import itertools
 import time
 from pathlib import Path
 
+from springlab import balanceable
 from springlab.arm_design import design_arm, ground_spring_design, relaxation_screen
 from springlab.chain import serial_chain
 from springlab.configurations import best_first_configurations, iter_configurations
@@ -27,6 +31,16 @@ ARMS = Path(__file__).resolve().parents[1] / "notebooks" / "arms"
 
 
 def main() -> None:
+    print("the rules against physics: inclusion-minimal relaxation-feasible multisets (000 Eqs. 39):")
+    for n in (2, 3, 4, 5):
+        arm = balanceable.random_arm(n, 0)
+        t0 = time.perf_counter()
+        minimal = balanceable.minimal_relaxed_multisets(arm)
+        dt = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        rules = list(iter_configurations(n))
+        print(f"  n = {n}: {len(minimal):4d} minimal multisets in {dt:6.2f} s; R1-R6 admit {len(rules):4d} "
+              f"in {time.perf_counter() - t0:5.2f} s")
     print("all configurations with necessary springs (rules R1-R6):")
     for n in (3, 4, 5, 6):
         t0 = time.perf_counter()

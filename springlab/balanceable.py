@@ -35,7 +35,7 @@ balanceable multiset contains a relaxation-minimal one, which is then balanceabl
 from __future__ import annotations
 
 from collections import Counter
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -129,6 +129,66 @@ def relaxation_feasible(chain: Chain, slots) -> bool:
     condition for balance; False is a proof that the multiset cannot balance)."""
     slots = list(slots)
     return bool(slots) and _phase_one(_programme(chain, slots))[0] <= 1e-9
+
+
+def _long_columns(prog: _Programme, slots) -> list[list[int]]:
+    """Per spring spanning three or more joints: its columns (P, A, B, k) in the programme."""
+    where: dict[int, list[int]] = {}
+    for col, own in enumerate(prog.owner):
+        where.setdefault(int(own), []).append(col)
+    return [where[idx] for idx, s in enumerate(slots) if s.j - s.i >= 3]
+
+
+def _fixed_ratio(x0: np.ndarray, N: np.ndarray, i: int, j: int) -> float | None:
+    """c when x_i = c x_j at every point x0 + N z of the equations' solution set, else None."""
+    vi, vj = np.r_[x0[i], N[i]], np.r_[x0[j], N[j]]
+    if np.abs(vj).max() < 1e-12:
+        return None
+    c = float(vi @ vj / (vj @ vj))
+    return c if np.abs(vi - c * vj).max() <= 1e-9 * max(1.0, np.abs(vi).max()) else None
+
+
+def tightened_infeasible(chain: Chain, slots) -> bool:
+    """True when Eqs. (39) with P k = A B provably have no solution with the stated signs.
+
+    Exact consequences of the coupling are added to the linear equations until none is new:
+    where the equations force B = c k for a spring (its b fixed at c), P k = A B gives P = c A;
+    likewise A = c k gives P = c B, P = c A gives B = c k, P = c B gives A = c k. Then the
+    linear programme with strict signs decides: infeasible is a proof (the added rows hold at
+    every solution). False proves nothing.
+    """
+    from scipy.linalg import null_space
+
+    slots = list(slots)
+    prog = _programme(chain, slots)
+    longs = _long_columns(prog, slots)
+    A, rhs = prog.A_eq.copy(), prog.b_eq.copy()
+    m = A.shape[1]
+    for _ in range(4 * len(longs) + 1):
+        x0 = np.linalg.lstsq(A, rhs, rcond=None)[0]
+        if np.abs(A @ x0 - rhs).max() > 1e-9:
+            return True  # the equations alone are inconsistent
+        N = null_space(A)
+        N = N if N.size else np.zeros((m, 1))
+        new = None
+        for P, Aq, Bq, K in longs:
+            for (u, v), (p, q) in (((Bq, K), (P, Aq)), ((Aq, K), (P, Bq)), ((P, Aq), (Bq, K)), ((P, Bq), (Aq, K))):
+                c = _fixed_ratio(x0, N, u, v)
+                if c is None:
+                    continue
+                row = np.zeros(m)
+                row[p], row[q] = 1.0, -c  # x_p = c x_q, from P k = A B
+                if abs(row @ x0) > 1e-9 and np.abs(row @ N).max() < 1e-9:
+                    return True  # contradicts the equations
+                if np.abs(row @ N).max() > 1e-9:
+                    new = row
+                    break
+            if new is not None:
+                break
+        if new is None:
+            break
+        A, rhs = np.vstack([A, new]), np.append(rhs, 0.0)
+    return _phase_one(_Programme(prog.items, prog.owner, prog.signs, A, rhs))[0] > 1e-9
 
 
 def _entry_signs(chain: Chain, s: SpringSlot) -> dict[tuple[int, int], set[int]]:
@@ -243,18 +303,23 @@ def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list
     return sorted(out, key=lambda cfg: (len(cfg), _label(cfg)))
 
 
-def confirm(chain: Chain, slots, *, starts: int = 3, seed=0):
+def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
     """Springs with the slots' signs that satisfy Eqs. (39) exactly, or None.
 
     Eqs. (39) are linear in (P, A, B, k) per spring; the coupling P k = A B binds for
     springs spanning three or more joints (for shorter ones k, or a and b, are free to
-    meet it). SLSQP (scipy) minimises sum (P k - A B)^2 over the linear equations and
-    the sign boxes, from linear-programme vertices (random objectives); a zero is a
-    design. The springs are rebuilt (k = K, a = A / K, b = B / K; a shorter spring's k
-    from its P) and their balance residual (000 Eqs. 39, route 1) checked to 1e-9 of
-    the largest G_1,j.
+    meet it). Two searches, each polished by bounded least squares (scipy) on the
+    equations and the couplings together:
+
+    1. from vertices of the linear programme (random objectives);
+    2. with each long spring's a fixed (A = a k and P = a B are then linear), Nelder-Mead
+       on the a's minimises the programme's least violation; a zero there can sit on a
+       thin set (an end forced onto a joint, a = -r_i), which the first search misses.
+
+    The springs are rebuilt (k = K, a = A / K, b = B / K; a shorter spring's k from its P)
+    and their balance residual (000 Eqs. 39, route 1) checked to 1e-9 of the largest G_1,j.
     """
-    from scipy.optimize import linprog, minimize
+    from scipy.optimize import least_squares, linprog, minimize
 
     from springlab.quadratic import balance_residual, gravity_entries
     from springlab.springs import Spring
@@ -262,22 +327,34 @@ def confirm(chain: Chain, slots, *, starts: int = 3, seed=0):
     slots = list(slots)
     prog = _programme(chain, slots)
     m = len(prog.signs)
-    box = [(EPS, BOUND) if sg > 0 else (-BOUND, -EPS) for sg in prog.signs]
-    where = {}  # per spring: column of each quantity
-    for col, own in enumerate(prog.owner):
-        where.setdefault(int(own), []).append(col)
-    long_ = [cols for idx, cols in sorted(where.items()) if slots[idx].j - slots[idx].i >= 3]
-    P, A, B, K = (np.array([c[q] for c in long_], dtype=int) for q in range(4)) if long_ else [np.zeros(0, int)] * 4
+    lo = np.where(prog.signs > 0, EPS, -BOUND)
+    hi = np.where(prog.signs > 0, BOUND, -EPS)
+    longs = _long_columns(prog, slots)
+    long_signs = [s.sa for s in slots if s.j - s.i >= 3]
+    P, A, B, K = (np.array([c[q] for c in longs], dtype=int) for q in range(4)) if longs else [np.zeros(0, int)] * 4
+    scale = max(abs(v) for v in gravity_entries(chain.r, chain.d, chain.m, chain.g).values())
+    length = float(np.mean(chain.r))
+    rng = np.random.default_rng(seed)
 
-    def bilinear(v):
-        return v[P] * v[K] - v[A] * v[B]
+    def residual(v):
+        return np.concatenate([prog.A_eq @ v - prog.b_eq, v[P] * v[K] - v[A] * v[B]])
 
-    def objective(v):
-        r = bilinear(v)
+    def with_a(log_a):  # the equations with each long spring's a fixed
+        rows = []
+        for (Pc, Ac, Bc, Kc), la, sa in zip(longs, log_a, long_signs, strict=True):
+            for x, y in ((Ac, Kc), (Pc, Bc)):
+                row = np.zeros(m)
+                row[x], row[y] = 1.0, -sa * np.exp(la)
+                rows.append(row)
+        return _Programme(prog.items, prog.owner, prog.signs, np.vstack([prog.A_eq, *rows]),
+                          np.concatenate([prog.b_eq, np.zeros(len(rows))]))
+
+    def coupling_squared(v):
+        r = v[P] * v[K] - v[A] * v[B]
         return float(r @ r)
 
-    def gradient(v):
-        r = bilinear(v)
+    def coupling_gradient(v):
+        r = v[P] * v[K] - v[A] * v[B]
         g = np.zeros_like(v)
         np.add.at(g, P, 2 * r * v[K])
         np.add.at(g, K, 2 * r * v[P])
@@ -285,43 +362,66 @@ def confirm(chain: Chain, slots, *, starts: int = 3, seed=0):
         np.add.at(g, B, -2 * r * v[A])
         return g
 
-    rng = np.random.default_rng(seed)
-    scale = max(abs(v) for v in gravity_entries(chain.r, chain.d, chain.m, chain.g).values())
-    length = float(np.mean(chain.r))
-    for _ in range(starts):
-        lp = linprog(rng.normal(size=m), A_eq=prog.A_eq, b_eq=prog.b_eq, bounds=box, method="highs")
-        if lp.status != 0:
-            return None
-        v = lp.x
-        if len(P) and objective(v) > 1e-24:
-            res = minimize(objective, v, jac=gradient, method="SLSQP", bounds=box,
-                           constraints=[{"type": "eq", "fun": lambda x: prog.A_eq @ x - prog.b_eq,
-                                         "jac": lambda x: prog.A_eq}],
-                           options={"maxiter": 500, "ftol": 1e-30})
-            v = res.x
-        springs = []
+    def polish(v0):
+        v0 = np.clip(v0, lo, hi)
+        if len(P):  # SLSQP on the coupling within the equations: fast when it converges
+            v0 = minimize(coupling_squared, v0, jac=coupling_gradient, method="SLSQP", bounds=list(zip(lo, hi, strict=True)),
+                          constraints=[{"type": "eq", "fun": lambda x: prog.A_eq @ x - prog.b_eq,
+                                        "jac": lambda x: prog.A_eq}], options={"maxiter": 300, "ftol": 1e-30}).x
+        found = springs_of(v0)
+        if found is not None:
+            return found
+        sol = least_squares(residual, np.clip(v0, lo, hi), bounds=(lo, hi), xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                            max_nfev=500)
+        return springs_of(sol.x)
+
+    def springs_of(v):
+        where: dict[int, list[int]] = {}
+        for col, own in enumerate(prog.owner):
+            where.setdefault(int(own), []).append(col)
+        out = []
         for idx, s in enumerate(slots):
             cols = where[idx]
             Pv = v[cols[0]] * scale  # J
             if s.j - s.i == 1:  # only P = k a b enters: any k with a b = P / k
                 k = scale / length**2
-                a = s.sa * np.sqrt(abs(Pv) / k)
-                b = s.sb * np.sqrt(abs(Pv) / k)
+                a, b = s.sa * np.sqrt(abs(Pv) / k), s.sb * np.sqrt(abs(Pv) / k)
             else:
                 Av, Bv = v[cols[1]] * scale / length, v[cols[2]] * scale / length  # N
                 k = v[cols[3]] * scale / length**2 if s.j - s.i >= 3 else Av * Bv / Pv  # N/m
                 a, b = Av / k, Bv / k
-            springs.append(Spring(s.i, s.j, float(a), float(b), float(k)))
-        if np.abs(balance_residual(chain, springs)).max() <= 1e-9 * scale:
-            return tuple(springs)
+            out.append(Spring(s.i, s.j, float(a), float(b), float(k)))
+        ok = np.abs(balance_residual(chain, out)).max() <= 1e-9 * scale
+        return tuple(out) if ok else None
+
+    for _ in range(starts):
+        lp = linprog(rng.normal(size=m), A_eq=prog.A_eq, b_eq=prog.b_eq, bounds=list(zip(lo, hi, strict=True)), method="highs")
+        if lp.status != 0:
+            return None
+        found = polish(lp.x)
+        if found is not None:
+            return found
+    if not longs:
+        return None
+    for _ in range(2 * starts):
+        res = minimize(lambda la: _phase_one(with_a(la))[0], rng.uniform(-3.0, 1.0, len(longs)), method="Nelder-Mead",
+                       options={"xatol": 1e-10, "fatol": 1e-14, "maxiter": 400})
+        fixed = with_a(res.x)
+        rows = fixed.A_eq.shape[0]
+        lp = linprog(np.r_[np.zeros(m), np.ones(2 * rows)], A_eq=np.hstack([fixed.A_eq, np.eye(rows), -np.eye(rows)]),
+                     b_eq=fixed.b_eq, bounds=list(zip(lo, hi, strict=True)) + [(0, None)] * (2 * rows), method="highs")
+        found = polish(lp.x[:m])
+        if found is not None:
+            return found
     return None
 
 
 def is_balanceable(chain: Chain, slots) -> str:
-    """'yes' (a design was found), 'no' (the relaxation proves it impossible) or
-    'undecided' (the relaxation allows it, the search found no design)."""
+    """'yes' (a design was found and checked), 'no' (proved: the linear relaxation, or the
+    relaxation tightened by the coupling's exact consequences, has no solution) or
+    'undecided' (neither)."""
     slots = list(slots)
-    if not relaxation_feasible(chain, slots):
+    if not relaxation_feasible(chain, slots) or tightened_infeasible(chain, slots):
         return "no"
     return "yes" if confirm(chain, slots) is not None else "undecided"
 
@@ -342,28 +442,36 @@ def _label(cfg) -> str:
 
 @dataclass
 class RulesAgainstPhysics:
-    """Per n: the rules' configurations and the balanceable multisets, compared."""
+    """Per n: the rules' configurations and the balanceable multisets, compared (first arm)."""
 
     n: int
     arms: int
-    minimal: list[tuple[SpringSlot, ...]]  # inclusion-minimal balanceable multisets
-    unconfirmed: list[tuple[SpringSlot, ...]]  # relaxation-minimal, no design found
+    minimal: list[tuple[SpringSlot, ...]]  # relaxation-minimal and balanceable: inclusion-minimal
+    refuted: list[tuple[SpringSlot, ...]]  # relaxation-minimal, proved unbalanceable by the coupling
+    undecided: list[tuple[SpringSlot, ...]]  # relaxation-minimal, neither proved nor confirmed
     admitted: list[tuple[SpringSlot, ...]]  # R1-R6's configurations with necessary springs
     admitted_status: dict[str, str]  # per admitted configuration: 'yes', 'no', 'undecided'
     admitted_single_minimal: int  # admitted, balanceable, no single spring removable
     admitted_inclusion_minimal: int  # admitted and inclusion-minimal balanceable
     rejected: dict[str, list[str]]  # minimal balanceable but rejected: label -> violations
     same_on_every_arm: bool
-    counts_per_arm: list[int] = field(default_factory=list)
+
+    @property
+    def exact(self) -> bool:
+        """True when the minimal list is complete: nothing refuted or undecided, so every
+        balanceable multiset contains one of ``minimal``."""
+        return not self.refuted and not self.undecided
 
     def row(self) -> dict[str, int | str]:
         bad = sum(1 for v in self.admitted_status.values() if v == "no")
         und = sum(1 for v in self.admitted_status.values() if v == "undecided")
-        return {"n": self.n, "minimal balanceable (inclusion)": len(self.minimal),
+        count = str(len(self.minimal)) if self.exact else f">= {len(self.minimal)}"
+        return {"n": self.n, "minimal balanceable (inclusion)": count,
+                "relaxation-minimal: refuted / undecided": f"{len(self.refuted)} / {len(self.undecided)}",
                 "R1-R6 admit": len(self.admitted),
                 "admitted, balanceable, no single spring removable": self.admitted_single_minimal,
                 "admitted, inclusion-minimal": self.admitted_inclusion_minimal,
-                "admitted, not balanceable": bad, "admitted, undecided": und,
+                "admitted, not balanceable (proved)": bad, "admitted, undecided": und,
                 "minimal balanceable, rejected by R1-R6": len(self.rejected),
                 "same on every arm": "yes" if self.same_on_every_arm else "no"}
 
@@ -373,42 +481,54 @@ def _contains(big, small) -> bool:
     return all(b[k] >= v for k, v in s.items())
 
 
-def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0) -> RulesAgainstPhysics:
+def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: bool = False) -> RulesAgainstPhysics:
     """Test R1-R6 both ways on ``arms`` random n-link arms (:func:`random_arm`).
 
-    The minimal balanceable multisets are those of the first arm, and the others must
-    give the same list (``same_on_every_arm``); the admitted configurations are
-    :func:`springlab.configurations.enumerate_configurations`, each decided on the
-    first arm, with both minimality notions.
+    On the first arm: the relaxation-minimal multisets (:func:`minimal_relaxed_multisets`),
+    each confirmed by a design, refuted by :func:`tightened_infeasible`, or undecided; the
+    rules' configurations (:func:`springlab.configurations.enumerate_configurations`), each
+    decided (:func:`is_balanceable`) with both minimality notions. On every arm the
+    relaxation-minimal lists and their refutations must agree (``same_on_every_arm``).
+
+    A balanceable multiset that contains a refuted one is not relaxation-minimal and is not
+    enumerated: with refutations the minimal count is a lower bound (:attr:`exact`).
     """
+    from tqdm import tqdm
+
     from springlab.configurations import enumerate_configurations
 
     rng = np.random.default_rng(seed)
     chains = [random_arm(n, rng) for _ in range(arms)]
-    per_arm = [minimal_relaxed_multisets(c) for c in chains]
+    signature = []
+    for c in chains:
+        relaxed = minimal_relaxed_multisets(c)
+        signature.append(sorted((_label(cfg), tightened_infeasible(c, cfg)) for cfg in relaxed))
+        if len(signature) == 1:
+            first_relaxed = relaxed
     first = chains[0]
-    confirmed = [cfg for cfg in per_arm[0] if confirm(first, cfg) is not None]
-    unconfirmed = [cfg for cfg in per_arm[0] if cfg not in confirmed]
-    same = all(sorted(map(_label, x)) == sorted(map(_label, per_arm[0])) for x in per_arm[1:])
+    minimal, refuted, undecided = [], [], []
+    for cfg in tqdm(first_relaxed, disable=not progress, desc=f"n = {n}, minimal multisets", mininterval=2.0):
+        if tightened_infeasible(first, cfg):
+            refuted.append(cfg)
+        elif confirm(first, cfg) is not None:
+            minimal.append(cfg)
+        else:
+            undecided.append(cfg)
     admitted = enumerate_configurations(n)
     status, single, inclusion = {}, 0, 0
-    for cfg in admitted:
+    for cfg in tqdm(admitted, disable=not progress, desc=f"n = {n}, R1-R6 configurations", mininterval=2.0):
         st = is_balanceable(first, cfg)
         status[_label(cfg)] = st
         if st != "yes":
             continue
-        if all(is_balanceable(first, cfg[:k] + cfg[k + 1:]) != "yes"
-               for k in range(len(cfg))):
+        if all(is_balanceable(first, cfg[:k] + cfg[k + 1:]) == "no" for k in range(len(cfg))):
             single += 1
-        if any(sorted(cfg) == sorted(m) for m in confirmed):
+        if any(sorted(cfg) == sorted(m) for m in minimal):
             inclusion += 1
-    rejected = {}
-    for cfg in confirmed:
-        v = rule_violations(n, cfg)
-        if v:
-            rejected[_label(cfg)] = [str(x) for x in v]
-    return RulesAgainstPhysics(n, arms, confirmed, unconfirmed, admitted, status, single, inclusion,
-                               rejected, same, [len(x) for x in per_arm])
+    rejected = {_label(cfg): [str(x) for x in rule_violations(n, cfg)] for cfg in minimal if rule_violations(n, cfg)}
+    same = all(sig == signature[0] for sig in signature[1:])
+    return RulesAgainstPhysics(n, arms, minimal, refuted, undecided, admitted, status, single, inclusion,
+                               rejected, same)
 
 
 def counts_markdown(results) -> str:

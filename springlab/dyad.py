@@ -479,13 +479,13 @@ def synthesis_path(comp: Compensator, phi, Cs, *, branch: int = -1) -> dict[str,
     return {"C": Cs, "r": zero(r), "l": zero(np.sqrt(np.maximum(l_sq, 0.0))), "beta": zero(beta), "ok": ok}
 
 
-def batch_moments(comp: Compensator, r, l, beta, phi, moment: str = "virtual work") -> tuple[np.ndarray, np.ndarray]:
+def batch_moments(comp: Compensator, r, l, beta, phi, moment: str = "virtual work") -> tuple[np.ndarray, np.ndarray]:  # noqa: E741 - the paper's symbol
     """Unbalanced moments (N m) of many dyads (arrays r, l, beta of one shape (D,)) at the
     angles phi (P,): (moments (D, P), closes (D,)), where a dyad that cannot close at some
     angle has closes False and zero moments. ``moment`` is a key of :data:`MOMENTS`."""
     if moment not in MOMENTS:
         raise SpringlabError(f"moment must be one of {tuple(MOMENTS)}, got {moment!r}")
-    r, l, beta = (np.asarray(v, dtype=float)[:, None] for v in (r, l, beta))
+    r, l, beta = (np.asarray(v, dtype=float)[:, None] for v in (r, l, beta))  # noqa: E741
     phi = np.atleast_1d(np.asarray(phi, dtype=float))[None, :]
     u = phi - beta
     closing = l**2 - (r * np.sin(u)) ** 2
@@ -612,7 +612,7 @@ def optimise_from_many(comp: Compensator, phi, starts, *, free_l0: bool = False)
     return min(runs, key=lambda o: o.max_moment), runs
 
 
-def start_grid(r=(0.08, 0.13, 0.2), l=(0.4, 0.55, 0.8), beta_deg=(-10.0, 0.0, 10.0)) -> list[Dyad]:
+def start_grid(r=(0.08, 0.13, 0.2), l=(0.4, 0.55, 0.8), beta_deg=(-10.0, 0.0, 10.0)) -> list[Dyad]:  # noqa: E741
     """Starting dyads on a grid of r (m), l (m) and beta (deg), for :func:`optimise_from_many`."""
     return [Dyad(ri, li, np.radians(bi)) for ri in r for li in l for bi in beta_deg if li > ri]
 

@@ -37,3 +37,14 @@ def test_the_alphabet_and_bad_n():
     assert bal.alphabet(4).count(slot("S(1,4)")) == 2  # spans three joints: twice
     with pytest.raises(ValueError, match="n must be an integer >= 2"):
         bal.alphabet(1)
+
+
+def test_the_coupling_refutes_what_the_relaxation_allows():
+    # (2,3) and (2,4) force b_S(1,4) = r_4, so P k = A B gives P_14 = r_4 A_14; row 1 then needs
+    # G_14 / r_4 = G_13 / r_3, false for a generic arm
+    arm = bal.random_arm(5, 1)
+    config = [slot(s) for s in "S(1,2) S(1,4) S(1,5) S(2,5)(+,+) S(2,5)(+,-) S(3,4)(+,+)".split()]
+    assert bal.relaxation_feasible(arm, config)
+    assert bal.tightened_infeasible(arm, config)
+    assert bal.is_balanceable(arm, config) == "no"
+    assert not bal.tightened_infeasible(paper.example_arm(), paper.EXAMPLE_CONFIGURATION)  # it balances

@@ -86,7 +86,7 @@ def test_statuses_and_the_written_file(tmp_path):
     assert claims.compare("a", "w", 1.0, 1.004, unit="m", tolerance=1e-9, tolerance_basis="exact",
                           decimals=2, expect="rounding").band["value"] > 0.004
     claims.input("b", "w", 0.06, 0.06, unit="m", note="free choice")
-    claims.consistency("c", "w", 95.37, 95.365, unit="%", tolerance=0.005, tolerance_basis="half a unit")
+    claims.consistency("c", "w", 95.37, 95.366, unit="%", tolerance=0.005, tolerance_basis="half a unit")
     with pytest.raises(AssertionError):
         claims.compare("d", "w", 1.0, 2.0, unit="m", tolerance=0.1, tolerance_basis="b")  # a discrepancy
     records = json.loads(claims.write(tmp_path).read_text())
