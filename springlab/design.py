@@ -459,9 +459,52 @@ def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = 
         out = find_design(chain, slots, start=candidate, restarts=0, tol=tol, max_extension=reach,
                           max_stiffness=max_stiffness)
     except UnbalanceableError:
-        return springs
+        out = None
+    if out is None or largest_force_bound(chain, out) > 1.01 * largest_force_bound(chain, candidate):
+        # the search in log(k), log|a|, log|b| can leave the optimum's neighbourhood (seen with one
+        # BLAS thread): polish in the linear unknowns instead, from the optimum, in its sign boxes
+        out = _polish_linear(chain, slots, res.x[:-1], bounds[:-1], M * units / scale_u, g_keys / scale_u,
+                             scale_k, length, reach, max_stiffness, tol, scale_u)
+        if out is None:
+            return springs
     force = largest_force_bound(chain, out) / (scale_k * length)
     return out if force < start else springs
+
+
+def _polish_linear(chain, slots, x0, bounds, M, g, scale_k, length, reach, max_stiffness, tol, scale_u):
+    """Least squares on Eqs. (39) (M x + g = 0, scaled) and P k = A B, from x0 within the sign
+    boxes ``bounds``: springs balanced to ``tol`` of the largest G_1,j within the limits, or None."""
+    from scipy.optimize import least_squares
+
+    m = len(slots)
+    lo = np.array([-np.inf if b[0] is None else b[0] for b in bounds])
+    hi = np.array([np.inf if b[1] is None else b[1] for b in bounds])
+
+    def residual(x):
+        y = x.reshape(m, 4)
+        return np.concatenate([M @ x + g, y[:, 0] * y[:, 3] - y[:, 1] * y[:, 2]])
+
+    sol = least_squares(residual, np.clip(x0, lo, hi), bounds=(lo, hi), xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                        max_nfev=2000)
+    y = sol.x.reshape(m, 4)
+    k = y[:, 3] * scale_k
+    springs = tuple(Spring(s.i, s.j, float(A * scale_k * length / kk), float(B * scale_k * length / kk), float(kk))
+                    for s, A, B, kk in zip(slots, y[:, 1], y[:, 2], k, strict=True))
+    if np.max(np.abs(M @ _linear_values(springs, scale_u, scale_k, length) + g)) > tol:
+        return None
+    if max_stiffness is not None and max(s.k for s in springs) > max_stiffness * (1 + 1e-9):
+        return None
+    try:
+        check_attachments(chain, springs, max_extension=reach * (1 + 1e-9))
+    except SpringlabError:
+        return None
+    return springs
+
+
+def _linear_values(springs, scale_u, scale_k, length) -> np.ndarray:
+    """(P, A, B, k) per spring in the scaled units of :func:`_force_round`."""
+    return np.array([[s.k * s.a * s.b / scale_u, s.k * s.a / (scale_k * length), s.k * s.b / (scale_k * length),
+                      s.k / scale_k] for s in springs]).ravel()
 
 
 @dataclass(frozen=True)
