@@ -77,18 +77,17 @@ def alphabet(n: int) -> list[SpringSlot]:
 
 
 def _quantities(chain: Chain, s: SpringSlot) -> list[tuple[int, dict[tuple[int, int], float]]]:
-    """The spring's linear quantities that enter Eqs. (39): (sign, {entry: coefficient}),
-    in units where lengths are measured in the mean link length."""
+    """The spring's linear quantities that enter Eqs. (39): (sign, {entry: coefficient}), from
+    :func:`springlab.design._linear_columns` (000 Eqs. 23a-d written linearly), with lengths
+    measured in the mean link length. A quantity that enters no entry (A and B of a spring
+    over one joint, k of one over fewer than three) is left out."""
+    from springlab.design import _linear_columns
+
     length = float(np.mean(chain.r))
-    rr = {t: chain.r[t - 2] / length for t in range(2, chain.n + 1)}
-    inner = range(s.i + 1, s.j)
-    out = [(s.sa * s.sb, {(s.i, s.j): -1.0})]  # 000 Eq. (23a): -k a b
-    if s.j - s.i >= 2:
-        out.append((s.sa, {(s.i, t): -rr[t] for t in inner}))  # 000 Eq. (23b): -r_t k a
-        out.append((s.sb, {(t, s.j): rr[t] for t in inner}))  # 000 Eq. (23d): r_t k b
-    if s.j - s.i >= 3:
-        out.append((1, {(t, v): rr[t] * rr[v] for t in inner for v in inner if t < v}))  # 000 Eq. (23c)
-    return out
+    cols = _linear_columns(chain, [s])[0]
+    unit = {"P": 1.0, "A": length, "B": length, "K": length**2}  # P = k a b, A = k a, B = k b, k
+    sign = {"P": s.sa * s.sb, "A": s.sa, "B": s.sb, "K": 1}
+    return [(sign[q], {key: coef / unit[q] for key, coef in cols[q].items()}) for q in "PABK" if cols[q]]
 
 
 @dataclass

@@ -461,19 +461,19 @@ def synthesis_path(comp: Compensator, phi, Cs, *, branch: int = -1) -> dict[str,
     (Eq. 19); the other entries there are 0, never NaN."""
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     Cs = np.atleast_1d(np.asarray(Cs, dtype=float))
-    radicand = (2.0 * Cs[:, None] - 2.0 * comp.gravity_energy(phi)[None, :]) / comp.k  # Eq. (6)
+    radicand = (2.0 * Cs[:, None] - 2.0 * comp.gravity_energy(phi)[None, :]) / comp.k  # 002 Eq. (6)
     ok = np.all(radicand >= 0, axis=1)
-    y = comp.l0 + branch * np.sqrt(np.where(ok[:, None], radicand, 0.0))  # Eq. (7)
-    A = np.stack([2 * y * np.cos(phi), 2 * y * np.sin(phi), np.ones_like(y)], axis=2)  # Eq. (16)
+    y = comp.l0 + branch * np.sqrt(np.where(ok[:, None], radicand, 0.0))  # 002 Eq. (7)
+    A = np.stack([2 * y * np.cos(phi), 2 * y * np.sin(phi), np.ones_like(y)], axis=2)  # 002 Eq. (16)
     c = y**2
     AT = np.transpose(A, (0, 2, 1))
     normal = AT @ A
     ok &= np.abs(np.linalg.det(normal)) > 1e-12 * np.linalg.norm(normal, axis=(1, 2)) ** 3
     safe = np.where(ok[:, None, None], normal, np.eye(3))
     z = np.linalg.solve(safe, (AT @ c[:, :, None]))[:, :, 0]  # least squares (exact for 3 positions)
-    r = np.hypot(z[:, 0], z[:, 1])  # Eqs. (12)-(13), (18)
-    beta = np.arctan2(z[:, 1], z[:, 0])  # Eq. (17)
-    l_sq = z[:, 2] + r**2  # Eq. (19)
+    r = np.hypot(z[:, 0], z[:, 1])  # 002 Eqs. (12)-(13), (18)
+    beta = np.arctan2(z[:, 1], z[:, 0])  # 002 Eq. (17)
+    l_sq = z[:, 2] + r**2  # 002 Eq. (19)
     ok &= (l_sq > 0) & (r > 0)
     zero = lambda v: np.where(ok, v, 0.0)  # noqa: E731
     return {"C": Cs, "r": zero(r), "l": zero(np.sqrt(np.maximum(l_sq, 0.0))), "beta": zero(beta), "ok": ok}
@@ -491,16 +491,16 @@ def batch_moments(comp: Compensator, r, l, beta, phi, moment: str = "virtual wor
     closing = l**2 - (r * np.sin(u)) ** 2
     closes = np.all(closing > 0, axis=1) & (l[:, 0] > 0)
     l_cos = np.sqrt(np.where(closes[:, None], closing, 1.0))  # l cos(theta)
-    y = r * np.cos(u) + l_cos  # Eq. (24)
-    F_sp = comp.k * (y - comp.l0)  # Eq. (25)
+    y = r * np.cos(u) + l_cos  # 002 Eq. (24)
+    F_sp = comp.k * (y - comp.l0)  # 002 Eq. (25)
     gravity = comp.G * comp.s * np.sin(phi)
     vw = gravity + F_sp * r * np.sin(u) * y / l_cos  # -dP/dphi
     if moment == "virtual work":
         out = vw
     else:
         cos_theta = l_cos / np.where(closes[:, None], l, 1.0)
-        spring_printed = (vw - gravity) * cos_theta**2  # Eq. (26)'s F_sp cos(theta): the true share x cos^2
-        # Eq. (30) as printed, -(M_sp + M_G) with M_G = -G s sin(phi), subtracts the spring's share
+        spring_printed = (vw - gravity) * cos_theta**2  # 002 Eq. (26)'s F_sp cos(theta): the true share x cos^2
+        # 002 Eq. (30) as printed, -(M_sp + M_G) with M_G = -G s sin(phi), subtracts the spring's share
         out = gravity + spring_printed if moment.endswith("sign corrected") else gravity - spring_printed
     return np.where(closes[:, None], out, 0.0), closes
 
@@ -645,7 +645,7 @@ def residual_readings(comp: Compensator, dyad: Dyad, phi) -> dict[str, float]:
     misread = Dyad(dyad.r, dyad.l, np.radians(np.radians(np.degrees(dyad.beta))))
     out["virtual work, beta in degrees read as radians"] = float(np.max(np.abs(unbalanced_moment(comp, misread, phi))))
     y = slider_height(dyad, phi)
-    psi = np.arcsin(np.clip(y * np.sin(phi - dyad.beta) / dyad.l, -1, 1))  # Eq. (29)
+    psi = np.arcsin(np.clip(y * np.sin(phi - dyad.beta) / dyad.l, -1, 1))  # 002 Eq. (29)
     no_cos = comp.gravity_moment(phi) + comp.k * (y - comp.l0) * dyad.r * np.sin(psi)
     out["Eqs. (25)-(30) without Eq. (26)'s cos(theta), sign corrected"] = float(np.max(np.abs(no_cos)))
     return out
