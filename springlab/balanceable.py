@@ -34,7 +34,6 @@ balanceable multiset contains a relaxation-minimal one, which is then balanceabl
 
 from __future__ import annotations
 
-from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
@@ -473,11 +472,6 @@ class RulesAgainstPhysics:
                 "admitted, not balanceable (proved)": bad, "admitted, undecided": und,
                 "minimal balanceable, rejected by R1-R6": len(self.rejected),
                 "same on every arm": "yes" if self.same_on_every_arm else "no"}
-
-
-def _contains(big, small) -> bool:
-    b, s = Counter(big), Counter(small)
-    return all(b[k] >= v for k, v in s.items())
 
 
 def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: bool = False) -> RulesAgainstPhysics:

@@ -452,9 +452,7 @@ def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = 
     P, A, B, K = parts(res.x)
     if not (np.all(np.isfinite(res.x)) and np.all(K > 0) and res.x[-1] < start):
         return springs
-    k = K * scale_k
-    candidate = [Spring(s.i, s.j, float(a * scale_k * length / kk), float(b * scale_k * length / kk), float(kk))
-                 for s, a, b, kk in zip(slots, A, B, k, strict=True)]
+    candidate = _springs_from_linear(slots, A, B, K, scale_k, length)
     try:  # polish the balance (SLSQP meets its constraints to about 1e-8) within the same limits
         out = find_design(chain, slots, start=candidate, restarts=0, tol=tol, max_extension=reach,
                           max_stiffness=max_stiffness)
@@ -487,9 +485,7 @@ def _polish_linear(chain, slots, x0, bounds, M, g, scale_k, length, reach, max_s
     sol = least_squares(residual, np.clip(x0, lo, hi), bounds=(lo, hi), xtol=1e-15, ftol=1e-15, gtol=1e-15,
                         max_nfev=2000)
     y = sol.x.reshape(m, 4)
-    k = y[:, 3] * scale_k
-    springs = tuple(Spring(s.i, s.j, float(A * scale_k * length / kk), float(B * scale_k * length / kk), float(kk))
-                    for s, A, B, kk in zip(slots, y[:, 1], y[:, 2], k, strict=True))
+    springs = _springs_from_linear(slots, y[:, 1], y[:, 2], y[:, 3], scale_k, length)
     if np.max(np.abs(M @ _linear_values(springs, scale_u, scale_k, length) + g)) > tol:
         return None
     if max_stiffness is not None and max(s.k for s in springs) > max_stiffness * (1 + 1e-9):
@@ -499,6 +495,13 @@ def _polish_linear(chain, slots, x0, bounds, M, g, scale_k, length, reach, max_s
     except SpringlabError:
         return None
     return springs
+
+
+def _springs_from_linear(slots, A, B, K, scale_k, length) -> tuple[Spring, ...]:
+    """Springs from the scaled A = k a, B = k b and k of :func:`_force_round`: a = A / k, b = B / k (m)."""
+    k = np.asarray(K) * scale_k
+    return tuple(Spring(s.i, s.j, float(a * scale_k * length / kk), float(b * scale_k * length / kk), float(kk))
+                 for s, a, b, kk in zip(slots, A, B, k, strict=True))
 
 
 def _linear_values(springs, scale_u, scale_k, length) -> np.ndarray:

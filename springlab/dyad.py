@@ -209,18 +209,18 @@ EQ32_READINGS = ("signed sum", "sum of magnitudes", "sum of squares", "maximum m
 """How Eq. (31)'s total of the moments at the prescribed positions can be read."""
 
 
-def eq32_objective(moments: np.ndarray, reading: str) -> float:
-    """Eq. (31)'s total unbalanced moment under one reading of what is summed."""
+def eq32_objective(moments: np.ndarray, reading: str):
+    """Eq. (31)'s total unbalanced moment under one reading of what is summed, over the last
+    axis: a float for one set of moments (P,), an array for a batch (D, P)."""
     moments = np.asarray(moments, dtype=float)
-    if reading == "signed sum":
-        return float(np.sum(moments))
-    if reading == "sum of magnitudes":
-        return float(np.sum(np.abs(moments)))
-    if reading == "sum of squares":
-        return float(np.sum(moments**2))
-    if reading == "maximum magnitude":
-        return float(np.max(np.abs(moments)))
-    raise SpringlabError(f"reading must be one of {EQ32_READINGS}, got {reading!r}")
+    totals = {"signed sum": lambda: np.sum(moments, axis=-1),
+              "sum of magnitudes": lambda: np.sum(np.abs(moments), axis=-1),
+              "sum of squares": lambda: np.sum(moments**2, axis=-1),
+              "maximum magnitude": lambda: np.max(np.abs(moments), axis=-1)}
+    if reading not in totals:
+        raise SpringlabError(f"reading must be one of {EQ32_READINGS}, got {reading!r}")
+    out = totals[reading]()
+    return float(out) if np.ndim(out) == 0 else out
 
 
 def unbalanced_moment_paper_sign_corrected(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
@@ -524,15 +524,15 @@ def _select(Cs: np.ndarray, m: np.ndarray, reading: str) -> float:
     if not len(Cs):
         raise SpringlabError("no C in the search range gives a dyad that closes at every position")
     if reading == "signed sum stationary":  # d(sum M)/dC = 0 read literally: the first turn of the sum
-        slope = np.diff(m.sum(axis=1))
+        slope = np.diff(eq32_objective(m, "signed sum"))
         flips = np.flatnonzero(np.sign(slope[:-1]) != np.sign(slope[1:]))
         if not len(flips):
             raise SpringlabError("the signed sum of Eq. (31) has no stationary point in the search range")
         return float(Cs[flips[0] + 1])
-    value = {"smallest |signed sum|": lambda: np.abs(m.sum(axis=1)),
-             "sum of magnitudes": lambda: np.abs(m).sum(axis=1),
-             "sum of squares": lambda: (m**2).sum(axis=1),
-             "maximum magnitude": lambda: np.abs(m).max(axis=1)}[reading]()
+    if reading == "smallest |signed sum|":
+        value = np.abs(eq32_objective(m, "signed sum"))
+    else:
+        value = eq32_objective(m, reading)
     return float(Cs[int(np.argmin(value))])
 
 
