@@ -5,6 +5,7 @@ import pytest
 
 from springlab import SpringlabError
 from springlab import dyad as dy
+from springlab.papers import zhang2023 as paper
 
 COMP = dy.Compensator(G=75.0, s=0.84, k=1000.0, l0=1.0)  # 002 Section V
 PHI = np.radians(np.linspace(30, 150, 121))
@@ -103,3 +104,21 @@ def test_slow_drive_in_exudyn_needs_minus_the_unbalanced_moment():
     weak = dy.Compensator(G=75.0, s=0.84, k=1e-9, l0=1.0)
     run = dy.simulate_drive(weak, design, np.radians(30.0), np.radians(150.0), duration=10.0, samples=5)
     np.testing.assert_allclose(run.torque, -63.0 * np.sin(run.phi), atol=1e-3)
+
+
+def test_batch_moments_and_selection_agree_with_the_single_dyad_versions():
+    """The batched route of the readings search computes what the one-dyad functions do."""
+    comp = paper.compensator()
+    dyads = [paper.printed_dyad("A"), paper.printed_dyad("B")]
+    phi = np.radians(np.linspace(30, 150, 61))
+    for moment, f in dy.MOMENTS.items():
+        batch, closes = dy.batch_moments(comp, [d.r for d in dyads], [d.l for d in dyads], [d.beta for d in dyads],
+                                         phi, moment)
+        assert closes.all()
+        assert np.allclose(batch, [f(comp, d, phi) for d in dyads], rtol=0, atol=1e-9)
+    positions = np.radians([30.0, 90.0, 150.0])
+    path = dy.synthesis_path(comp, positions, [184.0])
+    d = dy.design_for_C(comp, 184.0, positions)
+    assert np.allclose([path["r"][0], path["l"][0], path["beta"][0]], [d.r, d.l, d.beta], rtol=1e-12)
+    grid_C = dy.select_C(comp, positions, "maximum magnitude", step=0.01)
+    assert abs(grid_C - dy.choose_C(comp, positions, "maximum magnitude")) < 0.02
