@@ -17,8 +17,8 @@ $(STAMP): pyproject.toml constraints.txt
 	touch $@
 
 figures: $(STAMP)
-	$(BIN)/python -m springlab.notebooks --out build/notebooks
-	$(BIN)/python -m springlab.site --notebooks build/notebooks --site build/site --figures figures
+	$(BIN)/python -m springlab.workbench.notebooks --out build/notebooks
+	$(BIN)/python -m springlab.workbench.site --notebooks build/notebooks --site build/site --figures figures
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q

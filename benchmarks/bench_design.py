@@ -1,4 +1,4 @@
-"""Benchmark: configurations and designs for a user's arm (springlab.configurations, arm_design).
+"""Benchmark: configurations and designs for a user's arm (springlab.design.rules, arm_design).
 
 * every admissible configuration with necessary springs, with its sign patterns, for
   n = 3..6 (n = 5 target: under 10 s), and the count per n;
@@ -22,10 +22,10 @@ import itertools
 import time
 from pathlib import Path
 
-from springlab import balanceable
-from springlab.arm_design import design_arm, ground_spring_design, relaxation_screen
-from springlab.chain import serial_chain
-from springlab.configurations import best_first_configurations, iter_configurations
+from springlab.design import feasibility
+from springlab.design.rank import design_arm, ground_spring_design, relaxation_screen
+from springlab.design.rules import best_first_configurations, iter_configurations
+from springlab.model.chain import serial_chain
 
 ARMS = Path(__file__).resolve().parents[1] / "notebooks" / "arms"
 
@@ -33,9 +33,9 @@ ARMS = Path(__file__).resolve().parents[1] / "notebooks" / "arms"
 def main() -> None:
     print("the rules against physics: inclusion-minimal relaxation-feasible multisets (000 Eqs. 39):")
     for n in (2, 3, 4, 5):
-        arm = balanceable.random_arm(n, 0)
+        arm = feasibility.random_arm(n, 0)
         t0 = time.perf_counter()
-        minimal = balanceable.minimal_relaxed_multisets(arm)
+        minimal = feasibility.minimal_relaxed_multisets(arm)
         dt = time.perf_counter() - t0
         t0 = time.perf_counter()
         rules = list(iter_configurations(n))

@@ -1,4 +1,4 @@
-"""Benchmark: paper 003's efficiency index (springlab.efficiency), one core.
+"""Benchmark: paper 003's efficiency index (springlab.mechanisms.planar), one core.
 
 * the index of Table 4's design at a 1-degree grid over Table 3's whole workspace,
   ends included: 201 x 281 x 281 = 15.9 million poses (target: under 5 s);
@@ -19,13 +19,14 @@ import time
 
 import numpy as np
 
-from springlab import efficiency as ef
+from springlab.mechanisms.planar import efficiency as ef
+from springlab.mechanisms.planar import synthesis as plsyn
 from springlab.papers import juang2022 as paper
 
 
 def main() -> None:
     arm, ws = paper.ARM, paper.WORKSPACE
-    springs = ef.design(arm, "Λ3-1", paper.FREE_CHOICES)
+    springs = plsyn.design(arm, "Λ3-1", paper.FREE_CHOICES)
     ef.efficiency_index(arm, springs, ws, step=10)  # warm up (imports, caches)
 
     poses = ws.grid_size(1)
@@ -44,7 +45,7 @@ def main() -> None:
     t0 = time.perf_counter()
     for a1 in axis:
         for a2 in axis:
-            design = ef.design(arm, "Λ3-1", paper.FREE_CHOICES | {"A_S14": a1, "A_S24": a2})
+            design = plsyn.design(arm, "Λ3-1", paper.FREE_CHOICES | {"A_S14": a1, "A_S24": a2})
             ef.efficiency_index(arm, design, ws, step=5)
     t_sweep = time.perf_counter() - t0
     print(f"Fig. 7a sweep: 21 x 21 designs at a 5 deg grid ({ws.grid_size(5):,} poses each) in {t_sweep:.1f} s "

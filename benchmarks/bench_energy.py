@@ -23,10 +23,10 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import numpy as np  # noqa: E402
 
-from springlab import energy, quadratic  # noqa: E402
-from springlab.design import SpringSpec, solve_design  # noqa: E402
+from springlab.design.solve import SpringSpec, solve_design  # noqa: E402
+from springlab.energy import geometry, quadratic  # noqa: E402
+from springlab.model.rotations import directions_from_relative  # noqa: E402
 from springlab.papers import juang2023 as paper  # noqa: E402
-from springlab.rotations import directions_from_relative  # noqa: E402
 
 
 def best_of(fn, repeat: int) -> float:
@@ -103,14 +103,14 @@ def main(argv=None) -> None:
     rows.append(("route 1, quadratic form, component-major poses (n, 3, N)", t))
     t = best_of(lambda: quadratic.quadratic_energy(arm, springs, X), args.repeat)
     rows.append(("route 1, quadratic form, poses (N, n, 3)", t))
-    t = best_of(lambda: energy.total_energy(arm, springs, X), args.repeat)
+    t = best_of(lambda: geometry.total_energy(arm, springs, X), args.repeat)
     rows.append(("route 2, direct geometry, gravity + springs", t))
-    t = best_of(lambda: energy.gravity_energy(arm, X), args.repeat)
+    t = best_of(lambda: geometry.gravity_energy(arm, X), args.repeat)
     rows.append(("route 2, direct geometry, gravity only", t))
 
     # agreement, so that the speeds are of the same quantity
     u1 = quadratic.quadratic_energy_component_major(M, XT)
-    u2 = energy.total_energy(arm, springs, X)
+    u2 = geometry.total_energy(arm, springs, X)
     print(f"route 1 vs route 2: max |difference| {np.abs(u1 - u2).max():.2e} J, "
           f"total energy spread {np.ptp(u2):.2e} J over {N:,} poses")
 
@@ -122,7 +122,7 @@ def main(argv=None) -> None:
     else:
         Q = np.ascontiguousarray(quats.reshape(N, -1))
         check = min(N, 2000)
-        ours = energy.gravity_energy(arm, X[:check])
+        ours = geometry.gravity_energy(arm, X[:check])
         theirs = np.array([pin.computePotentialEnergy(model, data, Q[i]) for i in range(check)])
         print(f"Pinocchio vs route 2 gravity energy: max |difference| {np.abs(ours - theirs).max():.2e} J "
               f"over {check:,} poses")

@@ -17,10 +17,11 @@ import time
 
 import numpy as np
 
-from springlab import random_directions, sim
-from springlab.design import SpringSpec, solve_design
+from springlab import random_directions
+from springlab.design.solve import SpringSpec, solve_design
+from springlab.energy import simulation as sim
+from springlab.model.trajectories import Sweep
 from springlab.papers import juang2023 as paper
-from springlab.trajectories import Sweep
 
 
 def main() -> None:

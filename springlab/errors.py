@@ -1,5 +1,14 @@
-"""Errors raised by springlab. All are ``ValueError`` subclasses, so callers that
-catch ``ValueError`` for bad input also catch these."""
+"""Errors raised by springlab.
+
+``SpringlabError`` is the root and a ``ValueError``, so callers that catch
+``ValueError`` for bad input also catch every springlab error::
+
+    SpringlabError (ValueError)          bad input: names the parameter, its value, what to do
+    |-- UnbalanceableError               a configuration or design cannot balance the arm (a proof)
+    |-- GeometryError                    attachment points, reach, a linkage that cannot close
+    |   `-- AttachmentError (also an UnbalanceableError)  a spring end off its link
+    `-- SolverError (also RuntimeError)  a numerical solver or a simulation model failed
+"""
 
 
 class SpringlabError(ValueError):
@@ -8,3 +17,17 @@ class SpringlabError(ValueError):
 
 class UnbalanceableError(SpringlabError):
     """A spring configuration or design cannot balance the arm; the message says why."""
+
+
+class GeometryError(SpringlabError):
+    """An attachment, a spring's reach or a linkage's closure is geometrically impossible."""
+
+
+class AttachmentError(GeometryError, UnbalanceableError):
+    """A spring end lies off its link or needs a longer bracket than allowed: the design
+    with these attachments cannot be built (a search moves on to other attachments)."""
+
+
+class SolverError(SpringlabError, RuntimeError):
+    """A solver (linear programme, multibody model, browser) failed where it should not;
+    the message names the solver and its status."""

@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from springlab.design import SpringSpec, solve_design
+from springlab.design.solve import SpringSpec, solve_design
 from springlab.papers import juang2023 as paper
 
 

@@ -6,15 +6,17 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from springlab import arm_design as ad
-from springlab import efficiency as ef
-from springlab import energy
-from springlab.armfile import arm_from_dict, load_arm, parse_quantity
-from springlab.cli import main
-from springlab.configurations import SpringSlot, as_slots
-from springlab.design import SpringSpec, find_design, solve_design
+from springlab.design import rank as ad
+from springlab.design.rules import SpringSlot, as_slots
+from springlab.design.solve import SpringSpec, find_design, solve_design
+from springlab.energy import geometry
 from springlab.errors import SpringlabError
+from springlab.mechanisms.planar import efficiency as ef
+from springlab.mechanisms.planar import model as pl
+from springlab.mechanisms.planar import synthesis as plsyn
+from springlab.model.armfile import arm_from_dict, load_arm, parse_quantity
 from springlab.papers import juang2022, juang2023
+from springlab.workbench.cli import main
 
 ARMS = Path(__file__).resolve().parents[1] / "notebooks" / "arms"
 BASE = {"link": [{"length": "0.3 m", "com": "0.15 m", "mass": "4 kg"}, {"length": 0.24, "com": 0.12, "mass": 3.2}]}
@@ -72,10 +74,10 @@ def test_large_arm_with_the_flag_and_bad_files(tmp_path):
 
 def test_spatial_efficiency_reduces_to_003_in_the_plane():
     arm = juang2022.ARM
-    springs = ef.design(arm, "Λ3-1", juang2022.FREE_CHOICES)
-    chain, s000 = ef.to_spatial(arm, springs)
+    springs = plsyn.design(arm, "Λ3-1", juang2022.FREE_CHOICES)
+    chain, s000 = pl.to_spatial(arm, springs)
     theta = juang2022.WORKSPACE.sample(2000, 3)
-    X = chain.directions(ef.spatial_angles(theta))
+    X = chain.directions(pl.spatial_angles(theta))
     assert np.allclose(ad.spatial_system_efficiency(chain, s000, X), ef.system_efficiency(arm, springs, theta), atol=1e-12)
 
 
@@ -101,7 +103,7 @@ def test_planar_three_link_arm_contains_003s_configurations():
     report = ad.design_arm(arm_from_dict(data, source="planar"), max_designs=100, max_configurations=12, restarts=4)
     configs = {d.configuration for d in report.designs}
     for name in ("Λ3-1", "Λ3-2"):
-        _, springs = ef.to_spatial(arm, ef.design(arm, name, {"Λ3-1": juang2022.FREE_CHOICES,
+        _, springs = pl.to_spatial(arm, plsyn.design(arm, name, {"Λ3-1": juang2022.FREE_CHOICES,
                                                               "Λ3-2": {"A_S14": 0.1, "B_S24": 0.5, "A_S12": 0.1, "B_S12": 0.5,
                                                                        "A_S23": 0.5, "B_S23": 0.8}}[name]))
         assert ad.configuration_of(springs) in configs, name
@@ -147,7 +149,7 @@ def test_cli_prints_and_writes_json(tmp_path, capsys):
 
 
 def test_best_first_search_finds_the_same_configurations_in_order():
-    from springlab.configurations import best_first_configurations, iter_configurations, spans
+    from springlab.design.rules import best_first_configurations, iter_configurations, spans
 
     for n in (3, 4, 5):
         found = list(best_first_configurations(n))
@@ -161,8 +163,8 @@ def test_best_first_search_finds_the_same_configurations_in_order():
 
 
 def test_tolerance_study():
-    from springlab import tolerance as tl
-    from springlab.chain import UP
+    from springlab.design import tolerance as tl
+    from springlab.model.chain import UP
 
     spec = load_arm(ARMS / "paper000_arm.toml")
     chain = spec.chain()
@@ -188,9 +190,9 @@ def test_tolerance_study():
 
 
 def test_three_springs_balance_the_paper000_arm_with_a_forbidden_pattern():
-    from springlab import sim
-    from springlab.chain import random_directions
-    from springlab.configurations import rule_violations
+    from springlab.design.rules import rule_violations
+    from springlab.energy import simulation as sim
+    from springlab.model.chain import random_directions
 
     spec = load_arm(ARMS / "paper000_arm.toml")
     found = ad.fewer_springs(spec, 3, max_extension=spec.max_attachment)
@@ -205,8 +207,8 @@ def test_three_springs_balance_the_paper000_arm_with_a_forbidden_pattern():
 
 
 def test_n_minus_one_ground_springs_balance_random_arms_up_to_n8():
-    from springlab.chain import serial_chain
-    from springlab.configurations import best_first_configurations, rule_violations
+    from springlab.design.rules import best_first_configurations, rule_violations
+    from springlab.model.chain import serial_chain
 
     rng = np.random.default_rng(11)
     for n in range(3, 9):
@@ -229,7 +231,7 @@ def test_relaxation_screen_proves_the_minimum_for_the_paper000_arm():
     assert ad.relaxation_screen(spec, 2) == (44, 0)  # no two springs, any signs, any attachments
     candidates, survivors = ad.relaxation_screen(spec, 3)
     assert survivors > 0 and candidates > survivors  # three do (the screen is not vacuous)
-    from springlab.chain import serial_chain
+    from springlab.model.chain import serial_chain
 
     rng = np.random.default_rng(0)
     for _ in range(5):  # not the example arm's numbers: random four-link arms cannot do with two either
@@ -239,8 +241,8 @@ def test_relaxation_screen_proves_the_minimum_for_the_paper000_arm():
 
 
 def test_ground_springs_method_and_exudyn_hold_for_an_eight_link_arm():
-    from springlab import sim
-    from springlab.chain import random_directions
+    from springlab.energy import simulation as sim
+    from springlab.model.chain import random_directions
 
     data = {"link": [{"length": f"{r} m", "com": f"{r / 2} m", "mass": f"{m} kg"}
                      for r, m in zip([0.30, 0.24, 0.20, 0.15, 0.12, 0.10, 0.08], [4.0, 3.2, 2.8, 1.5, 1.2, 1.0, 0.8], strict=True)],
@@ -261,7 +263,7 @@ def test_pseudobase_method_summary():
     row = ad.pseudobase_summary(spec, aux_mass_ratio=0.0, pseudobase_mass=0.0)
     chain = spec.chain()
     # without added masses, K_i l_CA l_CB = G_1i of 000 (Eq. 18): one spring per moving link
-    from springlab.quadratic import gravity_entries
+    from springlab.energy.quadratic import gravity_entries
 
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
     reach = spec.max_attachment
@@ -291,8 +293,8 @@ def test_two_link_arm_compares_three_methods():
 
 
 def test_minimise_largest_force_lowers_the_force_and_keeps_balance_and_limits():
-    from springlab.design import largest_force_bound, longest_stretch, minimise_largest_force
-    from springlab.quadratic import balance_residual, gravity_matrix
+    from springlab.design.solve import largest_force_bound, longest_stretch, minimise_largest_force
+    from springlab.energy.quadratic import balance_residual, gravity_matrix
 
     spec = load_arm(ARMS / "paper000_arm.toml")
     chain = spec.chain()
@@ -310,5 +312,5 @@ def test_minimise_largest_force_lowers_the_force_and_keeps_balance_and_limits():
     # the bound is what the samples approach: no sampled stretch exceeds it
     X = ad.random_poses(chain, 2000, 2)
     for s in out:
-        A, B = energy.attachment_points(chain, s, X)
+        A, B = geometry.attachment_points(chain, s, X)
         assert np.linalg.norm(B - A, axis=1).max() <= longest_stretch(chain, s) * (1 + 1e-12)

@@ -3,18 +3,11 @@
 import numpy as np
 import pytest
 
-from springlab import (
-    Spring,
-    SpringlabError,
-    UnbalanceableError,
-    energy,
-    quadratic,
-    random_directions,
-    serial_chain,
-)
-from springlab.configurations import SpringSlot, rule_violations
-from springlab.design import SpringSpec, solve_design
-from springlab.trajectories import linear_sweep
+from springlab import Spring, SpringlabError, UnbalanceableError, random_directions, serial_chain
+from springlab.design.rules import SpringSlot, rule_violations
+from springlab.design.solve import SpringSpec, solve_design
+from springlab.energy import geometry, quadratic
+from springlab.model.trajectories import linear_sweep
 
 GOOD = dict(r=[0.3, 0.24], d=[0.15, 0.12], m=[4.0, 3.2])
 
@@ -55,7 +48,7 @@ def test_bad_springs(kwargs, fragment):
 
 def test_spring_beyond_the_chain():
     with pytest.raises(SpringlabError, match="only 3 links"):
-        energy.total_energy(chain_with(), [Spring(1, 4, 0.1, 0.1, 10.0)], random_directions(3, 2, 0))
+        geometry.total_energy(chain_with(), [Spring(1, 4, 0.1, 0.1, 10.0)], random_directions(3, 2, 0))
 
 
 @pytest.mark.parametrize("make, fragment", [
@@ -66,7 +59,7 @@ def test_spring_beyond_the_chain():
 ])
 def test_bad_poses(make, fragment):
     with pytest.raises(SpringlabError, match=fragment):
-        energy.gravity_energy(chain_with(), make())
+        geometry.gravity_energy(chain_with(), make())
 
 
 def test_bad_angles():

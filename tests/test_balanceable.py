@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
-from springlab import balanceable as bal
-from springlab import energy
-from springlab.chain import random_directions
-from springlab.configurations import enumerate_configurations, slot
+from springlab.design import feasibility as bal
+from springlab.design.rules import enumerate_configurations, slot
+from springlab.energy import geometry
+from springlab.model.chain import random_directions
 from springlab.papers import juang2023 as paper
 
 
@@ -21,9 +21,9 @@ def test_a_confirmed_design_balances_by_direct_geometry():
     springs = bal.confirm(arm, [slot(s) for s in ("S(1,2)", "S(1,4)", "S(2,4)", "S(3,4)(-,-)")])
     assert springs is not None
     X = random_directions(arm.n, 500, np.random.default_rng(0))
-    assert np.ptp(energy.total_energy(arm, springs, X)) < 1e-9 * np.ptp(energy.gravity_energy(arm, X))
+    assert np.ptp(geometry.total_energy(arm, springs, X)) < 1e-9 * np.ptp(geometry.gravity_energy(arm, X))
     spoiled = [s.scaled(0.9) for s in springs]  # negative control
-    assert np.ptp(energy.total_energy(arm, spoiled, X)) > 1e-2 * np.ptp(energy.gravity_energy(arm, X))
+    assert np.ptp(geometry.total_energy(arm, spoiled, X)) > 1e-2 * np.ptp(geometry.gravity_energy(arm, X))
 
 
 @pytest.mark.parametrize("config", [["S(1,4)"], ["S(1,2)", "S(1,4)", "S(3,4)(-,-)"], ["S(1,3)", "S(2,3)(+,-)"]])

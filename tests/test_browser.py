@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from springlab import site
-from springlab.notebooks import run_notebook
+from springlab.workbench import site
+from springlab.workbench.notebooks import run_notebook
 
 ROOT = Path(__file__).resolve().parents[1]
 REQUIRED = os.environ.get("SPRINGLAB_REQUIRE_BROWSER") == "1"

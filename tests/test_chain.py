@@ -1,7 +1,7 @@
 import numpy as np
 
 from springlab import UP, random_directions, serial_chain
-from springlab.rotations import directions_from_relative, rot_xyz
+from springlab.model.rotations import directions_from_relative, rot_xyz
 
 
 def test_straight_up_pose_places_joints_and_coms_on_the_vertical(arm):

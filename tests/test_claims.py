@@ -7,9 +7,9 @@ from pathlib import Path
 
 import pytest
 
-from springlab.claims import STATUSES, Claims
 from springlab.errors import SpringlabError
-from springlab.notebooks import notebook_paths
+from springlab.workbench.claims import STATUSES, Claims
+from springlab.workbench.notebooks import notebook_paths
 
 ROOT = Path(__file__).resolve().parents[1]
 STEMS = [p.stem for p in notebook_paths(ROOT / "notebooks")]

@@ -4,8 +4,9 @@ import itertools
 
 import pytest
 
-from springlab import configurations as cfgs
-from springlab import design, serial_chain
+from springlab import serial_chain
+from springlab.design import rules as cfgs
+from springlab.design import solve as design
 from springlab.papers import juang2023 as paper
 
 

@@ -4,7 +4,11 @@ import numpy as np
 import pytest
 
 from springlab import SpringlabError
-from springlab import dyad as dy
+from springlab.mechanisms.dyad import algebra as dyalg
+from springlab.mechanisms.dyad import geometry as dygeo
+from springlab.mechanisms.dyad import model as dy
+from springlab.mechanisms.dyad import simulation as dysim
+from springlab.mechanisms.dyad import synthesis as dysyn
 from springlab.papers import zhang2023 as paper
 
 COMP = dy.Compensator(G=75.0, s=0.84, k=1000.0, l0=1.0)  # 002 Section V
@@ -13,28 +17,28 @@ PHI = np.radians(np.linspace(30, 150, 121))
 
 def test_three_positions_are_met_exactly():
     phi = np.radians([30.0, 60.0, 120.0])
-    y = dy.slider_positions(COMP, 184.0, phi)
-    result = dy.synthesise(phi, y)
+    y = dyalg.slider_positions(COMP, 184.0, phi)
+    result = dyalg.synthesise(phi, y)
     assert result.residual < 1e-12
     np.testing.assert_allclose(dy.slider_height(result.dyad, phi), y, atol=1e-12)
     # at the prescribed positions the energy is C: the design is balanced there in energy
-    np.testing.assert_allclose(dy.potential_energy(COMP, result.dyad, phi), 184.0, atol=1e-9)
+    np.testing.assert_allclose(dygeo.potential_energy(COMP, result.dyad, phi), 184.0, atol=1e-9)
 
 
 def test_virtual_work_moment_is_minus_the_energy_derivative():
-    d = dy.synthesise(PHI, dy.slider_positions(COMP, 195.0, PHI)).dyad
+    d = dyalg.synthesise(PHI, dyalg.slider_positions(COMP, 195.0, PHI)).dyad
     h = 1e-6
-    fd = -(dy.potential_energy(COMP, d, PHI + h) - dy.potential_energy(COMP, d, PHI - h)) / (2 * h)
-    np.testing.assert_allclose(dy.unbalanced_moment(COMP, d, PHI), fd, atol=1e-6)
+    fd = -(dygeo.potential_energy(COMP, d, PHI + h) - dygeo.potential_energy(COMP, d, PHI - h)) / (2 * h)
+    np.testing.assert_allclose(dygeo.unbalanced_moment(COMP, d, PHI), fd, atol=1e-6)
 
 
 def test_printed_moment_takes_the_rod_force_as_f_cos_theta():
     # the printed spring moment is the virtual-work one times cos^2(theta), up to its sign
-    d = dy.synthesise(PHI, dy.slider_positions(COMP, 195.0, PHI)).dyad
+    d = dyalg.synthesise(PHI, dyalg.slider_positions(COMP, 195.0, PHI)).dyad
     y = dy.slider_height(d, PHI)
     cos_theta = (y**2 + d.l**2 - d.r**2) / (2 * y * d.l)
-    spring_vw = dy.unbalanced_moment(COMP, d, PHI) - COMP.gravity_moment(PHI)
-    spring_printed = COMP.gravity_moment(PHI) - dy.unbalanced_moment_paper(COMP, d, PHI)
+    spring_vw = dygeo.unbalanced_moment(COMP, d, PHI) - COMP.gravity_moment(PHI)
+    spring_printed = COMP.gravity_moment(PHI) - dyalg.unbalanced_moment_paper(COMP, d, PHI)
     np.testing.assert_allclose(spring_printed, spring_vw * cos_theta**2, rtol=1e-10, atol=1e-12)
 
 
@@ -42,44 +46,44 @@ def test_gravity_alone_without_spring_force():
     # a spring at its free length everywhere cannot be; but with k tiny, M_ub -> G s sin(phi)
     weak = dy.Compensator(G=75.0, s=0.84, k=1e-9, l0=1.0)
     d = dy.Dyad(0.1, 0.5, 0.0)
-    np.testing.assert_allclose(dy.unbalanced_moment(weak, d, PHI), 63.0 * np.sin(PHI), atol=1e-6)
+    np.testing.assert_allclose(dygeo.unbalanced_moment(weak, d, PHI), 63.0 * np.sin(PHI), atol=1e-6)
 
 
-@pytest.mark.parametrize("reading", dy.EQ32_READINGS)
+@pytest.mark.parametrize("reading", dysyn.EQ32_READINGS)
 def test_eq32_readings(reading):
     m = np.array([1.0, -2.0, 0.5])
     expected = {"signed sum": -0.5, "sum of magnitudes": 3.5, "sum of squares": 5.25, "maximum magnitude": 2.0}
-    assert dy.eq32_objective(m, reading) == expected[reading]
+    assert dysyn.eq32_objective(m, reading) == expected[reading]
 
 
 def test_bad_inputs():
     with pytest.raises(SpringlabError, match="imaginary"):
-        dy.slider_positions(COMP, 100.0, np.radians([30.0]))  # 2C < 2 G s (1 + cos 30 deg)
+        dyalg.slider_positions(COMP, 100.0, np.radians([30.0]))  # 2C < 2 G s (1 + cos 30 deg)
     with pytest.raises(SpringlabError, match="cannot close"):
         dy.slider_height(dy.Dyad(r=0.3, l=0.1, beta=0.0), np.radians([90.0]))
     with pytest.raises(SpringlabError, match="k must be"):
         dy.Compensator(G=75.0, s=0.84, k=0.0, l0=1.0)
     with pytest.raises(SpringlabError, match="at least 3"):
-        dy.synthesise(np.radians([30.0, 60.0]), [0.6, 0.5])
+        dyalg.synthesise(np.radians([30.0, 60.0]), [0.6, 0.5])
     with pytest.raises(SpringlabError, match="reading"):
-        dy.eq32_objective([1.0], "median")
+        dysyn.eq32_objective([1.0], "median")
 
 
 def test_choose_C_readings_on_example_b():
     phi = np.radians(np.linspace(30, 150, 120))
     # minimising the largest |M_ub| (virtual work) over the 120 positions selects C = 194.9 J,
     # the paper's printed C = 195 J to its rounding
-    assert abs(dy.choose_C(COMP, phi, "maximum magnitude") - 195.0) < 0.5
+    assert abs(dysyn.choose_C(COMP, phi, "maximum magnitude") - 195.0) < 0.5
     with pytest.raises(SpringlabError, match="reading"):
-        dy.choose_C(COMP, phi, "median")
+        dysyn.choose_C(COMP, phi, "median")
 
 
 def test_signed_sum_stationary_point_is_a_minimum_on_example_a():
     phi = np.radians([30.0, 60.0, 120.0])
-    C = dy.choose_C(COMP, phi, "signed sum stationary")
+    C = dysyn.choose_C(COMP, phi, "signed sum stationary")
 
     def total(c):
-        return dy.unbalanced_moment(COMP, dy.design_for_C(COMP, c, phi), phi).sum()
+        return dygeo.unbalanced_moment(COMP, dysyn.design_for_C(COMP, c, phi), phi).sum()
 
     assert total(C) < total(C - 1.0) and total(C) < total(C + 1.0)
 
@@ -87,22 +91,22 @@ def test_signed_sum_stationary_point_is_a_minimum_on_example_a():
 def test_optimiser_beats_the_start_and_respects_bounds():
     grid = np.radians(np.linspace(30, 150, 121))
     start = dy.Dyad(0.125, 0.502, np.radians(0.08))
-    best = dy.optimise(COMP, grid, start)
-    assert best.max_moment < dy.max_unbalanced(COMP, start, grid)
+    best = dysyn.optimise(COMP, grid, start)
+    assert best.max_moment < dygeo.max_unbalanced(COMP, start, grid)
     assert best.l0 == COMP.l0
-    free = dy.optimise(COMP, grid, start, free_l0=True)
+    free = dysyn.optimise(COMP, grid, start, free_l0=True)
     assert free.max_moment <= best.max_moment + 1e-9
     assert 0.0 <= free.l0 <= 3.0
 
 
 def test_slow_drive_in_exudyn_needs_minus_the_unbalanced_moment():
     design = dy.Dyad(0.125, 0.502, np.radians(0.08))
-    run = dy.simulate_drive(COMP, design, np.radians(30.0), np.radians(150.0), duration=10.0, samples=61)
+    run = dysim.simulate_drive(COMP, design, np.radians(30.0), np.radians(150.0), duration=10.0, samples=61)
     np.testing.assert_allclose(np.degrees(run.phi[[0, -1]]), [30.0, 150.0])
-    assert np.abs(run.torque + dy.unbalanced_moment(COMP, design, run.phi)).max() < 1e-3
+    assert np.abs(run.torque + dygeo.unbalanced_moment(COMP, design, run.phi)).max() < 1e-3
     # gravity alone: the drive holds the weight, G s sin(phi) against larger phi
     weak = dy.Compensator(G=75.0, s=0.84, k=1e-9, l0=1.0)
-    run = dy.simulate_drive(weak, design, np.radians(30.0), np.radians(150.0), duration=10.0, samples=5)
+    run = dysim.simulate_drive(weak, design, np.radians(30.0), np.radians(150.0), duration=10.0, samples=5)
     np.testing.assert_allclose(run.torque, -63.0 * np.sin(run.phi), atol=1e-3)
 
 
@@ -111,14 +115,14 @@ def test_batch_moments_and_selection_agree_with_the_single_dyad_versions():
     comp = paper.compensator()
     dyads = [paper.printed_dyad("A"), paper.printed_dyad("B")]
     phi = np.radians(np.linspace(30, 150, 61))
-    for moment, f in dy.MOMENTS.items():
-        batch, closes = dy.batch_moments(comp, [d.r for d in dyads], [d.l for d in dyads], [d.beta for d in dyads],
+    for moment, f in dysyn.MOMENTS.items():
+        batch, closes = dysyn.batch_moments(comp, [d.r for d in dyads], [d.l for d in dyads], [d.beta for d in dyads],
                                          phi, moment)
         assert closes.all()
         assert np.allclose(batch, [f(comp, d, phi) for d in dyads], rtol=0, atol=1e-9)
     positions = np.radians([30.0, 90.0, 150.0])
-    path = dy.synthesis_path(comp, positions, [184.0])
-    d = dy.design_for_C(comp, 184.0, positions)
+    path = dysyn.synthesis_path(comp, positions, [184.0])
+    d = dysyn.design_for_C(comp, 184.0, positions)
     assert np.allclose([path["r"][0], path["l"][0], path["beta"][0]], [d.r, d.l, d.beta], rtol=1e-12)
-    grid_C = dy.select_C(comp, positions, "maximum magnitude", step=0.01)
-    assert abs(grid_C - dy.choose_C(comp, positions, "maximum magnitude")) < 0.02
+    grid_C = dysyn.select_C(comp, positions, "maximum magnitude", step=0.01)
+    assert abs(grid_C - dysyn.choose_C(comp, positions, "maximum magnitude")) < 0.02

@@ -1,16 +1,20 @@
-"""Paper 003: planar pseudo-stiffness, spring and system efficiency, the index (springlab.efficiency)."""
+"""Paper 003: planar pseudo-stiffness, spring and system efficiency, the index (springlab.mechanisms.planar)."""
 
 import numpy as np
 import pytest
 import sympy as sp
 
-from springlab import efficiency as ef
-from springlab import energy, quadratic
+from springlab.energy import geometry, quadratic
 from springlab.errors import SpringlabError, UnbalanceableError
+from springlab.mechanisms.planar import efficiency as ef
+from springlab.mechanisms.planar import geometry as plgeo
+from springlab.mechanisms.planar import model as pl
+from springlab.mechanisms.planar import quadratic as plq
+from springlab.mechanisms.planar import synthesis as plsyn
 from springlab.papers import juang2022 as paper
 
 ARM, WS = paper.ARM, paper.WORKSPACE
-TABLE4 = ef.design(ARM, "Λ3-1", paper.FREE_CHOICES)
+TABLE4 = plsyn.design(ARM, "Λ3-1", paper.FREE_CHOICES)
 
 
 def random_theta(N, seed=0, n=3):
@@ -19,58 +23,58 @@ def random_theta(N, seed=0, n=3):
 
 def angled_springs(seed):
     rng = np.random.default_rng(seed)
-    return [ef.PlanarSpring(i, j, rng.uniform(100, 5000), rng.uniform(0.05, 1) * ARM.r[i - 1],
+    return [pl.PlanarSpring(i, j, rng.uniform(100, 5000), rng.uniform(0.05, 1) * ARM.r[i - 1],
                             rng.uniform(0.05, 1) * ARM.r[j - 1], rng.uniform(0, 360), rng.uniform(0, 360))
             for i, j in [(1, 2), (1, 3), (1, 4), (2, 3), (2, 4), (3, 4)]]
 
 
 def test_G_and_com_distances():
     assert np.allclose(ARM.G, paper.G_PRINTED, atol=1e-9)
-    assert np.allclose(ef.com_distances(paper.R, paper.M, paper.G_PRINTED, 9.8), np.array(paper.R[1:]) / 2)
+    assert np.allclose(plsyn.com_distances(paper.R, paper.M, paper.G_PRINTED, 9.8), np.array(paper.R[1:]) / 2)
     with pytest.raises(SpringlabError, match="need r_1"):
-        ef.com_distances(paper.R, paper.M[:2], paper.G_PRINTED, 9.8)
+        plsyn.com_distances(paper.R, paper.M[:2], paper.G_PRINTED, 9.8)
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_route1_equals_route2_with_angled_attachments(seed):
     springs = angled_springs(seed)
     theta = random_theta(2000, seed)
-    r1 = ef.quadratic_energy(ARM, springs, theta)
-    r2 = ef.direct_energy(ARM, springs, theta)["total"]
+    r1 = plq.quadratic_energy(ARM, springs, theta)
+    r2 = plgeo.direct_energy(ARM, springs, theta)["total"]
     assert np.max(np.abs(r1 - r2)) < 1e-9 * np.ptp(r2)
     assert np.ptp(r2) > 100  # not balanced: the test compares real variation
 
 
 def test_spring_term_count_and_formulas():
     for i, j in [(1, 2), (1, 4), (2, 4), (3, 4)]:
-        assert len(ef.spring_terms(i, j, 1.0, 0.5, 0.5, 0.0, 0.0)) == (j - i) * (j - i + 1) // 2
+        assert len(plq.spring_terms(i, j, 1.0, 0.5, 0.5, 0.0, 0.0)) == (j - i) * (j - i + 1) // 2
     # Eq. (14): a spring over one joint has one term kAB cos(alpha - beta + 180 - Theta)
-    (t,) = ef.spring_terms(2, 3, 10.0, 0.5, 0.4, 30.0, 10.0)
+    (t,) = plq.spring_terms(2, 3, 10.0, 0.5, 0.4, 30.0, 10.0)
     assert (t.u, t.v, t.amplitude, t.phase) == (2, 3, 2.0, 200.0)
 
 
 def test_planar_form_is_000s_spatial_form_in_a_plane():
-    loose = [ef.PlanarSpring(s.i, s.j, 0.7 * s.k, s.a, s.b, s.alpha, s.beta) for s in TABLE4]
-    C, S = ef.spatial_coefficients(ARM, loose)
-    chain, springs = ef.to_spatial(ARM, loose)
+    loose = [pl.PlanarSpring(s.i, s.j, 0.7 * s.k, s.a, s.b, s.alpha, s.beta) for s in TABLE4]
+    C, S = plq.spatial_coefficients(ARM, loose)
+    chain, springs = pl.to_spatial(ARM, loose)
     M = quadratic.energy_matrix(chain, springs)
     assert np.max(np.abs(C)) > 10 and np.allclose(C, np.triu(M, 1), atol=1e-9) and np.allclose(S, 0, atol=1e-9)
     theta = random_theta(500, 4)
-    X = chain.directions(ef.spatial_angles(theta))
-    assert np.allclose(energy.total_energy(chain, springs, X), ef.direct_energy(ARM, loose, theta)["total"], atol=1e-9)
-    _, S_angled = ef.spatial_coefficients(ARM, angled_springs(5))
+    X = chain.directions(pl.spatial_angles(theta))
+    assert np.allclose(geometry.total_energy(chain, springs, X), plgeo.direct_energy(ARM, loose, theta)["total"], atol=1e-9)
+    _, S_angled = plq.spatial_coefficients(ARM, angled_springs(5))
     assert np.max(np.abs(S_angled)) > 1
     with pytest.raises(SpringlabError, match="C1"):
-        ef.to_spatial(ARM, angled_springs(5))
+        pl.to_spatial(ARM, angled_springs(5))
 
 
 def test_equations_27_and_tables_4_5():
-    sol = {k.name: v for k, v in ef.solve_configuration("Λ3-1", ["A_S14", "A_S24", "A_S12", "B_S12", "A_S34", "B_S34"]).items()}
+    sol = {k.name: v for k, v in plsyn.solve_configuration("Λ3-1", ["A_S14", "A_S24", "A_S12", "B_S12", "A_S34", "B_S34"]).items()}
     G13, G14, A14, A24 = sp.symbols("G_13 G_14 A_S14 A_S24", positive=True)
     assert sp.simplify(sol["B_S14"] - G14 / G13) == 0 and sp.simplify(sol["k_S24"] - G13 / (A14 * A24)) == 0
     ks = [s.k for s in TABLE4]
     assert np.allclose(ks, [4998, 3038, 6076, 6615])
-    after = ef.design(ARM, "Λ3-1", paper.FREE_CHOICES | {"A_S14": 0.4})
+    after = plsyn.design(ARM, "Λ3-1", paper.FREE_CHOICES | {"A_S14": 0.4})
     assert np.allclose([s.k for s in after], [4998, 759.5, 1519, 1653.75])
 
 
@@ -79,23 +83,23 @@ def test_equations_27_and_tables_4_5():
     ("Λ3-2", {"A_S14": 0.2, "B_S24": 0.6, "A_S12": 0.1, "B_S12": 0.5, "A_S23": 0.5, "B_S23": 0.8}),
 ])
 def test_designs_balance_by_geometry(config, choices):
-    springs = ef.design(ARM, config, choices)
+    springs = plsyn.design(ARM, config, choices)
     theta = random_theta(3000, 8)
-    E = ef.direct_energy(ARM, springs, theta)
+    E = plgeo.direct_energy(ARM, springs, theta)
     assert np.ptp(E["total"]) < 1e-10 * np.ptp(E["gravity"])
-    off = [ef.PlanarSpring(s.i, s.j, s.k * (1.02 if s.i == 1 else 1.0), s.a, s.b, s.alpha, s.beta) for s in springs]
-    assert np.ptp(ef.direct_energy(ARM, off, theta)["total"]) > 1e-3 * np.ptp(E["gravity"])
+    off = [pl.PlanarSpring(s.i, s.j, s.k * (1.02 if s.i == 1 else 1.0), s.a, s.b, s.alpha, s.beta) for s in springs]
+    assert np.ptp(plgeo.direct_energy(ARM, off, theta)["total"]) > 1e-3 * np.ptp(E["gravity"])
 
 
 def test_lambda32_forces_A24_and_table2_B24_differs():
-    springs = ef.design(ARM, "Λ3-2", {"A_S14": 0.1, "B_S24": 0.5, "A_S12": 0.1, "B_S12": 0.5, "A_S23": 0.5, "B_S23": 0.8})
+    springs = plsyn.design(ARM, "Λ3-2", {"A_S14": 0.1, "B_S24": 0.5, "A_S12": 0.1, "B_S12": 0.5, "A_S23": 0.5, "B_S23": 0.8})
     s24 = next(s for s in springs if (s.i, s.j) == (2, 4))
     assert np.isclose(s24.A(ARM), 1.0)
-    adjusted = ef.payload_adjustment(ARM, springs, "Λ3-2", 18.0)
+    adjusted = plsyn.payload_adjustment(ARM, springs, "Λ3-2", 18.0)
     heavy = ARM.with_payload(18.0)
     b24 = next(s for s in adjusted if (s.i, s.j) == (2, 4)).B(ARM)
     assert not np.isclose(b24, heavy.G[2] / heavy.G[1])
-    E = ef.direct_energy(heavy, adjusted, random_theta(1000, 2))
+    E = plgeo.direct_energy(heavy, adjusted, random_theta(1000, 2))
     assert np.ptp(E["total"]) < 1e-10 * np.ptp(E["gravity"])
 
 
@@ -117,7 +121,7 @@ def test_efficiencies():
 
 def test_index_reproduces_the_paper_on_a_5_degree_grid():
     assert round(ef.efficiency_index(ARM, TABLE4, WS, step=5), 4) == 0.5389
-    after = ef.design(ARM, "Λ3-1", paper.FREE_CHOICES | {"A_S14": 0.4})
+    after = plsyn.design(ARM, "Λ3-1", paper.FREE_CHOICES | {"A_S14": 0.4})
     assert round(ef.efficiency_index(ARM, after, WS, step=5), 4) == 0.6224
     assert round(ef.efficiency_index(ARM, TABLE4, WS, step=5, reading="literal"), 4) == 0.5351
 
@@ -136,13 +140,13 @@ def test_grid_index_equals_the_plain_mean():
 
 
 def test_payload_rules():
-    stiff = ef.payload_adjustment(ARM, TABLE4, "Λ3-1", 9.0)
+    stiff = plsyn.payload_adjustment(ARM, TABLE4, "Λ3-1", 9.0)
     assert np.allclose([s.k for s in stiff], [s.k for s in TABLE4])
-    kept = ef.payload_adjustment(ARM, TABLE4, "Λ3-1", 9.0, keep="attachments")
+    kept = plsyn.payload_adjustment(ARM, TABLE4, "Λ3-1", 9.0, keep="attachments")
     assert np.allclose([s.A(ARM) for s in kept], [s.A(ARM) for s in TABLE4])
     heavy = ARM.with_payload(9.0)
     for springs in (stiff, kept):
-        E = ef.direct_energy(heavy, springs, random_theta(500, 6))
+        E = plgeo.direct_energy(heavy, springs, random_theta(500, 6))
         assert np.ptp(E["total"]) < 1e-10 * np.ptp(E["gravity"])
     i0 = ef.efficiency_index(ARM, TABLE4, WS, step=10)
     assert ef.efficiency_index(heavy, stiff, WS, step=10) > i0 > ef.efficiency_index(heavy, kept, WS, step=10)
@@ -150,7 +154,7 @@ def test_payload_rules():
 
 def test_optimiser_respects_bounds():
     fixed = {k: v for k, v in paper.FREE_CHOICES.items() if k not in ("A_S14", "A_S24")}
-    opt = ef.optimise_index(ARM, "Λ3-1", {"A_S14": (0.05, 0.6), "A_S24": (0.05, 0.7)}, fixed, WS, step=20,
+    opt = plsyn.optimise_index(ARM, "Λ3-1", {"A_S14": (0.05, 0.6), "A_S24": (0.05, 0.7)}, fixed, WS, step=20,
                             start={"A_S14": 0.1, "A_S24": 0.5})
     assert opt.choices["A_S14"] <= 0.6 + 1e-9 and opt.choices["A_S24"] <= 0.7 + 1e-9
     assert opt.index > ef.efficiency_index(ARM, TABLE4, WS, step=20)
@@ -158,13 +162,13 @@ def test_optimiser_respects_bounds():
 
 
 @pytest.mark.parametrize("spring, match", [
-    (ef.PlanarSpring(1, 4, 3000, 0.1, 0.087, 45, 0), "breaks C1"),
-    (ef.PlanarSpring(2, 4, 3000, 0.1, 0.087, 0, 180), "breaks C2"),
-    (ef.PlanarSpring(3, 4, 3000, 0.2, 0.2, 90, 0), "breaks C2"),
-    (ef.PlanarSpring(1, 4, 3000, 1.5, 0.087, 90, 0), r"A = 1.5 must lie in \(0, 1\]"),
-    (ef.PlanarSpring(2, 4, 3000, 0.1, 0.0, 0, 0), r"B = 0 must lie in \(0, 1\]"),
-    (ef.PlanarSpring(2, 4, -1.0, 0.1, 0.1, 0, 0), "k = -1.0 N/m"),
-    (ef.PlanarSpring(2, 5, 10.0, 0.1, 0.1, 0, 0), "1 <= i < j <= 4"),
+    (pl.PlanarSpring(1, 4, 3000, 0.1, 0.087, 45, 0), "breaks C1"),
+    (pl.PlanarSpring(2, 4, 3000, 0.1, 0.087, 0, 180), "breaks C2"),
+    (pl.PlanarSpring(3, 4, 3000, 0.2, 0.2, 90, 0), "breaks C2"),
+    (pl.PlanarSpring(1, 4, 3000, 1.5, 0.087, 90, 0), r"A = 1.5 must lie in \(0, 1\]"),
+    (pl.PlanarSpring(2, 4, 3000, 0.1, 0.0, 0, 0), r"B = 0 must lie in \(0, 1\]"),
+    (pl.PlanarSpring(2, 4, -1.0, 0.1, 0.1, 0, 0), "k = -1.0 N/m"),
+    (pl.PlanarSpring(2, 5, 10.0, 0.1, 0.1, 0, 0), "1 <= i < j <= 4"),
 ])
 def test_bad_springs(spring, match):
     with pytest.raises(SpringlabError, match=match):
@@ -173,9 +177,9 @@ def test_bad_springs(spring, match):
 
 def test_bad_workspaces_and_arms():
     with pytest.raises(SpringlabError, match="reversed"):
-        ef.Workspace(low=(-20, 140, -140), high=(180, -140, 140))
+        pl.Workspace(low=(-20, 140, -140), high=(180, -140, 140))
     with pytest.raises(SpringlabError, match="one entry per joint"):
-        ef.Workspace(low=(), high=())
+        pl.Workspace(low=(), high=())
     with pytest.raises(SpringlabError, match="grid step"):
         WS.grid(0)
     with pytest.raises(SpringlabError, match="exactly one"):
@@ -183,20 +187,20 @@ def test_bad_workspaces_and_arms():
     with pytest.raises(SpringlabError, match="seed"):
         ef.efficiency_index(ARM, TABLE4, WS, samples=10)
     with pytest.raises(SpringlabError, match="unknown configuration 'Λ4'"):
-        ef.design(ARM, "Λ4", paper.FREE_CHOICES)
+        plsyn.design(ARM, "Λ4", paper.FREE_CHOICES)
     with pytest.raises(SpringlabError, match="empty sample"):
         ef.efficiency_index(ARM, TABLE4, WS, samples=0, seed=1)
     with pytest.raises(SpringlabError, match="workspace has 2 joints"):
-        ef.efficiency_index(ARM, TABLE4, ef.Workspace((0, 0), (1, 1)), step=1)
-    point = ef.Workspace(low=(10, 20, 30), high=(10, 20, 30))  # a single pose: fine
+        ef.efficiency_index(ARM, TABLE4, pl.Workspace((0, 0), (1, 1)), step=1)
+    point = pl.Workspace(low=(10, 20, 30), high=(10, 20, 30))  # a single pose: fine
     assert ef.efficiency_index(ARM, TABLE4, point, step=5) == pytest.approx(
         ef.system_efficiency(ARM, TABLE4, np.radians([[10, 20, 30]]))[0])
     with pytest.raises(SpringlabError, match="m_3 = -26"):
-        ef.PlanarArm(r=paper.R, s=ARM.s, m=(0, 25, -26, 18))
+        pl.PlanarArm(r=paper.R, s=ARM.s, m=(0, 25, -26, 18))
     with pytest.raises(SpringlabError, match="off link 2"):
-        ef.PlanarArm(r=paper.R, s=(0, 0.5, 0.2, 0.1), m=ARM.m)
+        pl.PlanarArm(r=paper.R, s=(0, 0.5, 0.2, 0.1), m=ARM.m)
     with pytest.raises(UnbalanceableError, match="not determined"):
-        ef.design(ef.PlanarArm(r=ARM.r[:2], s=ARM.s[:2], m=ARM.m[:2], g=9.8), "Λ1", {"A_S12": 0.1})  # k B left open
+        plsyn.design(pl.PlanarArm(r=ARM.r[:2], s=ARM.s[:2], m=ARM.m[:2], g=9.8), "Λ1", {"A_S12": 0.1})  # k B left open
     choices = {k: v for k, v in paper.FREE_CHOICES.items() if k != "A_S34"} | {"k_S34": 100.0}
     with pytest.raises(SpringlabError, match=r"S\(3,4\): attachment ratio A = .* must lie in"):  # a too soft S(3,4)
-        ef.design(ARM, "Λ3-1", choices)
+        plsyn.design(ARM, "Λ3-1", choices)

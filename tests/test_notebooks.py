@@ -6,8 +6,8 @@ from pathlib import Path
 import papermill as pm
 import pytest
 
-from springlab.claims import STATUSES
-from springlab.notebooks import notebook_paths, run_notebook
+from springlab.workbench.claims import STATUSES
+from springlab.workbench.notebooks import notebook_paths, run_notebook
 
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = notebook_paths(ROOT / "notebooks")

@@ -4,7 +4,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from springlab.plotting import energy_figure, save_figure, use_style  # noqa: E402
+from springlab.workbench.plotting import energy_figure, save_figure, use_style  # noqa: E402
 
 
 def draw():

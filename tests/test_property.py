@@ -13,9 +13,10 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from springlab import energy, quadratic, random_directions, serial_chain
-from springlab.configurations import iter_configurations
-from springlab.design import find_design, relaxation_margin
+from springlab import random_directions, serial_chain
+from springlab.design.rules import iter_configurations
+from springlab.design.solve import find_design, relaxation_margin
+from springlab.energy import geometry, quadratic
 from springlab.errors import UnbalanceableError
 
 
@@ -57,10 +58,10 @@ def test_enumerated_and_solved_springs_balance_random_arms(n, data):
     assert chain.n == n
     springs = balanced_springs(chain, skip)
     X = random_directions(chain.n, 1000, np.random.default_rng(skip))
-    gravity_range = np.ptp(energy.gravity_energy(chain, X))
-    scale = max(gravity_range, float(np.max(np.abs(energy.spring_energy(chain, springs, X)))))
-    for route in (quadratic.quadratic_energy, energy.total_energy):
+    gravity_range = np.ptp(geometry.gravity_energy(chain, X))
+    scale = max(gravity_range, float(np.max(np.abs(geometry.spring_energy(chain, springs, X)))))
+    for route in (quadratic.quadratic_energy, geometry.total_energy):
         total = route(chain, springs, X)
         assert np.ptp(total) < 1e-10 * scale, (route.__name__, np.ptp(total) / scale)
     spoiled = [s.scaled(0.9) for s in springs]  # negative control: the check must be able to fail
-    assert np.ptp(energy.total_energy(chain, spoiled, X)) > 1e-10 * scale
+    assert np.ptp(geometry.total_energy(chain, spoiled, X)) > 1e-10 * scale

@@ -1,17 +1,19 @@
-"""Paper 001: rotational subsystems, pseudobases, RSSR modules (springlab.pseudobase)."""
+"""Paper 001: rotational subsystems, pseudobases, RSSR modules (springlab.mechanisms.pseudobase)."""
 
 import numpy as np
 import pytest
 import sympy as sp
 
-from springlab import pseudobase as pb
-from springlab import pseudobase_sim as ps
 from springlab.errors import SpringlabError, UnbalanceableError
+from springlab.mechanisms.pseudobase import geometry as pbgeo
+from springlab.mechanisms.pseudobase import model as pb
+from springlab.mechanisms.pseudobase import simulation as ps
+from springlab.mechanisms.pseudobase import subsystems as subs
+from springlab.model.trajectories import PiecewiseCubic, rest_to_rest_cubic
 from springlab.papers import lin2010 as paper
-from springlab.trajectories import PiecewiseCubic, rest_to_rest_cubic
 
 ARM = paper.arm()
-SPRINGS = pb.design_equilibrators(ARM, paper.K, paper.L_CA)
+SPRINGS = subs.design_equilibrators(ARM, paper.K, paper.L_CA)
 
 
 def random_poses(N, seed=0):
@@ -43,62 +45,62 @@ def test_link_vectors_are_the_dh_origins():
 
 def test_symbolic_eqs_4_to_8_agree():
     for n in range(1, 6):
-        e = pb.symbolic_subsystems(n)
+        e = subs.symbolic_subsystems(n)
         assert sp.expand(e["eq4"] - e["eq5"]) == 0
         assert sp.simplify(e["eq5"] - e["eq6"]) == 0
     with pytest.raises(SpringlabError, match="n must be"):
-        pb.symbolic_subsystems(0)
+        subs.symbolic_subsystems(0)
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_subsystem_energy_equals_direct_geometry_up_to_a_constant(seed):
     arm = ARM if seed == 0 else random_arm(seed)
     q = np.random.default_rng(seed).uniform(-np.pi, np.pi, (200, arm.n))
-    mu, sigma = pb.combined_subsystems(arm)
-    diff = pb.energies(arm, [], q)["gravity"] - pb.subsystem_energy(arm, q, mu, sigma)
+    mu, sigma = subs.combined_subsystems(arm)
+    diff = pbgeo.energies(arm, [], q)["gravity"] - subs.subsystem_energy(arm, q, mu, sigma)
     assert np.ptp(diff) < 1e-11
     # without modules' masses, Eqs. (7)-(8) alone
-    mu0, sigma0 = pb.subsystems(arm.m, arm.s, arm.link_vectors())
-    primary = pb.energies(arm, [], q)["gravity_primary"] - pb.subsystem_energy(arm, q, mu0, sigma0)
+    mu0, sigma0 = subs.subsystems(arm.m, arm.s, arm.link_vectors())
+    primary = pbgeo.energies(arm, [], q)["gravity_primary"] - subs.subsystem_energy(arm, q, mu0, sigma0)
     assert np.ptp(primary) < 1e-11
 
 
 def test_only_the_product_mu_sigma_is_physical():
     q = random_poses(100)
-    mu, sigma = pb.combined_subsystems(ARM)
-    mu2, sigma2 = pb.combined_subsystems(ARM, mu=np.arange(1.0, ARM.n + 1))
+    mu, sigma = subs.combined_subsystems(ARM)
+    mu2, sigma2 = subs.combined_subsystems(ARM, mu=np.arange(1.0, ARM.n + 1))
     assert not np.allclose(mu, mu2)
     assert np.allclose(mu[:, None] * sigma, mu2[:, None] * sigma2)
-    assert np.allclose(pb.subsystem_energy(ARM, q, mu, sigma), pb.subsystem_energy(ARM, q, mu2, sigma2), atol=1e-11)
+    assert np.allclose(subs.subsystem_energy(ARM, q, mu, sigma), subs.subsystem_energy(ARM, q, mu2, sigma2), atol=1e-11)
     with pytest.raises(SpringlabError, match="mu must be"):
-        pb.combined_subsystems(ARM, mu=np.zeros(ARM.n))
+        subs.combined_subsystems(ARM, mu=np.zeros(ARM.n))
 
 
 @pytest.mark.parametrize("seed", [0, 3, 4])
 def test_designed_springs_balance_and_rounded_ones_do_not(seed):
     arm = ARM if seed == 0 else random_arm(seed)
     k = len(arm.modules)
-    springs = pb.design_equilibrators(arm, np.full(k, 2000.0), np.full(k, 0.08))
-    mu, sigma = pb.combined_subsystems(arm)
+    springs = subs.design_equilibrators(arm, np.full(k, 2000.0), np.full(k, 0.08))
+    mu, sigma = subs.combined_subsystems(arm)
     for s in springs:  # Eq. (16)
         assert np.isclose(s.K * s.l_CA * s.l_CB, mu[s.link - 1] * arm.g * np.linalg.norm(sigma[s.link - 1]))
     q = np.random.default_rng(seed).uniform(-np.pi, np.pi, (500, arm.n))
-    E = pb.energies(arm, springs, q)
+    E = pbgeo.energies(arm, springs, q)
     assert np.ptp(E["total"]) < 1e-10 * np.ptp(E["gravity"])
-    off = pb.energies(arm, [s.scaled(0.99) for s in springs], q)
+    off = pbgeo.energies(arm, [s.scaled(0.99) for s in springs], q)
     assert np.ptp(off["total"]) > 1e-3 * np.ptp(off["gravity"])
 
 
 def test_table3_springs_as_printed_leave_an_unbalance():
-    printed = pb.design_equilibrators(ARM, paper.K, paper.L_CA, l_CB=paper.L_CB)
+    printed = subs.design_equilibrators(ARM, paper.K, paper.L_CA, l_CB=paper.L_CB)
     q = PiecewiseCubic(paper.TABLE4[:, :4]).angles(np.linspace(0, 10, 201))
-    assert np.ptp(pb.energies(ARM, printed, q)["total"]) > 1.0  # J
-    assert np.ptp(pb.energies(ARM, SPRINGS, q)["total"]) < 1e-9
+    assert np.ptp(pbgeo.energies(ARM, printed, q)["total"]) > 1.0  # J
+    assert np.ptp(pbgeo.energies(ARM, SPRINGS, q)["total"]) < 1e-9
 
 
 def test_pseudobases_stay_vertical_and_attachment_points():
     q = random_poses(50)
-    p = pb.positions(ARM, SPRINGS, q)
+    p = pbgeo.positions(ARM, SPRINGS, q)
     line = p["D"] - p["C"]
     assert np.allclose(line, ARM.h * ARM.up, atol=1e-14)
     for col, s in enumerate(SPRINGS):
@@ -192,20 +194,20 @@ def test_bad_arms_are_rejected(changes, match):
 
 def test_bad_springs_are_rejected():
     with pytest.raises(SpringlabError, match="K of spring 3 = 0.0 N/m"):
-        pb.design_equilibrators(ARM, [2e4, 0.0, 1.5e4, 2e3, 1e3], paper.L_CA)
+        subs.design_equilibrators(ARM, [2e4, 0.0, 1.5e4, 2e3, 1e3], paper.L_CA)
     with pytest.raises(SpringlabError, match="l_CA of spring 2"):
-        pb.design_equilibrators(ARM, paper.K, [-0.1, 0.08, 0.08, 0.08, 0.08])
+        subs.design_equilibrators(ARM, paper.K, [-0.1, 0.08, 0.08, 0.08, 0.08])
     with pytest.raises(SpringlabError, match="one per module"):
-        pb.design_equilibrators(ARM, paper.K[:4], paper.L_CA)
+        subs.design_equilibrators(ARM, paper.K[:4], paper.L_CA)
     with pytest.raises(UnbalanceableError, match="spring 3 cannot be attached"):
-        pb.design_equilibrators(ARM, [2e4, 10.0, 1.5e4, 2e3, 1e3], paper.L_CA, max_l_CB=0.3)
+        subs.design_equilibrators(ARM, [2e4, 10.0, 1.5e4, 2e3, 1e3], paper.L_CA, max_l_CB=0.3)
     flat = pb.PseudobaseArm(**_arm_kwargs(m_hat=np.zeros(6), m_star=np.r_[0, 0, 1e-9, 0, 0, 0],
                                           c=np.zeros((6, 3)), s=np.zeros((6, 3)),
                                           dh=pb.DH(d=np.zeros(6), a=np.r_[0.1, np.zeros(5)], alpha=paper.DH_PRIMARY.alpha)))
     with pytest.raises(UnbalanceableError, match="needs no spring"):
-        pb.design_equilibrators(flat, paper.K, paper.L_CA)
+        subs.design_equilibrators(flat, paper.K, paper.L_CA)
     with pytest.raises(SpringlabError, match="joint angles"):
-        pb.energies(ARM, SPRINGS, np.zeros((3, 5)))
+        pbgeo.energies(ARM, SPRINGS, np.zeros((3, 5)))
 
 
 # --- route 3 ---------------------------------------------------------------------------
@@ -255,8 +257,8 @@ def test_turning_a_crank_moves_the_fold_and_keeps_the_balance():
     assert np.isclose(np.linalg.norm(np.cross(axis, before)), np.linalg.norm(np.cross(axis, after)))
     assert np.isclose(before @ axis, after @ axis)
     assert best > 0.5 and [k for _, k in pb.fold_crossings(t, pb.fold_margin(moved, q), moved.modules)] == [6]
-    springs = pb.design_equilibrators(moved, paper.K, paper.L_CA)
-    E = pb.energies(moved, springs, q)
+    springs = subs.design_equilibrators(moved, paper.K, paper.L_CA)
+    E = pbgeo.energies(moved, springs, q)
     assert np.ptp(E["total"]) < 1e-10 * np.ptp(E["gravity"])
     with pytest.raises(SpringlabError, match="no module"):
         pb.rotate_crank(ARM, 1, 0.1)

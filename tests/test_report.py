@@ -7,8 +7,8 @@ from pathlib import Path
 import nbformat
 import pytest
 
-from springlab import site
-from springlab.notebooks import notebook_paths
+from springlab.workbench import site
+from springlab.workbench.notebooks import notebook_paths
 
 ROOT = Path(__file__).resolve().parents[1]
 STEMS = [p.stem for p in notebook_paths(ROOT / "notebooks")]

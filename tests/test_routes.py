@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from springlab import Spring, energy, quadratic, random_directions, serial_chain
+from springlab import Spring, random_directions, serial_chain
+from springlab.energy import geometry, quadratic
 from springlab.papers import juang2023 as paper
 
 
@@ -12,7 +13,7 @@ def test_two_link_gravity_energy_closed_form():
     theta = np.linspace(0, np.pi, 7)
     X = chain.directions(np.stack([np.zeros_like(theta), theta, np.zeros_like(theta)], -1)[:, None, :])
     expected = 3.0 * 9.81 * 0.2 * np.cos(theta)
-    np.testing.assert_allclose(energy.gravity_energy(chain, X), expected, atol=1e-12)
+    np.testing.assert_allclose(geometry.gravity_energy(chain, X), expected, atol=1e-12)
     np.testing.assert_allclose(quadratic.quadratic_gravity_energy(chain, X), expected, atol=1e-12)
 
 
@@ -22,7 +23,7 @@ def test_spring_energy_closed_form():
     X = np.array([[[1, 0, 0], [0, 1, 0]]], dtype=float)
     spring = Spring(1, 2, a=0.1, b=0.3, k=100.0)
     expected = 0.5 * 100.0 * (0.1**2 + 0.3**2)
-    np.testing.assert_allclose(energy.spring_energy(chain, [spring], X), expected)
+    np.testing.assert_allclose(geometry.spring_energy(chain, [spring], X), expected)
     np.testing.assert_allclose(quadratic.quadratic_energy(chain, [spring], X), expected)
 
 
@@ -31,7 +32,7 @@ def test_routes_agree_on_the_example_arm(arm, exact_springs, rng, scale):
     springs = [s.scaled(scale) for s in exact_springs]
     X = random_directions(arm.n, 500, rng)
     u1 = quadratic.quadratic_energy(arm, springs, X)
-    u2 = energy.total_energy(arm, springs, X)
+    u2 = geometry.total_energy(arm, springs, X)
     np.testing.assert_allclose(u1, u2, rtol=0, atol=1e-10)
 
 
@@ -40,22 +41,22 @@ def test_routes_agree_with_chunking(arm, exact_springs, rng):
     springs = [s.scaled(0.8) for s in exact_springs]
     full = quadratic.quadratic_energy(arm, springs, X)
     np.testing.assert_allclose(quadratic.quadratic_energy(arm, springs, X, chunk=64), full, atol=1e-12)
-    np.testing.assert_allclose(energy.total_energy(arm, springs, X, chunk=100), full, atol=1e-10)
+    np.testing.assert_allclose(geometry.total_energy(arm, springs, X, chunk=100), full, atol=1e-10)
 
 
 def test_exact_design_is_balanced_and_scaled_one_is_not(arm, exact_springs, rng):
     X = random_directions(arm.n, 1000, rng)
-    gravity_range = np.ptp(energy.gravity_energy(arm, X))
-    assert np.ptp(energy.total_energy(arm, exact_springs, X)) < 1e-10 * gravity_range
+    gravity_range = np.ptp(geometry.gravity_energy(arm, X))
+    assert np.ptp(geometry.total_energy(arm, exact_springs, X)) < 1e-10 * gravity_range
     assert np.abs(quadratic.balance_residual(arm, exact_springs)).max() < 1e-12
     unbalanced = [s.scaled(0.9) for s in exact_springs]
-    assert np.ptp(energy.total_energy(arm, unbalanced, X)) > 1e-2 * gravity_range
+    assert np.ptp(geometry.total_energy(arm, unbalanced, X)) > 1e-2 * gravity_range
 
 
 def test_printed_springs_leave_a_residual_within_the_bound(arm, rng):
     printed = paper.table3_springs()
     X = random_directions(arm.n, 2000, rng)
-    spread = np.ptp(energy.total_energy(arm, printed, X))
+    spread = np.ptp(geometry.total_energy(arm, printed, X))
     bound = quadratic.energy_variation_bound(arm, printed)
     assert 1e-3 < spread <= bound
     # Eq. (48f) carries the largest residual: r_3 (k14 b14 + k24 b24) - k34 a34 b34 with b rounded up
@@ -67,12 +68,12 @@ def test_free_length_spring_energy():
     chain = serial_chain([0.5], [0.2], [3.0])
     X = np.array([[[1, 0, 0], [0, 1, 0]]], dtype=float)
     spring = Spring(1, 2, a=0.3, b=0.4, k=100.0, free_length=0.1)
-    np.testing.assert_allclose(energy.spring_energy(chain, [spring], X), 0.5 * 100.0 * (0.5 - 0.1) ** 2)
+    np.testing.assert_allclose(geometry.spring_energy(chain, [spring], X), 0.5 * 100.0 * (0.5 - 0.1) ** 2)
 
 
 def test_attachment_points_follow_the_sign_convention(arm):
     X = np.tile([1.0, 0, 0], (1, arm.n, 1))  # all links straight up
-    A, B = energy.attachment_points(arm, Spring(3, 4, a=-0.2, b=-0.1, k=1.0), X)
+    A, B = geometry.attachment_points(arm, Spring(3, 4, a=-0.2, b=-0.1, k=1.0), X)
     # joint 3 (distal of link 3) is at r2 + r3 = 0.54 m; A is 0.2 m back on link 3, B 0.1 m behind link 4's base
     np.testing.assert_allclose(A[0], [0.34, 0, 0])
     np.testing.assert_allclose(B[0], [0.44, 0, 0])

@@ -3,16 +3,10 @@
 import numpy as np
 import pytest
 
-from springlab import (
-    Spring,
-    SpringlabError,
-    UnbalanceableError,
-    random_directions,
-    serial_chain,
-    sim,
-)
+from springlab import Spring, SpringlabError, UnbalanceableError, random_directions, serial_chain
+from springlab.energy import simulation as sim
+from springlab.model.trajectories import Sweep
 from springlab.papers import juang2023 as paper
-from springlab.trajectories import Sweep
 
 
 @pytest.fixture(scope="module")
@@ -106,7 +100,7 @@ def test_bad_inputs(arm, exact_springs, poses):
 def planar_arm():
     """A 3-link arm in the vertical x-y plane: revolute joints about z, balanced by
     springs solved from the same Eqs. (39) (the planar case of the spatial form)."""
-    from springlab.design import design_for
+    from springlab.design.solve import design_for
 
     chain = serial_chain([0.4, 0.3, 0.25], [0.2, 0.15, 0.1], [3.0, 2.0, 1.0], joints=[(0, 0, 1)] * 3)
     _, springs = design_for(chain, seed=1)
@@ -167,8 +161,8 @@ def test_holding_torque_sign_against_an_applied_torque(arm, poses):
     # a known torque applied to the end link must be held by every joint: tau_held = route 2 - T
     from exudyn.utilities import LoadTorqueVector, MarkerBodyRigid
 
-    from springlab.energy import holding_torques as analytic
-    from springlab.rotations import frames_from_directions
+    from springlab.energy.geometry import holding_torques as analytic
+    from springlab.model.rotations import frames_from_directions
 
     applied = np.array([0.7, -1.3, 2.1])
     model = sim.build_model(arm, [], frames_from_directions(poses[:1])[0], joints="locked")
@@ -182,7 +176,7 @@ def test_holding_torque_sign_against_an_applied_torque(arm, poses):
 def test_follow_torques_approach_the_holding_torques_in_a_slow_motion(arm, exact_springs):
     # unbalanced springs, a 60 s sweep: the driven joints' torques are the holding torques
     # (route 2, in the driven link's frame) plus a small inertial part
-    from springlab.energy import holding_torques as analytic
+    from springlab.energy.geometry import holding_torques as analytic
 
     springs = [s.scaled(0.9) for s in exact_springs]
     sweep = Sweep(paper.TABLE_4_INITIAL, paper.TABLE_4_ROTATION, 60.0)

@@ -3,7 +3,7 @@
 import pytest
 import sympy as sp
 
-from springlab import quadratic as q
+from springlab.energy import quadratic as q
 
 
 @pytest.mark.parametrize("n", [2, 3, 4, 5])

@@ -6,7 +6,7 @@ printed. SI units; angles in degrees as printed.
 
 from __future__ import annotations
 
-from springlab.efficiency import PlanarArm, PlanarSpring, Workspace
+from springlab.mechanisms.planar.model import PlanarArm, PlanarSpring, Workspace
 
 # Table 3: link 1 is the ground (reference length r_1 = 1 m)
 R = (1.000, 0.360, 0.445, 0.300)  # m

@@ -11,9 +11,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from springlab.chain import serial_chain
-from springlab.configurations import SpringSlot
-from springlab.springs import Spring
+from springlab.design.rules import SpringSlot
+from springlab.model.chain import serial_chain
+from springlab.model.springs import Spring
 
 G = 9.8
 """m/s^2. The paper does not print g; Table 3's k_S(1,2) = 294.00 N/m follows

@@ -9,7 +9,7 @@ are ours. SI units.
 
 from __future__ import annotations
 
-from springlab.anthropomorphic import Arm
+from springlab.mechanisms.two_spring_arm import Arm
 
 FOREARM_LENGTH = 0.35  # m, for drawing and simulation (the balance does not depend on it)
 

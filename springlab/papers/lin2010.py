@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from springlab.pseudobase import DH, PseudobaseArm, aux_offset_from_dh
+from springlab.mechanisms.pseudobase.model import DH, PseudobaseArm, aux_offset_from_dh
 
 # Table 1: DH parameters (standard DH), primary / auxiliary chains
 DH_PRIMARY = DH(d=[0.0, 0.0, 0.0, 0.5, 0.0, 0.27],

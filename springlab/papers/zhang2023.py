@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from springlab.dyad import Compensator, Dyad
+from springlab.mechanisms.dyad.model import Compensator, Dyad
 
 K, L0, G, S = 1000.0, 1.0, 75.0, 0.84  # k (N/m), l0 (m), G (N), s (m): Section V A and B
 

@@ -20,11 +20,11 @@ import numpy as np
 import sympy as sp
 from scipy.optimize import least_squares, linprog
 
-from springlab.chain import Chain
-from springlab.configurations import SpringSlot, as_slots
-from springlab.errors import SpringlabError, UnbalanceableError
-from springlab.quadratic import gravity_entries, spring_entries
-from springlab.springs import Spring, sign_char
+from springlab.design.rules import SpringSlot, as_slots
+from springlab.energy.quadratic import gravity_entries, spring_entries
+from springlab.errors import SolverError, SpringlabError, UnbalanceableError
+from springlab.model.chain import Chain
+from springlab.model.springs import Spring, check_attachments, sign_char
 
 
 @dataclass(frozen=True)
@@ -65,31 +65,6 @@ class Design:
 
 def _rational(x: float) -> sp.Rational:
     return sp.Rational(repr(float(x)))
-
-
-def check_attachments(chain: Chain, springs, *, max_extension: float | None = None) -> None:
-    """Raise if a spring end lies off its link.
-
-    An end on the link side of its joint (a < 0 on link i >= 2, b > 0 on link j)
-    must stay within the link: |a| <= r_i, b <= r_j. An end on the other side
-    (a > 0 past link i's distal joint, b < 0 behind link j's proximal joint) sits
-    on a bracket that extends the link; ``max_extension`` (m) bounds it if given.
-    """
-    for s in springs:
-        if s.i >= 2 and s.a < 0 and -s.a > chain.length(s.i) * (1 + 1e-12):
-            raise UnbalanceableError(
-                f"a_{s.label} = {s.a:.6g} m puts end A beyond link {s.i}'s proximal joint "
-                f"(r_{s.i} = {chain.length(s.i):g} m): the attachment is off the link")
-        if s.b > 0 and s.b > chain.length(s.j) * (1 + 1e-12):
-            raise UnbalanceableError(
-                f"b_{s.label} = {s.b:.6g} m puts end B beyond link {s.j}'s distal joint "
-                f"(r_{s.j} = {chain.length(s.j):g} m): the attachment is off the link")
-        if max_extension is not None:
-            for name, value, extended in (("a", s.a, s.a > 0), ("b", s.b, s.b < 0)):
-                if extended and abs(value) > max_extension:
-                    raise UnbalanceableError(
-                        f"{name}_{s.label} = {value:.6g} m needs a bracket longer than "
-                        f"max_extension = {max_extension:g} m")
 
 
 def solve_design(chain: Chain, specs, *, max_extension: float | None = None) -> Design:
@@ -192,7 +167,7 @@ def _residual_entries(chain: Chain, slots) -> list[tuple[int, int]]:
     return sorted(keys)
 
 
-def _linear_columns(chain: Chain, slots) -> list[dict[str, dict[tuple[int, int], float]]]:
+def linear_columns(chain: Chain, slots) -> list[dict[str, dict[tuple[int, int], float]]]:
     """Per spring, the entries of Eqs. (39) that P = k a b, A = k a, B = k b and k
     carry (000 Eqs. 23a-d, written linearly): {'P': {(i, j): -1}, 'A': ..., 'B': ..., 'K': ...}."""
     rr = {t: chain.r[t - 2] for t in range(2, chain.n + 1)}
@@ -209,7 +184,7 @@ def _linear_system(chain: Chain, slots, keys) -> tuple[np.ndarray, np.ndarray]:
     """Eqs. (39) at the entries ``keys`` as M @ v + g = 0, v = (P, A, B, k) per spring (SI units)."""
     row = {key: idx for idx, key in enumerate(keys)}
     M = np.zeros((len(keys), 4 * len(as_slots(slots))))
-    for idx, cols in enumerate(_linear_columns(chain, slots)):
+    for idx, cols in enumerate(linear_columns(chain, slots)):
         for c, name in enumerate("PABK"):
             for key, coef in cols[name].items():
                 M[row[key], 4 * idx + c] += coef
@@ -536,7 +511,7 @@ def relaxation_margin(chain: Chain, slots) -> float:
     keys = _residual_entries(chain, slots)
     row = {key: idx for idx, key in enumerate(keys)}
     columns, col_signs = [], []
-    for s, cols in zip(slots, _linear_columns(chain, slots), strict=True):
+    for s, cols in zip(slots, linear_columns(chain, slots), strict=True):
         # A and B enter only for springs spanning 2 or more links, k for 3 or more
         for name, sign in (("P", s.sa * s.sb), ("A", s.sa), ("B", s.sb), ("K", 1)):
             if cols[name]:
@@ -561,7 +536,7 @@ def relaxation_margin(chain: Chain, slots) -> float:
     if res.status == 2:  # infeasible even without the sign constraints
         return -np.inf
     if res.status != 0:
-        raise RuntimeError(f"linear programme failed: {res.message}")
+        raise SolverError(f"linear programme failed: {res.message}")
     return float(res.x[-1])
 
 
@@ -597,7 +572,7 @@ def compare_rules_with_feasibility(chain: Chain, configurations, *, restarts: in
     """
     from tqdm import tqdm
 
-    from springlab.configurations import is_admissible
+    from springlab.design.rules import is_admissible
 
     configurations = list(configurations)
     out = []
@@ -623,7 +598,7 @@ def design_for(chain: Chain, *, seed=0, restarts: int = 30):
     :returns: (configuration, springs)
     :raises UnbalanceableError: when no enumerated configuration yields a design
     """
-    from springlab.configurations import iter_configurations
+    from springlab.design.rules import iter_configurations
 
     for cfg in iter_configurations(chain.n):
         if relaxation_margin(chain, cfg) <= 1e-9:

@@ -1,34 +1,11 @@
-"""A rotating link balanced by a non-zero-length spring through a crank-slider dyad
-(Zhang, Arakelian 2023; paper 002).
+"""Synthesis of paper 002's dyad: the readings of Eq. (32) that choose the energy
+constant C, the searches over positions and readings, and the minimax optimum.
+It compares route 1's printed moments with route 2's virtual-work moment.
 
-Geometry (the paper's Fig. 1, as its Eqs. 1, 8 and 24 imply)::
-
-        B  (slider 4 on the vertical line through O, height y above O)
-        |\\
-        | \\  rod 3, length l
-        |  \\
-      y |   A  (on link 2, |OA| = r, at angle phi - beta from the vertical)
-        |  /
-        | / r
-        |/
-        O ---- link 2 (COM at distance s, at angle phi from the upward vertical)
-
-    spring 5: between the frame at O's level and the slider, length y,
-    free length l0, stiffness k; energy k (y - l0)^2 / 2 (Eqs. 2, 7).
-
-Angles in rad (the paper prints degrees), lengths in m, G in N, k in N/m,
-energies in J, moments in N m. phi = 0 is the link pointing up; the gravity
-energy is G s (1 + cos phi) (Eq. 1).
-
-Two unbalanced moments are implemented side by side:
-
-* :func:`unbalanced_moment_paper`: Eqs. (20)-(30) as printed;
-* :func:`unbalanced_moment`: the moment of gravity and spring about O by
-  virtual work, -dP/dphi of the total potential energy (route 2).
-
-They differ in the spring's share by cos^2(theta) (theta = angle OBA): Eq. (26)
-takes the rod's force as F_sp cos(theta), but a slider guided along OB passes the
-spring force F_sp to the rod as F_sp / cos(theta).
+References
+----------
+Zhang, Y., Arakelian, V. (2023). Design and Synthesis of the Gravity Compensator with a
+Non-zero Length Spring (no DOI printed in the text).
 """
 
 from __future__ import annotations
@@ -38,172 +15,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab.errors import SpringlabError
-from springlab.trajectories import quintic
-
-
-def _positive(name: str, value: float, *, allow_zero: bool = False) -> float:
-    value = float(value)
-    if not np.isfinite(value) or value < 0 or (value == 0 and not allow_zero):
-        bound = ">= 0" if allow_zero else "> 0"
-        raise SpringlabError(f"{name} must be finite and {bound}, got {value}")
-    return value
-
-
-@dataclass(frozen=True)
-class Compensator:
-    """The link and the spring: weight G (N), COM distance s (m), stiffness k (N/m),
-    free length l0 (m)."""
-
-    G: float
-    s: float
-    k: float
-    l0: float
-
-    def __post_init__(self):
-        for name in ("G", "s", "k"):
-            _positive(name, getattr(self, name))
-        _positive("l0", self.l0, allow_zero=True)
-
-    def gravity_energy(self, phi) -> np.ndarray:
-        """P_G = G s (1 + cos phi) (Eq. 1), J."""
-        return self.G * self.s * (1.0 + np.cos(np.asarray(phi, dtype=float)))
-
-    def gravity_moment(self, phi) -> np.ndarray:
-        """The moment of gravity about O, G s sin(phi) (N m), positive towards larger phi
-        (the paper's Eq. 20 prints it as M_G = -G s sin(phi))."""
-        return self.G * self.s * np.sin(np.asarray(phi, dtype=float))
-
-
-@dataclass(frozen=True)
-class Dyad:
-    """The crank-slider dyad: r = |OA| (m), l = |AB| (m), beta (rad)."""
-
-    r: float
-    l: float  # noqa: E741 - the paper's symbol
-    beta: float
-
-    def __post_init__(self):
-        _positive("r", self.r)
-        _positive("l", self.l)
-        if not np.isfinite(self.beta):
-            raise SpringlabError(f"beta must be finite, got {self.beta}")
-
-
-def slider_positions(comp: Compensator, C: float, phi, *, branch: int = -1) -> np.ndarray:
-    """Slider heights y (m) that keep the total energy at C (J): Eqs. (5)-(7).
-
-    y = l0 + branch * sqrt((2C - 2 G s (1 + cos phi)) / k); ``branch`` = -1 (the
-    spring shorter than free, the paper's examples) or +1.
-
-    :raises SpringlabError: where 2C < 2 G s (1 + cos phi): the root is imaginary
-    """
-    if branch not in (-1, 1):
-        raise SpringlabError(f"branch must be -1 or +1, got {branch}")
-    phi = np.asarray(phi, dtype=float)
-    radicand = (2.0 * C - 2.0 * comp.gravity_energy(phi)) / comp.k  # Eq. (6)
-    if np.any(radicand < 0) or not np.isfinite(C):
-        worst = np.degrees(np.atleast_1d(phi)[np.argmin(np.atleast_1d(radicand))])
-        need = float(np.max(comp.gravity_energy(phi)))
-        raise SpringlabError(
-            f"C = {C} J is below the gravity energy G s (1 + cos phi) = {need:.6g} J at phi = {worst:.6g} deg: "
-            f"the slider position of Eq. (6) is imaginary; choose C >= {need:.6g} J")
-    return comp.l0 + branch * np.sqrt(radicand)  # Eq. (7)
-
-
-@dataclass(frozen=True)
-class Synthesis:
-    """The dyad from Eq. (16) and how well-posed the system was."""
-
-    dyad: Dyad
-    condition_number: float  # of the matrix [a_i, b_i, 1]
-    residual: float  # largest |a z1 + b z2 + z3 - c| (m^2); 0 for 3 positions
-
-
-def synthesise(phi, y) -> Synthesis:
-    """r, l, beta from prescribed positions (phi_i, y_i): Eqs. (12)-(19).
-
-    Exact for 3 positions, least squares for more.
-
-    :raises SpringlabError: fewer than 3 positions, a singular system, or
-        z3 + r^2 < 0 (no real rod length)
-    """
-    phi = np.atleast_1d(np.asarray(phi, dtype=float))
-    y = np.atleast_1d(np.asarray(y, dtype=float))
-    if phi.shape != y.shape or phi.ndim != 1:
-        raise SpringlabError(f"phi and y must be 1-D of one length, got {phi.shape} and {y.shape}")
-    if len(phi) < 3:
-        raise SpringlabError(f"the synthesis needs at least 3 prescribed positions, got {len(phi)}")
-    if not (np.all(np.isfinite(phi)) and np.all(np.isfinite(y))):
-        raise SpringlabError("phi and y must be finite")
-    A = np.stack([2 * y * np.cos(phi), 2 * y * np.sin(phi), np.ones_like(y)], axis=1)  # Eq. (16)
-    c = y**2
-    cond = float(np.linalg.cond(A))
-    if not np.isfinite(cond) or cond > 1e12:
-        raise SpringlabError(f"the positions give a singular system (condition number {cond:.3g})")
-    z, *_ = np.linalg.lstsq(A, c, rcond=None)
-    r = float(np.hypot(z[0], z[1]))  # Eqs. (12)-(13), (18)
-    beta = float(np.arctan2(z[1], z[0]))  # Eq. (17)
-    l_sq = z[2] + r**2  # Eq. (19)
-    if l_sq <= 0:
-        raise SpringlabError(f"z3 + r^2 = {l_sq:.6g} m^2 <= 0: no real rod length l for these positions")
-    return Synthesis(Dyad(r, float(np.sqrt(l_sq)), beta), cond, float(np.max(np.abs(A @ z - c))))
-
-
-def _closing(dyad: Dyad, phi) -> tuple[np.ndarray, np.ndarray]:
-    phi = np.asarray(phi, dtype=float)
-    u = phi - dyad.beta
-    horizontal = dyad.r * np.sin(u)
-    if np.any(np.abs(horizontal) > dyad.l):
-        worst = np.degrees(np.atleast_1d(phi)[np.argmax(np.abs(np.atleast_1d(horizontal)))])
-        raise SpringlabError(
-            f"l = {dyad.l:.6g} m < r |sin(phi - beta)| at phi = {worst:.6g} deg: the dyad cannot close")
-    return u, np.sqrt(dyad.l**2 - horizontal**2)  # l cos(theta)
-
-
-def slider_height(dyad: Dyad, phi) -> np.ndarray:
-    """y = r cos(phi - beta) + sqrt(l^2 - r^2 sin^2(phi - beta)) (Eq. 24), m."""
-    u, l_cos_theta = _closing(dyad, phi)
-    return dyad.r * np.cos(u) + l_cos_theta
-
-
-def potential_energy(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
-    """Total potential energy P = G s (1 + cos phi) + k (y - l0)^2 / 2 (Eqs. 1-3), J,
-    with y from the linkage's geometry (Eq. 24)."""
-    y = slider_height(dyad, phi)
-    return comp.gravity_energy(phi) + 0.5 * comp.k * (y - comp.l0) ** 2
-
-
-def unbalanced_moment(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
-    """The unbalanced moment about O by virtual work: -dP/dphi (N m), the moment
-    of gravity and spring together, positive towards larger phi (as the paper's
-    M_ub of Eq. 30). An actuator holds the link with the opposite torque.
-
-    dy/dphi = -r sin(phi - beta) y / (l cos theta), so
-    M_ub = G s sin(phi) + k (y - l0) r sin(phi - beta) y / (l cos theta).
-    """
-    u, l_cos_theta = _closing(dyad, phi)
-    y = dyad.r * np.cos(u) + l_cos_theta
-    spring_force = comp.k * (y - comp.l0)
-    return comp.gravity_moment(phi) + spring_force * dyad.r * np.sin(u) * y / l_cos_theta
-
-
-def unbalanced_moment_paper(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
-    """M_ub as Eqs. (20)-(30) print it (N m).
-
-    M_G = -G s sin phi (20); y (24); F_sp = k (y - l0) (25); F_ab = F_sp cos theta
-    (26), theta = arccos((y^2 + l^2 - r^2) / (2 y l)) (27); M_sp = F_ab r sin psi
-    (28), psi = arcsin(y sin(phi - beta) / l) (29); M_ub = -(M_sp + M_G) (30).
-    """
-    phi = np.asarray(phi, dtype=float)
-    y = slider_height(dyad, phi)
-    M_G = -comp.G * comp.s * np.sin(phi)  # Eq. (20)
-    F_sp = comp.k * (y - comp.l0)  # Eq. (25)
-    theta = np.arccos(np.clip((y**2 + dyad.l**2 - dyad.r**2) / (2 * y * dyad.l), -1, 1))  # Eq. (27)
-    F_ab = F_sp * np.cos(theta)  # Eq. (26)
-    psi = np.arcsin(np.clip(y * np.sin(phi - dyad.beta) / dyad.l, -1, 1))  # Eq. (29)
-    M_sp = F_ab * dyad.r * np.sin(psi)  # Eq. (28)
-    return -(M_sp + M_G)  # Eq. (30)
-
+from springlab.mechanisms.dyad.algebra import (
+    slider_positions,
+    synthesise,
+    unbalanced_moment_paper,
+    unbalanced_moment_paper_sign_corrected,
+)
+from springlab.mechanisms.dyad.geometry import max_unbalanced, unbalanced_moment
+from springlab.mechanisms.dyad.model import Compensator, Dyad, slider_height
 
 EQ32_READINGS = ("signed sum", "sum of magnitudes", "sum of squares", "maximum magnitude")
 """How Eq. (31)'s total of the moments at the prescribed positions can be read."""
@@ -223,19 +42,13 @@ def eq32_objective(moments: np.ndarray, reading: str):
     return float(out) if np.ndim(out) == 0 else out
 
 
-def unbalanced_moment_paper_sign_corrected(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
-    """Eqs. (20)-(30) with the spring's moment taken with the sign of a moment towards
-    larger phi (as M_G's gravity is): G s sin(phi) + M_sp. As printed, Eq. (30)
-    subtracts a spring moment of the same sign as gravity's and so adds the two."""
-    return 2.0 * comp.gravity_moment(phi) - unbalanced_moment_paper(comp, dyad, phi)
-
-
 MOMENTS = {
     "virtual work": unbalanced_moment,
     "Eqs. (20)-(30) as printed": unbalanced_moment_paper,
     "Eqs. (20)-(30), spring sign corrected": unbalanced_moment_paper_sign_corrected,
 }
 """The unbalanced-moment definitions compared in the paper-002 notebook."""
+
 
 C_READINGS = ("signed sum stationary", "smallest |signed sum|", "sum of magnitudes", "sum of squares",
               "maximum magnitude")
@@ -316,11 +129,6 @@ class Optimum:
     max_moment: float
 
 
-def max_unbalanced(comp: Compensator, dyad: Dyad, phi) -> float:
-    """The largest |M_ub| (virtual work) over the angles phi, N m."""
-    return float(np.max(np.abs(unbalanced_moment(comp, dyad, phi))))
-
-
 def optimise(comp: Compensator, phi, start: Dyad, *, free_l0: bool = False,
              bounds: dict | None = None) -> Optimum:
     """Minimise the largest |M_ub| (virtual work) over the angles ``phi`` by
@@ -358,99 +166,6 @@ def optimise(comp: Compensator, phi, start: Dyad, *, free_l0: bool = False,
                    bounds=[b[k] for k in keys] + [(0, None)], options={"maxiter": 500, "ftol": 1e-12})
     d, c = unpack(res.x[:-1])
     return Optimum(d, c.l0, max_unbalanced(c, d, phi))
-
-
-@dataclass(frozen=True)
-class Drive:
-    """A slow drive of the compensator simulated in exudyn: link angle phi (rad) and the
-    input torque (N m) the drive applies to the link, positive towards larger phi,
-    at each stored time t (s)."""
-
-    t: np.ndarray
-    phi: np.ndarray
-    torque: np.ndarray
-    cpu_seconds: float
-
-
-def simulate_drive(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: float, *,
-                   duration: float = 10.0, samples: int = 121, step: float = 1e-2) -> Drive:
-    """Drive the link from ``phi_start`` to ``phi_end`` (rad), rest to rest (quintic law),
-    in an exudyn model: link 2 on a revolute joint at O, rod 3 jointed to it at A and
-    to slider 4 at B, the slider on a vertical prismatic joint through O, the spring
-    (k, l0) from O to the slider, the link's weight G at its COM. The bodies carry
-    only token masses (1 g) and the weight is a force, so inertia adds nothing
-    measurable: the drive's torque is the static one, -M_ub (= dP/dphi). Planar, in the x-y
-    plane with y up; phi turns the link from +y towards +x.
-    """
-    import time as _time
-
-    import exudyn as exu
-    from exudyn.utilities import (
-        LoadForceVector,
-        MarkerBodyPosition,
-        ObjectConnectorSpringDamper,
-        RigidBodyInertia,
-        SensorObject,
-    )
-
-    from springlab.rotations import rot_z
-    from springlab.sim import SimSettings, solver_settings
-
-    if not (np.isfinite(duration) and duration > 0):
-        raise SpringlabError(f"duration must be > 0 s, got {duration}")
-    if int(samples) != samples or samples < 2:
-        raise SpringlabError(f"samples must be an integer >= 2, got {samples}")
-    span = float(phi_end - phi_start)
-    _closing(dyad, np.linspace(phi_start, phi_end, 64))  # raises if the dyad cannot close
-
-    def along(angle, length):  # a point at distance length, angle from +y towards +x
-        return np.array([length * np.sin(angle), length * np.cos(angle), 0.0])
-
-    S0, A0 = along(phi_start, comp.s), along(phi_start - dyad.beta, dyad.r)
-    B0 = np.array([0.0, float(slider_height(dyad, phi_start)), 0.0])
-    R_link = rot_z(-phi_start)
-    token = RigidBodyInertia(1e-3, np.diag([1e-6, 1e-6, 1e-6]))
-
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    ground = mbs.CreateGround(referencePosition=[0.0, 0.0, 0.0])
-    link = mbs.CreateRigidBody(inertia=token, referencePosition=list(S0), referenceRotationMatrix=R_link)
-    rod = mbs.CreateRigidBody(inertia=token, referencePosition=list((A0 + B0) / 2))
-    slider = mbs.CreateRigidBody(inertia=token, referencePosition=list(B0))
-
-    def offset(mbs_, t, item, values):  # the link turns by -(phi - phi_start) about z
-        return [0.0, 0.0, 0.0, 0.0, 0.0, -span * float(quintic(t / duration))]
-
-    drive = mbs.CreateGenericJoint(itemNumbers=[ground, link], position=[0.0, 0.0, 0.0],
-                                   constrainedAxes=[1] * 6, offsetUserFunction=offset)
-    mbs.CreateRevoluteJoint(itemNumbers=[link, rod], position=list(A0), axis=[0.0, 0.0, 1.0])
-    mbs.CreateGenericJoint(itemNumbers=[rod, slider], position=list(B0), constrainedAxes=[1, 1, 0, 0, 0, 0])
-    mbs.CreateGenericJoint(itemNumbers=[ground, slider], position=list(B0), constrainedAxes=[1, 0, 1, 1, 1, 1])
-    weight_at = mbs.AddMarker(MarkerBodyPosition(bodyNumber=link, localPosition=[0.0, 0.0, 0.0]))
-    mbs.AddLoad(LoadForceVector(markerNumber=weight_at, loadVector=[0.0, -comp.G, 0.0]))
-    base = mbs.AddMarker(MarkerBodyPosition(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0]))
-    end = mbs.AddMarker(MarkerBodyPosition(bodyNumber=slider, localPosition=[0.0, 0.0, 0.0]))
-    mbs.AddObject(ObjectConnectorSpringDamper(markerNumbers=[base, end], referenceLength=comp.l0,
-                                              stiffness=comp.k, damping=0.0))
-    sensor = mbs.AddSensor(SensorObject(objectNumber=drive, storeInternal=True, writeToFile=False,
-                                        outputVariableType=exu.OutputVariableType.TorqueLocal))
-    mbs.Assemble()
-    dof = mbs.ComputeSystemDegreeOfFreedom()
-    if dof["redundantConstraints"]:
-        raise RuntimeError(f"the dyad model has redundant constraints: {dof}")
-
-    steps = max(samples - 1, int(round(duration / step)))
-    ss = solver_settings(SimSettings(step=duration / steps, relative_tolerance=1e-12, absolute_tolerance=1e-12),
-                         duration, write_period=duration / (samples - 1))
-    t0 = _time.process_time()
-    mbs.SolveDynamic(ss)
-    cpu = _time.process_time() - t0
-    data = mbs.GetSensorStoredData(sensor)
-    t = data[:, 0]
-    phi = phi_start + span * quintic(t / duration)
-    # a joint driven by an offset function holds with diag(-1, 1, 1) @ TorqueLocal (measured, see
-    # springlab.sim); z turns the link by -phi, so the drive's torque towards larger phi is -TorqueLocal_z
-    return Drive(t, phi, -data[:, 3], cpu)
 
 
 # --- the readings the paper allows, searched in batches -----------------------------

@@ -1,4 +1,4 @@
-"""An arm described in a file (TOML or JSON), with units, for :func:`springlab.arm_design.design_arm`.
+"""An arm described in a file (TOML or JSON), with units, for :func:`springlab.design.rank.design_arm`.
 
 Every quantity is a number in SI units or a string "value unit"::
 
@@ -102,8 +102,8 @@ class ArmSpec:
         return len(self.r) + 1
 
     def chain(self, *, with_payload: bool = True):
-        """The springlab :class:`~springlab.chain.Chain` (payload at the end link's COM)."""
-        from springlab.chain import serial_chain
+        """The springlab :class:`~springlab.model.chain.Chain` (payload at the end link's COM)."""
+        from springlab.model.chain import serial_chain
 
         joints = None if all(j == "spherical" for j in self.joints) else list(self.joints)
         chain = serial_chain(self.r, self.d, self.m, self.g, joints=joints)

@@ -2,7 +2,7 @@
 (Juang, Jhuang, Chen 2023, Sections 3.2-3.3, Table 1).
 
 A configuration is a set of springs S(i,j), each with a sign pattern
-(sign a, sign b) (see :mod:`springlab.springs` for the sketch). Two springs may
+(sign a, sign b) (see :mod:`springlab.model.springs` for the sketch). Two springs may
 join the same pair of links with different patterns (the paper's S and S').
 
 Each spring contributes to the entries (u, v), u < v, of the balance matrix

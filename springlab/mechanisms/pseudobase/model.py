@@ -1,4 +1,8 @@
-r"""Rotational subsystems and pseudobases: Lin, Shieh and Chen (2010), paper 001.
+r"""The pseudobase arm of Lin, Shieh and Chen (2010), paper 001: its kinematics and modules.
+
+The model shared by the three routes (:mod:`.subsystems` route 1, :mod:`.geometry`
+route 2, :mod:`.simulation` route 3): standard DH kinematics, the arm with its
+RSSR modules, the equilibrator springs, fold margins, mobility and added inertia.
 
 The gravity energy of n serial links is a sum of n *rotational subsystems*
 (001 Eqs. 5-8): subsystem i is a point mass mu_i at sigma_i, a vector fixed
@@ -33,22 +37,9 @@ Conventions (stated, tested):
 * links are numbered 1..n as in the paper (link 0 is the ground); arrays are
   0-based: ``m[i - 1]`` is m_i.
 
-Only the product mu_i sigma_i is physical
------------------------------------------
-Eq. (5) fixes the vector mu_i sigma_i = m_i s_i - (sum_{j>=i} m_j) r_i (kg m),
-the first moment of subsystem i. Eq. (7)'s mu_i = m_i + sum_{j>=i} m_j (which
-counts m_i twice) is a normalisation: any mu_i > 0 with sigma_i = (mu_i
-sigma_i) / mu_i gives the same energy -mu_i g . sigma_i, and the same spring
-through Eq. (16), K l_CA l_CB = mu_i g |sigma_i|. :func:`subsystems` takes
-``mu`` to show it:
-
->>> import numpy as np
->>> m, s, r = [2.0, 1.0], [[0.1, 0, 0], [0.2, 0, 0]], [[-0.3, 0, 0], [-0.4, 0, 0]]
->>> mu, sigma = subsystems(m, s, r)               # Eq. (7)
->>> mu2, sigma2 = subsystems(m, s, r, mu=[1.0, 1.0])
->>> bool(np.allclose(mu[:, None] * sigma, mu2[:, None] * sigma2))
-True
+The subsystems and why only the product mu_i sigma_i is physical: :mod:`.subsystems`.
 """
+
 
 from __future__ import annotations
 
@@ -56,47 +47,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from springlab.errors import SpringlabError, UnbalanceableError
-
-__all__ = [
-    "DH",
-    "PseudobaseArm",
-    "Equilibrator",
-    "subsystem_moments",
-    "subsystems",
-    "combined_subsystems",
-    "subsystem_energy",
-    "design_equilibrators",
-    "attachment_a",
-    "positions",
-    "energies",
-    "fold_margin",
-    "mobility",
-    "module_chain_mobility",
-    "joint_space_inertia",
-    "fold_crossings",
-    "symbolic_subsystems",
-    "aux_offset_from_dh",
-    "rotate_crank",
-    "clearest_crank",
-]
-
-
-def _vector_rows(name: str, value, n: int) -> np.ndarray:
-    out = np.asarray(value, dtype=float)
-    if out.shape != (n, 3) or not np.all(np.isfinite(out)):
-        raise SpringlabError(f"{name} must be finite with shape ({n}, 3) (m), got shape {np.shape(value)}")
-    return out
-
-
-def _masses(name: str, value, n: int) -> np.ndarray:
-    out = np.asarray(value, dtype=float)
-    if out.shape != (n,) or not np.all(np.isfinite(out)):
-        raise SpringlabError(f"{name} must be {n} finite masses (kg), got {value!r}")
-    bad = np.flatnonzero(out < 0)
-    if bad.size:
-        raise SpringlabError(f"{name}[{bad[0]}] (link {bad[0] + 1}) = {out[bad[0]]} kg: masses must be >= 0")
-    return out
+from springlab._checks import masses, vector_rows
+from springlab.errors import SpringlabError
 
 
 # --- DH kinematics (001 Table 1) -------------------------------------------------
@@ -203,11 +155,11 @@ class PseudobaseArm:
     def __post_init__(self):
         n = self.dh.n
         set_ = lambda k, v: object.__setattr__(self, k, v)  # noqa: E731
-        set_("m", _masses("m", self.m, n))
-        set_("m_hat", _masses("m_hat", self.m_hat, n))
-        set_("m_star", _masses("m_star", self.m_star, n))
+        set_("m", masses("m", self.m, n))
+        set_("m_hat", masses("m_hat", self.m_hat, n))
+        set_("m_star", masses("m_star", self.m_star, n))
         for k in ("s", "s_hat", "c"):
-            set_(k, _vector_rows(k, getattr(self, k), n))
+            set_(k, vector_rows(k, getattr(self, k), n))
         modules = tuple(int(i) for i in self.modules)
         if not modules or modules != tuple(range(modules[0], n + 1)) or modules[0] not in (1, 2):
             raise SpringlabError(f"modules must be the links k..{n} with k = 1 or 2, got {self.modules!r}")
@@ -257,64 +209,6 @@ class PseudobaseArm:
         return self.dh.link_vectors()
 
 
-# --- subsystems (001 Eqs. 5-8, 21-25) -------------------------------------------------
-def subsystem_moments(m, s, r) -> np.ndarray:
-    """mu_i sigma_i = m_i s_i - (sum_{j>=i} m_j) r_i, (n, 3) in kg m (001 Eq. 5): the
-    physical content of a subsystem, in frame i."""
-    m = np.asarray(m, dtype=float)
-    s, r = np.asarray(s, dtype=float), np.asarray(r, dtype=float)
-    beyond = np.cumsum(m[::-1])[::-1]  # sum_{j>=i} m_j
-    return m[:, None] * s - beyond[:, None] * r
-
-
-def subsystems(m, s, r, mu=None):
-    """(mu, sigma) of the n rotational subsystems (001 Eqs. 6-8).
-
-    :param m: (n,) masses (kg); s: (n, 3) COMs from O_i; r: (n, 3) link vectors, frame i (m)
-    :param mu: (n,) normalising masses (kg, > 0); None: Eq. (7), mu_i = m_i + sum_{j>=i} m_j
-    :returns: mu (n,) kg, sigma (n, 3) m with mu_i sigma_i = Eq. (5)'s first moment
-    """
-    m = _masses("m", m, len(np.atleast_1d(m)))
-    n = m.size
-    s, r = _vector_rows("s", s, n), _vector_rows("r", r, n)
-    moment = subsystem_moments(m, s, r)
-    if mu is None:
-        mu = m + np.cumsum(m[::-1])[::-1]  # Eq. (7)
-    mu = np.asarray(mu, dtype=float)
-    if mu.shape != (n,) or not np.all(np.isfinite(mu)) or np.any(mu <= 0):
-        raise SpringlabError(f"mu must be {n} masses > 0 kg, got {mu!r}")
-    return mu, moment / mu[:, None]  # Eq. (8)
-
-
-def combined_subsystems(arm: PseudobaseArm, mu=None):
-    """Combined (mu~, sigma~) with the auxiliary links and pseudobases (001 Eqs. 24-25).
-
-    Each body's mass is m_i + m^_i + m*_i; its first moment about O_i is
-    m_i s_i + m^_i s^_i + m*_i c_i (frame i = frame î), and the mass beyond link i
-    acts at -r_i (r^_i = r_i on the parallelogram branch). The constant height
-    of the pseudobase's COM above C_i drops out (Eq. 23).
-    """
-    total = arm.m + arm.m_hat + arm.m_star
-    first = arm.m[:, None] * arm.s + arm.m_hat[:, None] * arm.s_hat + arm.m_star[:, None] * arm.c
-    beyond = np.cumsum(total[::-1])[::-1]
-    moment = first - beyond[:, None] * arm.link_vectors()  # numerator of Eq. (25)
-    if mu is None:
-        mu = total + beyond  # Eq. (24)
-    mu = np.asarray(mu, dtype=float)
-    if mu.shape != (arm.n,) or np.any(~np.isfinite(mu)) or np.any(mu <= 0):
-        raise SpringlabError(f"mu must be {arm.n} masses > 0 kg, got {mu!r}")
-    return mu, moment / mu[:, None]
-
-
-def subsystem_energy(arm: PseudobaseArm, q, mu, sigma) -> np.ndarray:
-    """Route 1: sum_i -mu_i g . sigma_i = sum_i mu_i g up . (R_i sigma_i), (N,) J (001 Eq. 6).
-
-    Equal to the direct-geometry gravity energy up to a constant."""
-    R, _ = arm.dh.frames(arm.dh.check_angles(q))
-    world = np.einsum("nkij,kj->nki", R[:, 1:], np.asarray(sigma, dtype=float))
-    return arm.g * np.einsum("k,nk->n", np.asarray(mu, dtype=float), world @ arm.up)
-
-
 # --- equilibrator springs (001 Eqs. 13-16) ---------------------------------------------
 @dataclass(frozen=True)
 class Equilibrator:
@@ -335,46 +229,6 @@ class Equilibrator:
         return Equilibrator(self.link, self.K * factor, self.l_CA, self.l_CB, self.b, self.c)
 
 
-def design_equilibrators(arm: PseudobaseArm, K, l_CA, *, max_l_CB: float | None = None,
-                         l_CB=None) -> tuple[Equilibrator, ...]:
-    """One spring per module from K_i and l_CA,i, with l_CB,i from Eq. (16):
-    K_i l_CA,i l_CB,i = mu~_i g |sigma~_i|, and B_i on the line through C_i along
-    sigma~_i (Eq. 14).
-
-    :param K: stiffnesses (N/m, > 0), one per module; l_CA: (m, > 0)
-    :param max_l_CB: the longest distance C_i B_i link i allows (m); a spring that
-        needs more cannot be attached and raises :class:`UnbalanceableError`
-    :param l_CB: given lengths instead of Eq. (16) (e.g. a paper's rounded ones),
-        for measuring what they leave unbalanced
-    """
-    k = len(arm.modules)
-    K, l_CA = np.asarray(K, dtype=float), np.asarray(l_CA, dtype=float)
-    for name, v in (("K", K), ("l_CA", l_CA)):
-        if v.shape != (k,) or not np.all(np.isfinite(v)):
-            raise SpringlabError(f"{name} must have {k} finite values (one per module), got {v!r}")
-        bad = np.flatnonzero(v <= 0)
-        if bad.size:
-            unit = "N/m" if name == "K" else "m"
-            raise SpringlabError(f"{name} of spring {arm.modules[bad[0]]} = {v[bad[0]]} {unit}: must be > 0")
-    mu, sigma = combined_subsystems(arm)
-    out = []
-    for col, i in enumerate(arm.modules):
-        length = float(np.linalg.norm(sigma[i - 1]))
-        if length == 0.0:
-            raise UnbalanceableError(f"subsystem {i} has no first moment (sigma~_{i} = 0): it needs no spring; "
-                                     "remove its module")
-        need = mu[i - 1] * arm.g * length / (K[col] * l_CA[col])  # Eq. (16)
-        if l_CB is not None:
-            need = float(np.asarray(l_CB, dtype=float)[col])
-        if max_l_CB is not None and need > max_l_CB:
-            raise UnbalanceableError(
-                f"spring {i} cannot be attached: Eq. (16) needs l_CB = {need:.4g} m > max_l_CB = {max_l_CB} m; "
-                f"raise K_{i} or l_CA,{i}")
-        b = arm.c[i - 1] + need * sigma[i - 1] / length  # Eq. (14)
-        out.append(Equilibrator(i, float(K[col]), float(l_CA[col]), float(need), b, arm.c[i - 1].copy()))
-    return tuple(out)
-
-
 def attachment_a(arm: PseudobaseArm, springs, q) -> np.ndarray:
     """A_i from O_i in frame i at each pose, (N, k, 3) m (001 Eq. 13: a_i - c_i = l_CA up).
 
@@ -389,58 +243,8 @@ def attachment_a(arm: PseudobaseArm, springs, q) -> np.ndarray:
 
 
 # --- route 2: direct geometry ------------------------------------------------------------
-def _world(R, org, k, local):
+def world_point(R, org, k, local):
     return org[:, k] + np.einsum("nij,j->ni", R[:, k], local)
-
-
-def positions(arm: PseudobaseArm, springs, q) -> dict:
-    """Every body and attachment point in frame 0 (m), for joint angles q (N, n).
-
-    The auxiliary chain is placed by its own DH transforms from Ô_0 = O_0 +
-    aux_offset (its angles equal the primary ones on the parallelogram branch);
-    the pseudobase's direction is then the line C_i D_i as placed, not assumed.
-
-    :returns: dict of arrays: 'com' (N, n, 3) primary COMs; 'aux_com', 'star_com',
-        'C', 'D' (N, k, 3) per module; 'A', 'B' (N, k, 3) per spring; 'O' (N, n+1, 3) the frame origins
-    """
-    q = arm.dh.check_angles(q)
-    R, org = arm.dh.frames(q)
-    O_aux = org + arm.aux_offset  # parallel frames, translated: frame î
-    com = np.stack([_world(R, org, i, arm.s[i - 1]) for i in range(1, arm.n + 1)], axis=1)
-    C = np.stack([_world(R, org, i, arm.c[i - 1]) for i in arm.modules], axis=1)
-    D = np.stack([_world(R, O_aux, i, arm.c[i - 1]) for i in arm.modules], axis=1)
-    aux_com = np.stack([_world(R, O_aux, i, arm.s_hat[i - 1]) for i in arm.modules], axis=1)
-    line = D - C
-    u = line / np.linalg.norm(line, axis=-1, keepdims=True)  # the pseudobase's axis
-    star_com = C + arm.star_height * u
-    index = {i: col for col, i in enumerate(arm.modules)}
-    A, B = [], []
-    for sp in springs:
-        if sp.link not in index:
-            raise SpringlabError(f"spring on link {sp.link}: that link has no module (modules {arm.modules})")
-        A.append(C[:, index[sp.link]] + sp.l_CA * u[:, index[sp.link]])
-        B.append(_world(R, org, sp.link, sp.b))
-    shape = (q.shape[0], 0, 3)
-    return {"O": org, "com": com, "C": C, "D": D, "aux_com": aux_com, "star_com": star_com,
-            "A": np.stack(A, axis=1) if A else np.zeros(shape), "B": np.stack(B, axis=1) if B else np.zeros(shape)}
-
-
-def energies(arm: PseudobaseArm, springs, q) -> dict:
-    """Route 2 energies (J) at joint angles q (N, n): 'gravity_primary', 'gravity_aux',
-    'gravity_pseudobase', 'gravity' (their sum), 'elastic', 'total', each (N,).
-    Heights are measured along ``up`` from O_0."""
-    p = positions(arm, springs, q)
-    mod = np.asarray(arm.modules) - 1
-    out = {
-        "gravity_primary": arm.g * (p["com"] @ arm.up) @ arm.m,
-        "gravity_aux": arm.g * (p["aux_com"] @ arm.up) @ arm.m_hat[mod],
-        "gravity_pseudobase": arm.g * (p["star_com"] @ arm.up) @ arm.m_star[mod],
-    }
-    out["gravity"] = out["gravity_primary"] + out["gravity_aux"] + out["gravity_pseudobase"]
-    K = np.array([sp.K for sp in springs])
-    out["elastic"] = 0.5 * (np.sum((p["A"] - p["B"]) ** 2, axis=-1) @ K) if len(K) else np.zeros(len(p["O"]))
-    out["total"] = out["gravity"] + out["elastic"]
-    return out
 
 
 def fold_margin(arm: PseudobaseArm, q) -> np.ndarray:
@@ -455,7 +259,7 @@ def fold_margin(arm: PseudobaseArm, q) -> np.ndarray:
     out = []
     for i in arm.modules:
         z = R[:, i - 1, :, 2]
-        rho = _world(R, org, i, arm.c[i - 1]) - org[:, i - 1]
+        rho = world_point(R, org, i, arm.c[i - 1]) - org[:, i - 1]
         rho = rho - np.sum(rho * z, axis=-1, keepdims=True) * z
         norm = np.linalg.norm(rho, axis=-1)
         if np.any(norm == 0):
@@ -515,11 +319,11 @@ def joint_space_inertia(arm: PseudobaseArm, q, *, gyration: float = 0.05,
     bodies = []  # (link i, point in world, mass, rotates)
     for i in range(1, n + 1):
         if "primary" in parts:
-            bodies.append((i, _world(R, org, i, arm.s[i - 1]), arm.m[i - 1], True))
+            bodies.append((i, world_point(R, org, i, arm.s[i - 1]), arm.m[i - 1], True))
         if i in arm.modules and "aux" in parts:
-            bodies.append((i, _world(R, org, i, arm.s_hat[i - 1]), arm.m_hat[i - 1], True))
+            bodies.append((i, world_point(R, org, i, arm.s_hat[i - 1]), arm.m_hat[i - 1], True))
         if i in arm.modules and "pseudobase" in parts:
-            bodies.append((i, _world(R, org, i, arm.c[i - 1]), arm.m_star[i - 1], False))
+            bodies.append((i, world_point(R, org, i, arm.c[i - 1]), arm.m_star[i - 1], False))
     for i, p, mass, rotates in bodies:
         Jv = np.zeros((N, 3, n))
         Jw = np.zeros((N, 3, n))
@@ -546,35 +350,6 @@ def fold_crossings(t, margin, links) -> list[tuple[float, int]]:
         for k in np.flatnonzero(np.sign(y[:-1]) * np.sign(y[1:]) < 0):
             out.append((float(t[k] - y[k] * (t[k + 1] - t[k]) / (y[k + 1] - y[k])), int(link)))
     return sorted(out)
-
-
-# --- the derivation of Eqs. (4)-(8), in sympy ---------------------------------------------
-def symbolic_subsystems(n: int) -> dict:
-    """001 Eqs. (4)-(8) for n links in sympy, with the dot products g . s_i and g . r_i
-    as symbols (the energy is linear in them).
-
-    :returns: dict of sympy expressions: 'eq4' (the sum of Eq. (4) over the links),
-        'eq5', 'eq6' (with mu_i, sigma_i of Eqs. (7)-(8)); each is the total gravity
-        energy, and their differences expand to 0.
-
-    >>> import sympy as sp
-    >>> e = symbolic_subsystems(3)
-    >>> sp.simplify(e["eq4"] - e["eq5"]), sp.simplify(e["eq5"] - e["eq6"])
-    (0, 0)
-    """
-    import sympy as sp
-
-    if int(n) != n or n < 1:
-        raise SpringlabError(f"n must be an integer >= 1, got {n}")
-    m = sp.symbols(f"m1:{n + 1}", positive=True)
-    gs = sp.symbols(f"gs1:{n + 1}", real=True)  # g . s_i
-    gr = sp.symbols(f"gr1:{n + 1}", real=True)  # g . r_i
-    eq4 = sum(-m[i] * (gs[i] - sum(gr[j] for j in range(i + 1))) for i in range(n))  # Eqs. (3)-(4)
-    eq5 = -sum(m[i] * gs[i] - sum(m[j] for j in range(i, n)) * gr[i] for i in range(n))  # Eq. (5)
-    mu = [m[i] + sum(m[j] for j in range(i, n)) for i in range(n)]  # Eq. (7)
-    g_sigma = [(m[i] * gs[i] - sum(m[j] for j in range(i, n)) * gr[i]) / mu[i] for i in range(n)]  # Eq. (8)
-    eq6 = -sum(mu[i] * g_sigma[i] for i in range(n))  # Eq. (6)
-    return {"eq4": eq4, "eq5": eq5, "eq6": eq6, "mu": mu, "g_sigma": g_sigma}
 
 
 # --- the auxiliary chain from its own DH table; moving a module clear of its folds ---------------

@@ -76,7 +76,7 @@ def arm_figure(chain, springs, X_frames, tip_path=None, *, title: str = ""):
     """
     import numpy as np
 
-    from springlab.energy import attachment_points
+    from springlab.energy.geometry import attachment_points
 
     def view(p):  # world (x up, y, z) -> plot (y, z, x up)
         p = np.asarray(p)
@@ -130,7 +130,7 @@ def dyad_figure(comp, dyad, phis, *, title: str = ""):
     rod AB, slider B on the vertical through O, spring from O's level to B."""
     import numpy as np
 
-    from springlab.dyad import slider_height
+    from springlab.mechanisms.dyad.model import slider_height
 
     fig, ax = plt.subplots(figsize=(5.0, 4.6))
     shades = np.linspace(0.7, 0.0, len(phis))

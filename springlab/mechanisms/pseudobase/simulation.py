@@ -1,6 +1,6 @@
 """Route 3 for paper 001: the arm, its auxiliary links, pseudobases and springs in exudyn.
 
-Two models of the pseudobases, built from the same :class:`~springlab.pseudobase.PseudobaseArm`:
+Two models of the pseudobases, built from the same :class:`~springlab.mechanisms.pseudobase.PseudobaseArm`:
 
 * ``'rssr'``, the mechanism of 001 Section 4: auxiliary link î turns on a free
   revolute joint about an axis parallel to joint i through Ô_{i-1} (on auxiliary
@@ -12,7 +12,7 @@ Two models of the pseudobases, built from the same :class:`~springlab.pseudobase
   locked to the ground (a generic joint constraining rotations only), with a
   spherical joint at C_i; each auxiliary link's rotation is locked to its primary
   link, with a spherical joint at D_i. It cannot fold (see
-  :func:`springlab.pseudobase.fold_margin`), so it can follow paths the RSSR
+  :func:`springlab.mechanisms.pseudobase.fold_margin`), so it can follow paths the RSSR
   loops cannot.
 
 Every body is its mass at its COM with an isotropic radius of gyration (the
@@ -29,13 +29,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab.energy.multibody import SimSettings, add_sensor, frame_with_z, solver_settings
 from springlab.errors import SpringlabError
-from springlab.pseudobase import PseudobaseArm, energies, positions
-from springlab.sim import SimSettings, _frame_with_z, _sensor, solver_settings
+from springlab.mechanisms.pseudobase.geometry import energies, positions
+from springlab.mechanisms.pseudobase.model import PseudobaseArm
 
 MODELS = ("rssr", "ideal")
 _SETTINGS = SimSettings()
-_DRIVEN_Z_SIGN = 1.0  # a driven generic joint's TorqueLocal z = the torque on the driven link (sim.py)
+_DRIVEN_Z_SIGN = 1.0  # a driven generic joint's TorqueLocal z = the torque on the driven link (energy/multibody.py)
 _LOCKED_Z_SIGN = 1.0  # a locked generic joint's TorqueLocal z = the holding torque dV/dq (measured)
 
 
@@ -84,7 +85,7 @@ def build_model(arm: PseudobaseArm, springs, q0, *, model: str = "rssr", joints:
     if joints == "driven" and not np.allclose(np.asarray(trajectory(0.0), dtype=float), q0[0], atol=1e-12):
         raise SpringlabError("the trajectory must start at the reference pose q0")
     up, g = arm.up, arm.g
-    star_frame = _frame_with_z(up)  # a pseudobase's frame: z along C_i D_i (vertical)
+    star_frame = frame_with_z(up)  # a pseudobase's frame: z along C_i D_i (vertical)
 
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -191,10 +192,10 @@ def follow(arm: PseudobaseArm, springs, trajectory, duration: float, *, model: s
                     spring_scale=spring_scale, inertias=inertias, settings=settings)
     bodies = [(b, mass) for b, mass in zip(m.links[1:], arm.m, strict=True)]
     bodies += [(m.aux[i], arm.m_hat[i - 1]) for i in arm.modules] + [(m.stars[i], arm.m_star[i - 1]) for i in arm.modules]
-    pos = [_sensor(m, kind="Position", bodyNumber=b) for b, _ in bodies]
-    rot = [_sensor(m, kind="RotationMatrix", bodyNumber=m.stars[i]) for i in arm.modules]
-    pot = [_sensor(m, kind="PotentialEnergy", objectNumber=o) for o in m.spring_items]
-    tq = [_sensor(m, kind="TorqueLocal", objectNumber=o) for o in m.drives]
+    pos = [add_sensor(m.mbs, "Position", bodyNumber=b) for b, _ in bodies]
+    rot = [add_sensor(m.mbs, "RotationMatrix", bodyNumber=m.stars[i]) for i in arm.modules]
+    pot = [add_sensor(m.mbs, "PotentialEnergy", objectNumber=o) for o in m.spring_items]
+    tq = [add_sensor(m.mbs, "TorqueLocal", objectNumber=o) for o in m.drives]
     m.mbs.Assemble()
     period = duration / (samples - 1)
     per = max(1, int(np.ceil(period / step)))

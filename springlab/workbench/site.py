@@ -1,6 +1,6 @@
 """The reader's side: the executed notebooks as a static site, and the reproduction report.
 
-``python -m springlab.site`` (run by ``make figures`` after the notebooks):
+``python -m springlab.workbench.site`` (run by ``make figures`` after the notebooks):
 
 * renders every executed notebook in ``build/notebooks/`` to ``build/site/<stem>.html``
   (nbconvert's lab template), with MathJax served from the site itself (the
@@ -24,8 +24,9 @@ import sys
 from collections import Counter
 from pathlib import Path
 
-from springlab.claims import REPORT_COLUMNS, markdown_table, report_column
+from springlab.errors import SolverError
 from springlab.papers import PAPERS
+from springlab.workbench.claims import REPORT_COLUMNS, markdown_table, report_column
 
 MATHJAX_URL = "mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe"
 _EXTERNAL_SCRIPT = re.compile(r'<script[^>]*\ssrc="https?://[^"]*"[^>]*>\s*</script>', re.I)
@@ -202,7 +203,7 @@ def browser_check(pages, *, screenshot=None, math_timeout: float = 10.0) -> dict
     output, or TeX left unrendered on a page that has math. Saves a screenshot of
     the first page to ``screenshot`` if given. Returns {page name: problems}.
 
-    :raises RuntimeError: when Chromium and its driver are not installed
+    :raises SolverError: when Chromium and its driver are not installed
     """
     import time
 
@@ -212,7 +213,7 @@ def browser_check(pages, *, screenshot=None, math_timeout: float = 10.0) -> dict
 
     found = find_browser()
     if found is None:
-        raise RuntimeError("headless Chromium is not installed: apt-get install chromium chromium-driver")
+        raise SolverError("headless Chromium is not installed: apt-get install chromium chromium-driver")
     options = Options()
     options.binary_location = found[0]
     for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",

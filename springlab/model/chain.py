@@ -25,7 +25,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab.errors import SpringlabError
-from springlab.rotations import frames_from_directions, frames_from_relative, rot_axis, rot_xyz
+from springlab.model.rotations import (
+    frames_from_directions,
+    frames_from_relative,
+    rot_axis,
+    rot_xyz,
+)
 
 UP = np.array([1.0, 0.0, 0.0])
 """x_1, the ground link's direction: vertical, up. Gravity acts along -UP."""
@@ -122,7 +127,7 @@ class Chain:
         """Link frames R_1..R_n (N, n, 3, 3) from joint angles (rad).
 
         A spherical joint turns link j by Rx(theta) Ry(phi) Rz(psi) relative to
-        link j-1 (see :mod:`springlab.rotations`); a revolute joint by
+        link j-1 (see :mod:`springlab.model.rotations`); a revolute joint by
         angles[:, j-2, 0] about its axis. R_1 = I; x_j is the first column of R_j.
         """
         angles = self.check_angles(angles)

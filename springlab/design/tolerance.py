@@ -1,7 +1,7 @@
 """How well a spring design holds up when it is built: a seeded Monte Carlo study.
 
 Each sample builds the design with random errors and measures, by route 2
-(:func:`springlab.energy.holding_torques`), the largest joint torque needed to
+(:func:`springlab.energy.geometry.holding_torques`), the largest joint torque needed to
 hold the arm over a set of workspace poses. A perfectly built balanced design
 needs none; the study says how much each error costs. Errors (all optional):
 
@@ -23,10 +23,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from springlab.chain import Chain
-from springlab.energy import holding_torques
+from springlab.energy.geometry import holding_torques
 from springlab.errors import SpringlabError
-from springlab.springs import Spring, check_springs
+from springlab.model.chain import Chain
+from springlab.model.springs import Spring, check_springs
 
 FACTORS = ("attachment", "free_length", "stiffness", "payload")
 

@@ -1,6 +1,6 @@
 """The command line: ``springlab design my_arm.toml``.
 
-Prints the ranked designs of :func:`springlab.arm_design.design_arm` as a table
+Prints the ranked designs of :func:`springlab.design.rank.design_arm` as a table
 and writes the chosen one (rank 1 unless ``--pick``) as JSON.
 """
 
@@ -15,8 +15,8 @@ from springlab.errors import SpringlabError
 
 
 def _design(args) -> int:
-    from springlab.arm_design import design_arm
-    from springlab.armfile import load_arm
+    from springlab.design.rank import design_arm
+    from springlab.model.armfile import load_arm
 
     spec = load_arm(args.arm_file, allow_large=args.allow_large)
     report = design_arm(spec, method=args.method, max_designs=args.max_designs,

@@ -3,10 +3,10 @@
 Every body and spring end is placed in space for each pose, then the energies
 are summed as ``m g h`` (h = height of the COM above the base joint, along
 x_1 = UP) and ``k (l - l0)**2 / 2`` (l = distance between the spring's ends).
-Nothing here uses the quadratic form of :mod:`springlab.quadratic`; the two
+Nothing here uses the quadratic form of :mod:`springlab.energy.quadratic`; the two
 routes agreeing is a check.
 
-All energies in J; poses ``X`` of shape (N, n, 3) as in :mod:`springlab.chain`.
+All energies in J; poses ``X`` of shape (N, n, 3) as in :mod:`springlab.model.chain`.
 Large batches are processed in chunks, so memory stays bounded.
 """
 
@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from springlab.chain import UP, Chain
-from springlab.springs import Spring, check_springs
+from springlab.model.chain import UP, Chain
+from springlab.model.springs import Spring, check_springs
 
 DEFAULT_CHUNK = 8192
 
@@ -24,7 +24,7 @@ def attachment_points(chain: Chain, spring: Spring, X) -> tuple[np.ndarray, np.n
     """World positions (m) of a spring's ends A (on link i) and B (on link j).
 
     A = J_i + a x_i and B = J_{j-1} + b x_j, with J_1 the base joint
-    (see :mod:`springlab.springs`). Returns two arrays of shape (N, 3).
+    (see :mod:`springlab.model.springs`). Returns two arrays of shape (N, 3).
     """
     (spring,) = check_springs(chain, [spring])
     X = chain.check_directions(X)
@@ -111,10 +111,10 @@ def energy_breakdown(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) ->
 
 def rotation_order_spread(chain: Chain, springs, angles) -> dict[str, float]:
     """How much each energy depends on the order of a joint's three turns: the largest
-    |E_order - E_xyz| (J) over the six orders (:data:`springlab.rotations.ORDERS`) and
+    |E_order - E_xyz| (J) over the six orders (:data:`springlab.model.rotations.ORDERS`) and
     the poses, for 'gravity', 'springs' and 'total'. ``angles`` (N, n-1, 3) in rad,
     spherical joints."""
-    from springlab.rotations import ORDERS, directions_in_order
+    from springlab.model.rotations import ORDERS, directions_in_order
 
     ref = energy_breakdown(chain, springs, directions_in_order(angles, "xyz"))
     out = dict.fromkeys(ref, 0.0)

@@ -32,8 +32,9 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from springlab.chain import Chain
-from springlab.springs import Spring, check_springs
+from springlab.errors import SpringlabError
+from springlab.model.chain import Chain
+from springlab.model.springs import Spring, check_springs
 
 DEFAULT_CHUNK = 16384
 
@@ -78,9 +79,9 @@ def spring_matrix(chain: Chain, spring: Spring) -> np.ndarray:
     """K_S(i,j) (Eqs. 22-26) as an (n, n) upper-triangular array in J."""
     (spring,) = check_springs(chain, [spring])
     if spring.free_length:
-        raise ValueError(
+        raise SpringlabError(
             f"{spring.label} has free_length = {spring.free_length} m; the quadratic form holds "
-            "only for zero-free-length springs (use springlab.energy for others)"
+            "only for zero-free-length springs (use springlab.energy.geometry for others)"
         )
     K = np.zeros((chain.n, chain.n))
     for (u, v), val in spring_entries(spring.i, spring.j, spring.a, spring.b, spring.k, chain.r).items():

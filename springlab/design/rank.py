@@ -1,6 +1,6 @@
 """Springs for your own arm: ranked, verified designs (paper 000's method, any n).
 
-:func:`design_arm` takes an :class:`~springlab.armfile.ArmSpec` (or an arm file)
+:func:`design_arm` takes an :class:`~springlab.model.armfile.ArmSpec` (or an arm file)
 and returns designs ranked by spring count, then the largest spring force over
 the arm's workspace, then the system spring efficiency. Each is verified by route
 2 (the total energy over the workspace samples varies by less than 1e-10 of the
@@ -22,7 +22,7 @@ is exactly 003's C1/C2 classification. Then, at each pose,
 
 and e_sys = (X + Y)/(X + 2Y): 003's Eq. (25), 'magnitudes' reading. For a planar
 motion x_u . x_v = cos Theta_uv and it reduces to 003's (tested against
-:func:`springlab.efficiency.system_efficiency`).
+:func:`springlab.mechanisms.planar.system_efficiency`).
 """
 
 from __future__ import annotations
@@ -32,19 +32,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from springlab.armfile import ArmSpec, load_arm
-from springlab.chain import Chain
-from springlab.configurations import SpringSlot, as_slots, best_first_configurations
-from springlab.design import (
+from springlab.design.rules import SpringSlot, as_slots, best_first_configurations
+from springlab.design.solve import (
     find_design,
     largest_force_bound,
     minimise_largest_force,
     relaxation_margin,
 )
-from springlab.energy import attachment_points, energy_breakdown
+from springlab.energy.geometry import attachment_points, energy_breakdown
+from springlab.energy.quadratic import gravity_entries, spring_entries
 from springlab.errors import SpringlabError, UnbalanceableError
-from springlab.quadratic import gravity_entries, spring_entries
-from springlab.springs import Spring
+from springlab.model.armfile import ArmSpec, load_arm
+from springlab.model.chain import Chain
+from springlab.model.springs import Spring
 
 METHODS = ("no auxiliary links", "ground springs")
 VERIFY_TOLERANCE = 1e-10
@@ -71,7 +71,7 @@ def random_poses(chain: Chain, samples: int, seed) -> np.ndarray:
     chain, uniform joint angles for one with revolute joints."""
     rng = np.random.default_rng(seed)
     if chain.all_spherical:
-        from springlab.chain import random_directions
+        from springlab.model.chain import random_directions
 
         return random_directions(chain.n, samples, rng)
     return chain.directions(chain.random_angles(samples, rng))
@@ -162,18 +162,18 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
                minimise_force: bool = True, force_starts: int = 2) -> DesignReport:
     """Ranked, verified spring designs for an arm.
 
-    :param arm: an :class:`~springlab.armfile.ArmSpec` or the path of an arm file
+    :param arm: an :class:`~springlab.model.armfile.ArmSpec` or the path of an arm file
     :param method: 'no auxiliary links' (paper 000: configurations with necessary springs
         from rules R1-R6, fewest springs and then fewest spanned joints first
-        (:func:`~springlab.configurations.best_first_configurations`); each solved within
+        (:func:`~springlab.design.rules.best_first_configurations`); each solved within
         the arm's limits), or 'ground springs' (the n - 1 springs from the base column
         of :func:`ground_springs`, which 000's Eq. 41 forbids: one design)
     :param max_designs: stop after this many verified designs
     :param max_configurations: stop after trying this many configurations (None: all)
-    :param finder: the solver (default :func:`springlab.design.find_design`); any design it
+    :param finder: the solver (default :func:`springlab.design.solve.find_design`); any design it
         returns is verified before it is kept
     :param minimise_force: spend each configuration's free choices on the smallest largest
-        spring force (:func:`springlab.design.minimise_largest_force`), within the limits,
+        spring force (:func:`springlab.design.solve.minimise_largest_force`), within the limits,
         from ``force_starts`` solutions of the finder (the problem has local minima)
     """
     from tqdm import tqdm
@@ -249,7 +249,7 @@ def springs_from_dict(items) -> list[Spring]:
 def all_pattern_slots(n: int) -> list[SpringSlot]:
     """Every spring S(i,j) of an n-link arm with every sign pattern, the paper's
     criteria (Eq. 41, Fig. 10) ignored."""
-    from springlab.configurations import PATTERNS
+    from springlab.design.rules import PATTERNS
 
     return [SpringSlot(i, j, p) for i in range(1, n) for j in range(i + 1, n + 1) for p in PATTERNS]
 
@@ -275,7 +275,7 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
 
     Every set of ``count`` slots that includes S(1,n) (the only spring with an entry
     (1, n), which gravity's G_1n needs; (+,+) or (-,-)) is screened by the linear
-    relaxation of Eqs. (39) (:func:`springlab.design.relaxation_margin`), then solved
+    relaxation of Eqs. (39) (:func:`springlab.design.solve.relaxation_margin`), then solved
     by least squares (free choices spent on the smallest largest force if
     ``minimise_force``) and verified by route 2 over ``samples`` random poses. The
     candidates number about C(2 n (n - 1), count - 1): practical to n = 5.
@@ -383,7 +383,7 @@ def pseudobase_summary(spec: ArmSpec, *, aux_mass_ratio: float = 0.09, pseudobas
     energy is folded into the combined subsystems (001 Eqs. 24-25). Verified by route 2: every
     body and spring end placed for each workspace pose.
     """
-    from springlab.chain import UP
+    from springlab.model.chain import UP
 
     chain = spec.chain()
     if not (0 <= aux_mass_ratio and pseudobase_mass >= 0 and post > 0):

@@ -29,10 +29,10 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
-from springlab.chain import STANDARD_GRAVITY, Chain, serial_chain
+from springlab.energy.quadratic import dot_symbol, expand_vectors_dot
 from springlab.errors import SpringlabError, UnbalanceableError
-from springlab.quadratic import dot_symbol, expand_vectors_dot
-from springlab.springs import Spring
+from springlab.model.chain import STANDARD_GRAVITY, Chain, serial_chain
+from springlab.model.springs import Spring
 
 LAYOUTS = {  # Lenzo Fig. 5: signs of a12, of (b12 - l1), of b2
     "a": (-1, -1, +1),

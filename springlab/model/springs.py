@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from springlab.errors import SpringlabError
+from springlab.errors import AttachmentError, SpringlabError
 
 
 def sign_char(value: float) -> str:
@@ -129,3 +129,28 @@ def measured_from_other_joints(chain, springs) -> tuple[Spring, ...]:
         a = s.a - chain.length(s.i) if s.i >= 2 else s.a
         out.append(Spring(s.i, s.j, a, s.b + chain.length(s.j), s.k, s.free_length))
     return tuple(out)
+
+
+def check_attachments(chain, springs, *, max_extension: float | None = None) -> None:
+    """Raise :class:`~springlab.errors.AttachmentError` if a spring end lies off its link.
+
+    An end on the link side of its joint (a < 0 on link i >= 2, b > 0 on link j)
+    must stay within the link: |a| <= r_i, b <= r_j. An end on the other side
+    (a > 0 past link i's distal joint, b < 0 behind link j's proximal joint) sits
+    on a bracket that extends the link; ``max_extension`` (m) bounds it if given.
+    """
+    for s in springs:
+        if s.i >= 2 and s.a < 0 and -s.a > chain.length(s.i) * (1 + 1e-12):
+            raise AttachmentError(
+                f"a_{s.label} = {s.a:.6g} m puts end A beyond link {s.i}'s proximal joint "
+                f"(r_{s.i} = {chain.length(s.i):g} m): the attachment is off the link")
+        if s.b > 0 and s.b > chain.length(s.j) * (1 + 1e-12):
+            raise AttachmentError(
+                f"b_{s.label} = {s.b:.6g} m puts end B beyond link {s.j}'s distal joint "
+                f"(r_{s.j} = {chain.length(s.j):g} m): the attachment is off the link")
+        if max_extension is not None:
+            for name, value, extended in (("a", s.a, s.a > 0), ("b", s.b, s.b < 0)):
+                if extended and abs(value) > max_extension:
+                    raise AttachmentError(
+                        f"{name}_{s.label} = {value:.6g} m needs a bracket longer than "
+                        f"max_extension = {max_extension:g} m")

@@ -1,4 +1,4 @@
-"""Run the notebooks with papermill: ``python -m springlab.notebooks``.
+"""Run the notebooks with papermill: ``python -m springlab.workbench.notebooks``.
 
 Every notebook in ``notebooks/`` is executed in that folder (so its relative
 paths, e.g. ``../figures/<stem>``, resolve) and the executed copy is written to

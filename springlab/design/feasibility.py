@@ -13,7 +13,7 @@ springs spanning three or more joints. So:
 * the **linear relaxation** (drop P k = A B, keep the signs strict) is necessary:
   where it has no solution the multiset is not balanceable (a proof);
 * a multiset the relaxation admits is confirmed by a design found by least squares
-  (:func:`springlab.design.find_design`, signs only) and checked entry by entry.
+  (:func:`springlab.design.solve.find_design`, signs only) and checked entry by entry.
 
 **Minimal** has two meanings, both counted (:func:`rules_against_physics`):
 
@@ -38,9 +38,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from springlab.chain import Chain
-from springlab.configurations import SpringSlot, rule_violations
-from springlab.errors import SpringlabError
+from springlab.design.rules import SpringSlot, rule_violations
+from springlab.errors import SolverError, SpringlabError
+from springlab.model.chain import Chain
 
 EPS = 1e-3
 """Smallest |quantity| of a present spring in the programme, in units of the largest
@@ -77,13 +77,13 @@ def alphabet(n: int) -> list[SpringSlot]:
 
 def _quantities(chain: Chain, s: SpringSlot) -> list[tuple[int, dict[tuple[int, int], float]]]:
     """The spring's linear quantities that enter Eqs. (39): (sign, {entry: coefficient}), from
-    :func:`springlab.design._linear_columns` (000 Eqs. 23a-d written linearly), with lengths
+    :func:`springlab.design.solve.linear_columns` (000 Eqs. 23a-d written linearly), with lengths
     measured in the mean link length. A quantity that enters no entry (A and B of a spring
     over one joint, k of one over fewer than three) is left out."""
-    from springlab.design import _linear_columns
+    from springlab.design.solve import linear_columns
 
     length = float(np.mean(chain.r))
-    cols = _linear_columns(chain, [s])[0]
+    cols = linear_columns(chain, [s])[0]
     unit = {"P": 1.0, "A": length, "B": length, "K": length**2}  # P = k a b, A = k a, B = k b, k
     sign = {"P": s.sa * s.sb, "A": s.sa, "B": s.sb, "K": 1}
     return [(sign[q], {key: coef / unit[q] for key, coef in cols[q].items()}) for q in "PABK" if cols[q]]
@@ -99,7 +99,7 @@ class _Programme:
 
 
 def _programme(chain: Chain, items) -> _Programme:
-    from springlab.quadratic import gravity_entries
+    from springlab.energy.quadratic import gravity_entries
 
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
     scale = max(abs(v) for v in G.values())
@@ -229,7 +229,7 @@ def _phase_one(prog: _Programme):
     _HIGHS.passModel(lp)
     _HIGHS.run()
     if _HIGHS.getModelStatus() != highspy.HighsModelStatus.kOptimal:
-        raise RuntimeError(f"the phase-one programme failed: {_HIGHS.modelStatusToString(_HIGHS.getModelStatus())}")
+        raise SolverError(f"the phase-one programme failed: {_HIGHS.modelStatusToString(_HIGHS.getModelStatus())}")
     return float(_HIGHS.getInfo().objective_function_value), np.array(_HIGHS.getSolution().row_dual)
 
 
@@ -319,8 +319,8 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
     """
     from scipy.optimize import least_squares, linprog, minimize
 
-    from springlab.quadratic import balance_residual, gravity_entries
-    from springlab.springs import Spring
+    from springlab.energy.quadratic import balance_residual, gravity_entries
+    from springlab.model.springs import Spring
 
     slots = list(slots)
     prog = _programme(chain, slots)
@@ -427,7 +427,7 @@ def is_balanceable(chain: Chain, slots) -> str:
 def random_arm(n: int, rng) -> Chain:
     """A generic n-link arm: lengths 0.15-0.45 m, centres of mass 0.2-0.8 of the length,
     masses 0.5-5 kg, g = 9.81 m/s^2."""
-    from springlab.chain import serial_chain
+    from springlab.model.chain import serial_chain
 
     rng = np.random.default_rng(rng)
     r = rng.uniform(0.15, 0.45, n - 1)
@@ -479,7 +479,7 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
 
     On the first arm: the relaxation-minimal multisets (:func:`minimal_relaxed_multisets`),
     each confirmed by a design, refuted by :func:`tightened_infeasible`, or undecided; the
-    rules' configurations (:func:`springlab.configurations.enumerate_configurations`), each
+    rules' configurations (:func:`springlab.design.rules.enumerate_configurations`), each
     decided (:func:`is_balanceable`) with both minimality notions. On every arm the
     relaxation-minimal lists and their refutations must agree (``same_on_every_arm``).
 
@@ -488,7 +488,7 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
     """
     from tqdm import tqdm
 
-    from springlab.configurations import enumerate_configurations
+    from springlab.design.rules import enumerate_configurations
 
     rng = np.random.default_rng(seed)
     chains = [random_arm(n, rng) for _ in range(arms)]

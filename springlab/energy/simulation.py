@@ -1,7 +1,7 @@
 """Route 3: the multibody simulation of a springlab arm in exudyn.
 
-The model is built from the same :class:`~springlab.chain.Chain` and
-:class:`~springlab.springs.Spring` objects as the algebra: nothing is described
+The model is built from the same :class:`~springlab.model.chain.Chain` and
+:class:`~springlab.model.springs.Spring` objects as the algebra: nothing is described
 twice. Each moving link is a rigid body with its mass at the COM (on the joint
 line, d_j from the proximal joint) and the inertia of a slender rod about the
 COM (m r^2 / 12 transverse, a small axial part so the spin about the link axis
@@ -15,17 +15,14 @@ Three checks, each returning a result with the numbers:
 * :func:`hold_test`: release at rest at each pose, report the largest drift,
   always beside the negative control (springs scaled by 0.9);
 * :func:`holding_torques`: lock every joint, solve the statics, read the joint
-  torques, and compare them with route 2 (:func:`springlab.energy.holding_torques`);
-* :func:`follow`: drive the joints along a :class:`~springlab.trajectories.Sweep`
+  torques, and compare them with route 2 (:func:`springlab.energy.geometry.holding_torques`);
+* :func:`follow`: drive the joints along a :class:`~springlab.model.trajectories.Sweep`
   that starts and ends at rest, recording gravity, spring and total energy and
   the joint torques.
 
-Facts about exudyn 1.13.6 this relies on (measured, and tested): a locked
-generic joint's ``TorqueLocal`` reads diag(-1, 1, 1) R^T M, where M is the
-moment of the loads on the child side and R the joint axes; the same joint
-driven by an ``offsetUserFunction`` reads the opposite, -diag(-1, 1, 1) R1^T M,
-in the frame of the driven link (R1). ``SolveStatic`` converging says nothing
-about balance; sensors are stored internally.
+The exudyn helpers and the measured facts they rely on (torque signs of locked and
+driven joints) are in :mod:`springlab.energy.multibody`; ``SolveStatic`` converging
+says nothing about balance.
 """
 
 from __future__ import annotations
@@ -36,36 +33,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from springlab.chain import SPHERICAL, UP, Chain
-from springlab.design import check_attachments
-from springlab.energy import energy_breakdown
-from springlab.energy import holding_torques as route2_holding_torques
+from springlab.energy.geometry import energy_breakdown
+from springlab.energy.geometry import holding_torques as route2_holding_torques
+from springlab.energy.multibody import (
+    DRIVEN_TORQUE_SIGN,
+    LOCKED_TORQUE_SIGN,
+    SimSettings,
+    add_sensor,
+    frame_with_z,
+    solver_settings,
+)
 from springlab.errors import SpringlabError
-from springlab.rotations import frames_from_directions
-from springlab.springs import check_springs
-from springlab.trajectories import Sweep
+from springlab.model.chain import SPHERICAL, UP, Chain
+from springlab.model.springs import check_attachments, check_springs
+from springlab.model.trajectories import Sweep
 
 JOINT_KINDS = ("spherical", "locked", "prescribed")
-_TORQUE_SIGN = np.diag([1.0, -1.0, -1.0])  # locked joint: holding torque = R @ _TORQUE_SIGN @ TorqueLocal
-_DRIVEN_TORQUE_SIGN = np.diag([-1.0, 1.0, 1.0])  # joint with an offset function: in the driven link's frame
-
-
-@dataclass(frozen=True)
-class SimSettings:
-    """Solver settings.
-
-    :ivar step: time step (s)
-    :ivar relative_tolerance, absolute_tolerance: Newton tolerances
-    :ivar damping: damping of every spring along its line (N s/m); light damping
-        does not change the statics
-    :ivar axial_inertia: axial moment of inertia as a fraction of the transverse one
-    """
-
-    step: float = 1e-3
-    relative_tolerance: float = 1e-12
-    absolute_tolerance: float = 1e-14
-    damping: float = 0.0
-    axial_inertia: float = 1e-2
 
 
 class Model:
@@ -76,11 +59,6 @@ class Model:
         self.bodies, self.joints, self.spring_objects = bodies, joints, spring_objects
         self.joint_axes = joint_axes  # (3, 3) per joint: its axes in the world, reference configuration
         self.chain, self.springs, self.kind = chain, springs, kind
-
-
-def _frame_with_z(axis: np.ndarray) -> np.ndarray:
-    """A rotation whose third column is the unit ``axis``."""
-    return frames_from_directions(axis[None])[0][:, [1, 2, 0]]
 
 
 def _local_x(value: float) -> list[float]:
@@ -140,7 +118,7 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
         revolute = axis != SPHERICAL
         axes = reference_frames[j - 2]  # the joint's axes: link j-1's frame
         if revolute:
-            axes = axes @ _frame_with_z(np.asarray(axis))  # z along the revolute axis
+            axes = axes @ frame_with_z(np.asarray(axis))  # z along the revolute axis
         joint_axes.append(axes)
         if joints == "spherical":
             if revolute:
@@ -170,39 +148,6 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
             markerNumbers=[mA, mB], referenceLength=float(s.free_length), stiffness=float(s.k),
             damping=float(settings.damping))))
     return Model(SC, mbs, bodies, joint_items, joint_axes, spring_items, chain, springs, joints)
-
-
-def solver_settings(settings: SimSettings, end_time: float = 0.0, write_period: float = 0.01):
-    """exudyn SimulationSettings from springlab's: quiet, no files written, sensors
-    stored every ``write_period`` s, Newton tolerances, ``end_time`` / ``step`` steps."""
-    import exudyn as exu
-
-    ss = exu.SimulationSettings()
-    ss.solution.file.write = False  # no solution/ folder in the working directory
-    ss.solution.sensors.writePeriod = write_period
-    ss.timeIntegration.verboseMode = 0
-    ss.staticSolver.verboseMode = 0
-    ss.show.statistics = False
-    ss.show.computationTime = False
-    for newton in (ss.timeIntegration.newton, ss.staticSolver.newton):
-        newton.relativeTolerance = settings.relative_tolerance
-        newton.absoluteTolerance = settings.absolute_tolerance
-    if end_time:
-        ss.timeIntegration.endTime = end_time
-        ss.timeIntegration.numberOfSteps = max(1, int(round(end_time / settings.step)))
-    return ss
-
-
-def _sensor(model: Model, **kwargs):
-    import exudyn as exu
-
-    kind = kwargs.pop("kind")
-    if "bodyNumber" in kwargs:
-        from exudyn.utilities import SensorBody as make
-    else:
-        from exudyn.utilities import SensorObject as make
-    return model.mbs.AddSensor(make(storeInternal=True, writeToFile=False,
-                                    outputVariableType=getattr(exu.OutputVariableType, kind), **kwargs))
 
 
 # --- 1. hold test ------------------------------------------------------------------
@@ -247,8 +192,8 @@ def _hold_run(chain, springs, frames, duration, settings, scale) -> HoldRun:
     cpu, scaled = 0.0, [s.scaled(scale) for s in springs]
     for p in range(len(frames)):
         model = build_model(chain, scaled, frames[p], settings=settings)
-        tip = _sensor(model, bodyNumber=model.bodies[-1], localPosition=tip_local, kind="Position")
-        rot = [_sensor(model, bodyNumber=b, kind="RotationMatrix") for b in model.bodies[1:]]
+        tip = add_sensor(model.mbs, "Position", bodyNumber=model.bodies[-1], localPosition=tip_local)
+        rot = [add_sensor(model.mbs, "RotationMatrix", bodyNumber=b) for b in model.bodies[1:]]
         model.mbs.Assemble()
         t0 = time.process_time()
         model.mbs.SolveDynamic(solver_settings(settings, duration))
@@ -326,7 +271,7 @@ def static_joint_torques(model: Model, settings: SimSettings = SimSettings()) ->
     out = np.zeros((len(model.joints), 3))
     for k, joint in enumerate(model.joints):
         local = np.asarray(model.mbs.GetObjectOutput(joint, exu.OutputVariableType.TorqueLocal))
-        out[k] = model.joint_axes[k] @ _TORQUE_SIGN @ local
+        out[k] = model.joint_axes[k] @ LOCKED_TORQUE_SIGN @ local
     return out
 
 
@@ -356,7 +301,7 @@ def follow(chain: Chain, springs, sweep: Sweep, *, samples: int = 301,
     """Drive the joints along ``sweep`` (which must start and end at rest) and record
     the potential energies and the joint torques at ``samples`` times."""
     if not isinstance(sweep, Sweep):
-        raise SpringlabError(f"sweep must be a springlab.trajectories.Sweep, got {type(sweep).__name__}")
+        raise SpringlabError(f"sweep must be a springlab.model.trajectories.Sweep, got {type(sweep).__name__}")
     if sweep.initial.shape != (chain.n - 1, 3):
         raise SpringlabError(f"the sweep has {sweep.initial.shape[0]} joints, the chain {chain.n - 1}")
     if int(samples) != samples or samples < 2:
@@ -368,9 +313,9 @@ def follow(chain: Chain, springs, sweep: Sweep, *, samples: int = 301,
     initial = chain.frames(sweep.angles(0.0)[None])[0]
     model = build_model(chain, springs, upright, joints="prescribed", initial_frames=initial,
                         sweep=sweep, settings=settings)
-    com = [_sensor(model, bodyNumber=b, kind="Position") for b in model.bodies[1:]]
-    pot = [_sensor(model, objectNumber=o, kind="PotentialEnergy") for o in model.spring_objects]
-    tq = [_sensor(model, objectNumber=o, kind="TorqueLocal") for o in model.joints]
+    com = [add_sensor(model.mbs, "Position", bodyNumber=b) for b in model.bodies[1:]]
+    pot = [add_sensor(model.mbs, "PotentialEnergy", objectNumber=o) for o in model.spring_objects]
+    tq = [add_sensor(model.mbs, "TorqueLocal", objectNumber=o) for o in model.joints]
     model.mbs.Assemble()
     period = sweep.duration / (samples - 1)
     steps_per_sample = max(1, int(np.ceil(period / settings.step)))
@@ -382,6 +327,6 @@ def follow(chain: Chain, springs, sweep: Sweep, *, samples: int = 301,
     t = data[0][:, 0]
     gravity = sum(chain.g * m * d[:, 1:] @ UP for m, d in zip(chain.m, data, strict=True))
     elastic = sum((model.mbs.GetSensorStoredData(s)[:, 1] for s in pot), np.zeros_like(t))
-    torques = np.stack([model.mbs.GetSensorStoredData(s)[:, 1:] @ _DRIVEN_TORQUE_SIGN for s in tq], axis=1)
+    torques = np.stack([model.mbs.GetSensorStoredData(s)[:, 1:] @ DRIVEN_TORQUE_SIGN for s in tq], axis=1)
     route2 = energy_breakdown(chain, springs, chain.directions(sweep.angles(t)))
     return FollowResult(t, gravity, elastic, gravity + elastic, torques, route2, cpu)

@@ -1,0 +1,99 @@
+"""The exudyn helpers every route-3 model uses: the general chain
+(:mod:`springlab.energy.simulation`), the pseudobase arm
+(:mod:`springlab.mechanisms.pseudobase.simulation`) and the dyad
+(:mod:`springlab.mechanisms.dyad.simulation`).
+
+Facts about exudyn 1.13.6 these rely on (measured, and tested in ``tests/test_sim.py``):
+a locked generic joint's ``TorqueLocal`` reads diag(-1, 1, 1) R^T M, where M is the
+moment of the loads on the child side and R the joint axes (so the holding torque is
+R @ :data:`LOCKED_TORQUE_SIGN` @ TorqueLocal); the same joint driven by an
+``offsetUserFunction`` reads the opposite, in the frame of the driven link
+(:data:`DRIVEN_TORQUE_SIGN`). Sensors are stored internally; nothing is written to disk.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab import _checks
+from springlab.errors import SolverError
+from springlab.model.rotations import frames_from_directions
+
+__all__ = ["SimSettings", "solver_settings", "frame_with_z", "add_sensor", "check_constraints",
+           "LOCKED_TORQUE_SIGN", "DRIVEN_TORQUE_SIGN"]
+
+LOCKED_TORQUE_SIGN = np.diag([1.0, -1.0, -1.0])
+"""A locked joint's holding torque is R @ LOCKED_TORQUE_SIGN @ TorqueLocal."""
+DRIVEN_TORQUE_SIGN = np.diag([-1.0, 1.0, 1.0])
+"""A joint driven by an offset function: the torque on the driven link, in its frame."""
+
+
+@dataclass(frozen=True)
+class SimSettings:
+    """Solver settings.
+
+    :ivar step: time step (s), > 0
+    :ivar relative_tolerance, absolute_tolerance: Newton tolerances, > 0
+    :ivar damping: damping of every spring along its line (N s/m), >= 0; light damping
+        does not change the statics
+    :ivar axial_inertia: axial moment of inertia as a fraction of the transverse one, > 0
+    """
+
+    step: float = 1e-3
+    relative_tolerance: float = 1e-12
+    absolute_tolerance: float = 1e-14
+    damping: float = 0.0
+    axial_inertia: float = 1e-2
+
+    def __post_init__(self):
+        for name in ("step", "relative_tolerance", "absolute_tolerance", "axial_inertia"):
+            _checks.positive(name, getattr(self, name))
+        _checks.positive("damping", self.damping, allow_zero=True)
+
+
+def solver_settings(settings: SimSettings, end_time: float = 0.0, write_period: float = 0.01):
+    """exudyn SimulationSettings from springlab's: quiet, no files written, sensors
+    stored every ``write_period`` s, Newton tolerances, ``end_time`` / ``step`` steps."""
+    import exudyn as exu
+
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False  # no solution/ folder in the working directory
+    ss.solution.sensors.writePeriod = write_period
+    ss.timeIntegration.verboseMode = 0
+    ss.staticSolver.verboseMode = 0
+    ss.show.statistics = False
+    ss.show.computationTime = False
+    for newton in (ss.timeIntegration.newton, ss.staticSolver.newton):
+        newton.relativeTolerance = settings.relative_tolerance
+        newton.absoluteTolerance = settings.absolute_tolerance
+    if end_time:
+        ss.timeIntegration.endTime = end_time
+        ss.timeIntegration.numberOfSteps = max(1, int(round(end_time / settings.step)))
+    return ss
+
+
+def frame_with_z(axis: np.ndarray) -> np.ndarray:
+    """A rotation (3, 3) whose third column is the unit ``axis``."""
+    return frames_from_directions(np.asarray(axis, dtype=float)[None])[0][:, [1, 2, 0]]
+
+
+def add_sensor(mbs, kind: str, **kwargs):
+    """An internally stored sensor of output ``kind`` ('Position', 'TorqueLocal', ...):
+    on a body with ``bodyNumber=``, on an object with ``objectNumber=``."""
+    import exudyn as exu
+
+    if "bodyNumber" in kwargs:
+        from exudyn.utilities import SensorBody as make
+    else:
+        from exudyn.utilities import SensorObject as make
+    return mbs.AddSensor(make(storeInternal=True, writeToFile=False,
+                              outputVariableType=getattr(exu.OutputVariableType, kind), **kwargs))
+
+
+def check_constraints(mbs, what: str) -> None:
+    """Raise :class:`SolverError` if the assembled system ``mbs`` has redundant constraints."""
+    dof = mbs.ComputeSystemDegreeOfFreedom()
+    if dof["redundantConstraints"]:
+        raise SolverError(f"the {what} model has redundant constraints: {dof}")

@@ -1,0 +1,268 @@
+r"""Designs for paper 003's planar arm: the balancing equations of a configuration
+(003 Eqs. 16a-b) solved in sympy, Table 1's configurations, payload adjustment
+(003 Eq. 32), and the index optimised over the free parameters.
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2022). Spring efficiency assessment and efficient
+use of spring methods of statically balanced planar serial manipulators with revolute
+joints only. Mechanical Sciences (2022).
+"""
+
+from __future__ import annotations
+
+import functools
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab.errors import SpringlabError, UnbalanceableError
+from springlab.mechanisms.planar.efficiency import efficiency_index
+from springlab.mechanisms.planar.model import (
+    PlanarArm,
+    PlanarSpring,
+    Workspace,
+    check_spring,
+    wrap_degrees,
+)
+from springlab.mechanisms.planar.quadratic import gravity_terms, spring_terms
+
+# --- balancing equations, configurations, design (Eqs. 16, 26-27, 32; Tables 1-2) ---------------
+CONFIGURATIONS = {
+    "Λ1": (((1, 2), (90.0, 0.0)),),
+    "Λ2": (((1, 3), (90.0, 0.0)), ((2, 3), (0.0, 0.0))),
+    "Λ3-1": (((1, 2), (90.0, 0.0)), ((1, 4), (90.0, 0.0)), ((2, 4), (0.0, 0.0)), ((3, 4), (180.0, 180.0))),
+    "Λ3-2": (((1, 2), (90.0, 0.0)), ((1, 4), (90.0, 0.0)), ((2, 3), (0.0, 0.0)), ((2, 4), (180.0, 180.0))),
+}
+"""Table 1's efficient configurations: spring (i, j) and (alpha, beta) in degrees. Where
+Table 1 gives only alpha - beta, (90, 0) or (0, 0) is used; Table 4 attaches S(3,4) at (180, 180)."""
+
+
+def _configuration(config) -> tuple:
+    """A configuration given by its Table 1 name ('Λ3-1', ...) or as ((i, j), (alpha, beta)) pairs."""
+    if isinstance(config, str):
+        if config not in CONFIGURATIONS:
+            raise SpringlabError(f"unknown configuration {config!r}; Table 1's are {list(CONFIGURATIONS)}")
+        return CONFIGURATIONS[config]
+    return tuple(config)
+
+
+def _symbols(config):
+    import sympy as sp
+
+    out = {}
+    for (i, j), _ in config:
+        out[(i, j)] = sp.symbols(f"k_S{i}{j} A_S{i}{j} B_S{i}{j}", positive=True)
+    return out
+
+
+def balance_equations(config, G=None) -> dict:
+    """Eqs. (16a-b) for a configuration, in sympy: {(u, v): sum of the pair's pseudo-
+    stiffness amplitudes, signed} = 0, with symbols k_Sij, A_Sij, B_Sij and |G_1u|
+    (``G`` numbers instead of the symbols G_1u if given)."""
+    import sympy as sp
+
+    config = _configuration(config)
+    n = max(j for (_, j), _ in config)
+    syms = _symbols(config)
+    Gs = [sp.Symbol(f"G_1{u}", positive=True) for u in range(2, n + 1)] if G is None else [sp.nsimplify(x) for x in G]
+    eqs = {}
+    all_terms = gravity_terms(Gs)
+    for (i, j), (alpha, beta) in config:
+        k, A, B = syms[(i, j)]
+        all_terms += spring_terms(i, j, k, A, B, alpha, beta)
+    for t in all_terms:
+        ref = 90.0 if t.u == 1 else 0.0  # each pair's terms must be in phase or opposite
+        d = wrap_degrees(t.phase - ref)
+        if np.isclose(d, 0.0) or np.isclose(d, 360.0):
+            sign = 1
+        elif np.isclose(d, 180.0):
+            sign = -1
+        else:
+            raise SpringlabError(f"a term of {t.source} on ({t.u},{t.v}) has phase {t.phase:g} deg: "
+                                 "not an efficient attachment; Eqs. (16) need in-phase terms")
+        eqs[(t.u, t.v)] = eqs.get((t.u, t.v), 0) + sign * t.amplitude
+    return {key: sp.expand(v) for key, v in eqs.items()}
+
+
+def solve_configuration(config, free, G=None, values=None) -> dict:
+    """Solve Eqs. (16) for every parameter not in ``free`` (names like 'A_S14', or sympy
+    symbols). With ``values`` ({name: number}) the free parameters are numbers, put in
+    before solving. Returns {symbol: expression}; raises UnbalanceableError if no
+    positive solution exists."""
+    import sympy as sp
+
+    eqs = balance_equations(config, G)
+    names = {f if isinstance(f, str) else f.name for f in free}
+    subs = {sp.Symbol(k, positive=True): sp.nsimplify(v) for k, v in (values or {}).items()}
+    system = [e.subs(subs) for e in eqs.values()]
+    params = sorted(set().union(*[e.free_symbols for e in eqs.values()]), key=lambda x: x.name)
+    unknown = [x for x in params if x.name not in names and not x.name.startswith("G_")]
+    sol = sp.solve([e for e in system if e != 0], unknown, dict=True)
+    sol = [x for x in sol if all(v.is_positive is not False for v in x.values())]
+    if not sol or any(e.subs(sol[0]).simplify() != 0 for e in system):
+        raise UnbalanceableError(f"Eqs. (16) have no positive solution for {[x.name for x in unknown]} "
+                                 f"with {sorted(names)} given")
+    return sol[0]
+
+
+@functools.lru_cache(maxsize=64)
+def _symbolic_designer(cfg, names):
+    """Eqs. (16) solved once, with the |G| and the chosen parameters as symbols, and
+    compiled: (G values, chosen values) -> {parameter name: value}; None if sympy cannot
+    solve it generally (e.g. when a chosen parameter is in fact forced)."""
+    import sympy as sp
+
+    try:
+        sol = solve_configuration(cfg, list(names))
+    except UnbalanceableError:
+        return None
+    n = max(j for (_, j), _ in cfg)
+    args = [sp.Symbol(f"G_1{u}", positive=True) for u in range(2, n + 1)] + [sp.Symbol(x, positive=True) for x in names]
+    if any(not expr.free_symbols <= set(args) for expr in sol.values()):
+        return None
+    keys = [x.name for x in sol]
+    f = sp.lambdify(args, list(sol.values()), "math")
+    return lambda G, values: dict(zip(keys, f(*G, *values), strict=True))
+
+
+def design(arm: PlanarArm, config, choices: dict) -> list[PlanarSpring]:
+    """Springs of ``config`` for the arm, from Eqs. (16) and the user's ``choices``
+    ({'A_S14': 0.1, 'k_S12': 4998, ...}: enough of k, A, B to fix the rest).
+
+    Raises :class:`UnbalanceableError` if the equations have no positive solution or
+    leave a parameter undetermined, SpringlabError if an attachment falls off its link.
+    """
+    import sympy as sp
+
+    cfg = _configuration(config)
+    names = tuple(sorted(choices))
+    fast = _symbolic_designer(cfg, names)
+    if fast is not None:
+        known = dict(choices) | fast(tuple(arm.G), tuple(float(choices[x]) for x in names))
+    else:
+        sol = solve_configuration(cfg, list(choices), G=arm.G, values=choices)
+        known = dict(choices) | {x.name: (float(v) if not sp.sympify(v).free_symbols else None) for x, v in sol.items()}
+    out = []
+    for (i, j), (alpha, beta) in cfg:
+        got = []
+        for name in ("k", "A", "B"):
+            value = known.get(f"{name}_S{i}{j}")
+            if value is None:
+                raise UnbalanceableError(f"S({i},{j}): {name}_S{i}{j} is not determined by Eqs. (16); choose it")
+            if not (np.isfinite(value) and value > 0):
+                raise UnbalanceableError(f"S({i},{j}): Eqs. (16) give {name}_S{i}{j} = {value:.6g}, not > 0")
+            got.append(float(value))
+        k, A, B = got
+        spring = PlanarSpring(i, j, k, A * arm.r[i - 1], B * arm.r[j - 1], alpha, beta)
+        check_spring(arm, spring)
+        out.append(spring)
+    return out
+
+
+def payload_adjustment(arm: PlanarArm, springs, config, payload: float, *, keep: str = "stiffness",
+                       mono: str = "A") -> list[PlanarSpring]:
+    """Rebalance ``springs`` for a payload (kg) at the end link's COM (Eq. 32).
+
+    :param keep: 'stiffness', Section 4.3's rule (Table 2): every k kept, the
+        attachments moved; or 'attachments': every A kept (and B where Eqs. (16)
+        leave it free), the stiffnesses (and the B that Eqs. 27a, c force) re-solved
+    :param mono: under keep='stiffness', which of A, B moves on a spring over one
+        joint, where Eqs. (16) fix only the product A B
+    """
+    if keep not in ("stiffness", "attachments"):
+        raise SpringlabError(f"keep must be 'stiffness' or 'attachments', got {keep!r}")
+    if mono not in ("A", "B"):
+        raise SpringlabError(f"mono must be 'A' or 'B', got {mono!r}")
+    loaded = arm.with_payload(payload)
+    cfg = _configuration(config)
+    if keep == "stiffness":
+        choices = {}
+        for sp in springs:
+            tag = f"S{sp.i}{sp.j}"
+            choices[f"k_{tag}"] = sp.k
+            if sp.j == sp.i + 1:
+                other = "B" if mono == "A" else "A"
+                choices[f"{other}_{tag}"] = sp.B(arm) if other == "B" else sp.A(arm)
+        return design(loaded, cfg, choices)
+    # keep='attachments': every A and B kept, except the B that Eqs. (16) force (27a, 27c):
+    # drop the fewest such B for a solution to exist
+    base = {f"A_S{sp.i}{sp.j}": sp.A(arm) for sp in springs}
+    Bs = {f"B_S{sp.i}{sp.j}": sp.B(arm) for sp in springs}
+    multi = [f"B_S{sp.i}{sp.j}" for sp in springs if sp.j > sp.i + 1]
+    for size in range(len(multi) + 1):
+        for dropped in itertools.combinations(multi, size):
+            try:
+                return design(loaded, cfg, base | {k: v for k, v in Bs.items() if k not in dropped})
+            except UnbalanceableError:
+                continue
+    raise UnbalanceableError(f"no design keeps the attachments of {config} under a payload of {payload} kg")
+
+
+def com_distances(r, m, G, g: float) -> np.ndarray:
+    """s_2..s_n (m) that give the printed |G_{1,u}| (N/m) by Eq. (7), for a given g:
+    s_u = (|G_1u| r_1 / g - sum_{w>u} m_w) r_u / m_u.
+
+    :param r: r_1..r_n (m); m: m_2..m_n (kg); G: |G_12|..|G_1n| (N/m)
+    """
+    r, m, G = (np.asarray(x, dtype=float) for x in (r, m, G))
+    if not (r.size == m.size + 1 == G.size + 1):
+        raise SpringlabError(f"need r_1..r_n, m_2..m_n, |G_12|..|G_1n|; got {r.size}, {m.size}, {G.size} values")
+    beyond = np.r_[np.cumsum(m[::-1])[::-1][1:], 0.0]
+    return (G * r[0] / g - beyond) * r[1:] / m
+
+
+@dataclass(frozen=True)
+class Optimum:
+    """The best index found: ``choices`` (the free parameters), ``springs``, ``index``,
+    and the bounds respected."""
+
+    config: str
+    choices: dict
+    springs: list
+    index: float
+    bounds: dict
+    k_max: float
+    evaluations: int
+
+
+def optimise_index(arm: PlanarArm, config: str, free: dict, fixed: dict, workspace: Workspace, *,
+                   step: float = 5.0, k_max: float = 20000.0, start: dict | None = None) -> Optimum:
+    """Maximise the efficiency index (grid ``step``, 'magnitudes' reading) over the
+    parameters in ``free`` ({name: (low, high)}, e.g. {'A_S14': (0.05, 1)}), with the
+    others in ``fixed``, every stiffness <= ``k_max`` (N/m) and every A, B in (0, 1]
+    (scipy SLSQP from ``start``, default the middle of the bounds)."""
+    from scipy.optimize import minimize
+
+    names = list(free)
+    lo = np.array([free[x][0] for x in names])
+    hi = np.array([free[x][1] for x in names])
+    if np.any(lo <= 0) or np.any(hi > 1 + 1e-12) or np.any(lo > hi):
+        raise SpringlabError(f"bounds must satisfy 0 < low <= high <= 1, got {free}")
+    x0 = np.array([(start or {}).get(x, 0.5 * (free[x][0] + free[x][1])) for x in names])
+    count = [0]
+
+    def springs_of(x):
+        return design(arm, config, fixed | dict(zip(names, map(float, x), strict=True)))
+
+    def objective(x):
+        count[0] += 1
+        try:
+            return -efficiency_index(arm, springs_of(x), workspace, step=step)
+        except SpringlabError:
+            return 0.0
+
+    def stiffness_margin(x):
+        try:
+            return np.array([k_max - s.k for s in springs_of(x)]) / k_max
+        except SpringlabError:
+            return -np.ones(len(_configuration(config)))
+
+    res = minimize(objective, x0, method="SLSQP", bounds=list(zip(lo, hi, strict=True)),
+                   constraints=[{"type": "ineq", "fun": stiffness_margin}], options={"ftol": 1e-9, "maxiter": 200})
+    best = dict(zip(names, map(float, np.clip(res.x, lo, hi)), strict=True))
+    springs = springs_of(list(best.values()))
+    if max(s.k for s in springs) > k_max * (1 + 1e-6):
+        raise UnbalanceableError(f"no design of {config} within k <= {k_max} N/m was found")
+    return Optimum(config, best, springs, efficiency_index(arm, springs, workspace, step=step), dict(free), k_max, count[0])

@@ -1,0 +1,90 @@
+"""The architecture, checked: import contracts (the routes stay independent, the layers
+point down), no private names imported across modules, and the error classes."""
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import springlab
+from springlab.errors import (
+    AttachmentError,
+    GeometryError,
+    SolverError,
+    SpringlabError,
+    UnbalanceableError,
+)
+
+ROOT = Path(__file__).resolve().parents[1]
+LINT = Path(sys.prefix) / "bin" / "lint-imports"
+
+
+def lint_imports(root: Path) -> subprocess.CompletedProcess:
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    return subprocess.run([str(LINT), "--config", str(root / "pyproject.toml"), "--no-cache"], cwd=root,
+                          capture_output=True, text=True, env=env)
+
+
+needs_linter = pytest.mark.skipif(not LINT.exists(), reason="import-linter is not installed (dev extra)")
+
+
+@needs_linter
+def test_import_contracts_are_kept():
+    result = lint_imports(ROOT)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "Contracts: 2 kept, 0 broken." in result.stdout
+
+
+@needs_linter
+@pytest.mark.parametrize("module, line", [
+    # route 2 reaching route 1 through a helper that imports it: a transitive import
+    ("energy/geometry.py", "from springlab.design import solve as _solve  # noqa"),
+    # route 3 of a mechanism importing its route 1 directly
+    ("mechanisms/pseudobase/simulation.py", "from springlab.mechanisms.pseudobase import subsystems  # noqa"),
+    # the model importing a layer above it
+    ("model/chain.py", "from springlab.workbench import claims  # noqa"),
+])
+def test_a_forbidden_import_breaks_a_contract(tmp_path, module, line):
+    """Negative control: the same check on a copy with one forbidden import must fail."""
+    shutil.copytree(ROOT / "springlab", tmp_path / "springlab",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy(ROOT / "pyproject.toml", tmp_path / "pyproject.toml")
+    path = tmp_path / "springlab" / module
+    path.write_text(path.read_text() + "\n" + line + "\n")
+    result = lint_imports(tmp_path)
+    assert result.returncode != 0
+    assert "BROKEN" in result.stdout
+
+
+def test_no_private_name_is_imported_across_modules():
+    pattern = re.compile(r"^\s*from springlab[\w.]* import (.*)$", re.M)
+    offenders = []
+    for path in (ROOT / "springlab").rglob("*.py"):
+        for names in pattern.findall(path.read_text()):
+            for name in re.split(r"[,()\s]+", names):
+                if name.startswith("_") and not name.startswith("__") and name != "_checks":
+                    offenders.append(f"{path.relative_to(ROOT)}: {name}")
+    assert not offenders, offenders
+
+
+def test_error_classes():
+    assert issubclass(SpringlabError, ValueError)
+    assert issubclass(SolverError, SpringlabError) and issubclass(SolverError, RuntimeError)
+    assert issubclass(AttachmentError, GeometryError) and issubclass(AttachmentError, UnbalanceableError)
+
+
+def test_no_bare_builtin_errors_in_the_library():
+    bare = re.compile(r"raise (ValueError|RuntimeError|TypeError|KeyError|AssertionError)\(")
+    offenders = [f"{p.relative_to(ROOT)}:{i}" for p in (ROOT / "springlab").rglob("*.py")
+                 for i, text in enumerate(p.read_text().splitlines(), 1) if bare.search(text)]
+    assert not offenders, offenders
+
+
+def test_the_package_exports_the_entry_points():
+    for name in ("quadratic", "geometry", "simulation", "solve_design", "design_arm", "load_arm",
+                 "serial_chain", "Spring", "SpringlabError"):
+        assert hasattr(springlab, name), name
