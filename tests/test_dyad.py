@@ -92,21 +92,21 @@ def test_optimiser_beats_the_start_and_respects_bounds():
     grid = np.radians(np.linspace(30, 150, 121))
     start = dy.Dyad(0.125, 0.502, np.radians(0.08))
     best = dysyn.optimise(COMP, grid, start)
-    assert best.max_moment < dygeo.max_unbalanced(COMP, start, grid)
-    assert best.l0 == COMP.l0
+    assert best.value < dygeo.max_unbalanced(COMP, start, grid)
+    assert best.parameters["l0"] == COMP.l0
     free = dysyn.optimise(COMP, grid, start, free_l0=True)
-    assert free.max_moment <= best.max_moment + 1e-9
-    assert 0.0 <= free.l0 <= 3.0
+    assert free.value <= best.value + 1e-9
+    assert 0.0 <= free.parameters["l0"] <= 3.0
 
 
 def test_slow_drive_in_exudyn_needs_minus_the_unbalanced_moment():
     design = dy.Dyad(0.125, 0.502, np.radians(0.08))
-    run = dysim.simulate_drive(COMP, design, np.radians(30.0), np.radians(150.0), duration=10.0, samples=61)
+    run = dysim.follow(COMP, design, np.radians(30.0), np.radians(150.0), duration=10.0, samples=61)
     np.testing.assert_allclose(np.degrees(run.phi[[0, -1]]), [30.0, 150.0])
     assert np.abs(run.torque + dygeo.unbalanced_moment(COMP, design, run.phi)).max() < 1e-3
     # gravity alone: the drive holds the weight, G s sin(phi) against larger phi
     weak = dy.Compensator(G=75.0, s=0.84, k=1e-9, l0=1.0)
-    run = dysim.simulate_drive(weak, design, np.radians(30.0), np.radians(150.0), duration=10.0, samples=5)
+    run = dysim.follow(weak, design, np.radians(30.0), np.radians(150.0), duration=10.0, samples=5)
     np.testing.assert_allclose(run.torque, -63.0 * np.sin(run.phi), atol=1e-3)
 
 

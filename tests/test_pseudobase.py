@@ -217,7 +217,7 @@ def test_rssr_model_keeps_pseudobases_vertical_and_energy_constant():
     assert run.tilt.max() < 1e-9
     assert run.total_variation < 1e-8 * run.gravity_range
     assert np.allclose(run.gravity - run.route2["gravity"], 0, atol=1e-8)
-    assert np.allclose(run.elastic, run.route2["elastic"], atol=1e-8)
+    assert np.allclose(run.springs, run.route2["springs"], atol=1e-8)
 
 
 def test_holding_torques_balanced_vs_springs_removed():
@@ -225,7 +225,7 @@ def test_holding_torques_balanced_vs_springs_removed():
     for model in ("rssr", "ideal"):
         bal = ps.holding_torques(ARM, SPRINGS, q, model=model)
         bare = ps.holding_torques(ARM, SPRINGS, q, model=model, spring_scale=0.0)
-        assert np.allclose(bare, ps.route2_holding_torques(ARM, SPRINGS, q, spring_scale=0.0), atol=1e-3)
+        assert np.allclose(bare, pbgeo.holding_torques(ARM, SPRINGS, q, spring_scale=0.0), atol=1e-3)
         assert np.abs(bare).max() > 100 and np.abs(bal).max() < 1e-3 * np.abs(bare).max()
     with pytest.raises(SpringlabError, match="model"):
         ps.build_model(ARM, SPRINGS, q[0], model="parallel", joints="locked")

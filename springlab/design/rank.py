@@ -39,7 +39,7 @@ from springlab.design.solve import (
     minimise_largest_force,
     relaxation_margin,
 )
-from springlab.energy.geometry import attachment_points, energy_breakdown
+from springlab.energy.geometry import attachment_points, energies
 from springlab.energy.quadratic import gravity_entries, spring_entries
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.model.armfile import ArmSpec, load_arm
@@ -133,7 +133,7 @@ class DesignReport:
 def verify(chain: Chain, springs, X) -> float:
     """Route 2: (max - min) of the total energy over the poses X, over the gravity energy's range.
     Raises UnbalanceableError above :data:`VERIFY_TOLERANCE`."""
-    E = energy_breakdown(chain, springs, X)
+    E = energies(chain, springs, X)
     rel = float(np.ptp(E["total"]) / np.ptp(E["gravity"]))
     if not rel < VERIFY_TOLERANCE:
         raise UnbalanceableError(f"route 2: the total energy varies by {rel:.2e} of the gravity range "

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab import _checks
 from springlab.energy.geometry import holding_torques
 from springlab.errors import SpringlabError
 from springlab.model.chain import Chain
@@ -101,8 +102,7 @@ def tolerance_study(chain: Chain, springs, X, tol: Tolerances, *, samples: int =
 
     springs = check_springs(chain, springs)
     X = chain.check_directions(X)
-    if int(samples) != samples or samples < 1:
-        raise SpringlabError(f"samples must be an integer >= 1, got {samples}")
+    samples = _checks.sample_count(samples, least=1)
     active = [f for f in FACTORS if getattr(tol, f)]
     if not active:
         raise SpringlabError("every tolerance is 0: nothing to study")

@@ -102,8 +102,9 @@ def total_energy(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) -> np.
     return _evaluate(chain, springs, X, chunk, gravity=True, elastic=True)
 
 
-def energy_breakdown(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) -> dict[str, np.ndarray]:
-    """Gravity, spring and total energy (J) at each pose: {'gravity', 'springs', 'total'}."""
+def energies(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) -> dict[str, np.ndarray]:
+    """Gravity, spring and total energy (J) at each pose, route 2: {'gravity', 'springs',
+    'total'}, each ndarray(N,). The same name and shape as every route's ``energies``."""
     gravity = gravity_energy(chain, X, chunk=chunk)
     elastic = spring_energy(chain, springs, X, chunk=chunk)
     return {"gravity": gravity, "springs": elastic, "total": gravity + elastic}
@@ -116,10 +117,10 @@ def rotation_order_spread(chain: Chain, springs, angles) -> dict[str, float]:
     spherical joints."""
     from springlab.model.rotations import ORDERS, directions_in_order
 
-    ref = energy_breakdown(chain, springs, directions_in_order(angles, "xyz"))
+    ref = energies(chain, springs, directions_in_order(angles, "xyz"))
     out = dict.fromkeys(ref, 0.0)
     for order in ORDERS[1:]:
-        e = energy_breakdown(chain, springs, directions_in_order(angles, order))
+        e = energies(chain, springs, directions_in_order(angles, order))
         for key in out:
             out[key] = max(out[key], float(np.max(np.abs(e[key] - ref[key]))))
     return out

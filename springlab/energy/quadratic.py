@@ -167,6 +167,16 @@ def quadratic_energy(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) ->
     return out
 
 
+def energies(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) -> dict[str, np.ndarray]:
+    """Gravity, spring and total energy (J) at each pose by the quadratic form (route 1):
+    {'gravity': X^T G X (000 Eq. 14), 'springs': sum_S X^T K_S X (000 Eq. 24), 'total':
+    X^T (G + sum K_S) X}, each ndarray(N,). The same name and shape as route 2's
+    :func:`springlab.energy.geometry.energies`."""
+    gravity = quadratic_energy(chain, (), X, chunk=chunk)
+    total = quadratic_energy(chain, springs, X, chunk=chunk)
+    return {"gravity": gravity, "springs": total - gravity, "total": total}
+
+
 def quadratic_gravity_energy(chain: Chain, X) -> np.ndarray:
     """U_g = X^T G X (Eq. 14) in J, ndarray(N,)."""
     return quadratic_energy(chain, (), X)

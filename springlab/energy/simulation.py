@@ -33,7 +33,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from springlab.energy.geometry import energy_breakdown
+from springlab import _checks
+from springlab.energy.geometry import energies
 from springlab.energy.geometry import holding_torques as route2_holding_torques
 from springlab.energy.multibody import (
     DRIVEN_TORQUE_SIGN,
@@ -220,8 +221,7 @@ def hold_test(chain: Chain, springs, poses, duration: float = 2.0, *, control_sc
     :param duration: simulated time per pose (s)
     """
     frames = chain.pose_frames(poses)
-    if not (np.isfinite(duration) and duration > 0):
-        raise SpringlabError(f"duration must be > 0 s, got {duration}")
+    duration = _checks.duration(duration)
     springs = check_springs(chain, springs)
     return HoldResult(_hold_run(chain, springs, frames, duration, settings, 1.0),
                       _hold_run(chain, springs, frames, duration, settings, control_scale))
@@ -304,8 +304,7 @@ def follow(chain: Chain, springs, sweep: Sweep, *, samples: int = 301,
         raise SpringlabError(f"sweep must be a springlab.model.trajectories.Sweep, got {type(sweep).__name__}")
     if sweep.initial.shape != (chain.n - 1, 3):
         raise SpringlabError(f"the sweep has {sweep.initial.shape[0]} joints, the chain {chain.n - 1}")
-    if int(samples) != samples or samples < 2:
-        raise SpringlabError(f"samples must be an integer >= 2, got {samples}")
+    samples = _checks.sample_count(samples, least=2)
     sweep.check_at_rest()
     chain.check_angles(np.stack([sweep.initial, sweep.initial + sweep.rotation]))
     springs = check_springs(chain, springs)
@@ -328,5 +327,5 @@ def follow(chain: Chain, springs, sweep: Sweep, *, samples: int = 301,
     gravity = sum(chain.g * m * d[:, 1:] @ UP for m, d in zip(chain.m, data, strict=True))
     elastic = sum((model.mbs.GetSensorStoredData(s)[:, 1] for s in pot), np.zeros_like(t))
     torques = np.stack([model.mbs.GetSensorStoredData(s)[:, 1:] @ DRIVEN_TORQUE_SIGN for s in tq], axis=1)
-    route2 = energy_breakdown(chain, springs, chain.directions(sweep.angles(t)))
+    route2 = energies(chain, springs, chain.directions(sweep.angles(t)))
     return FollowResult(t, gravity, elastic, gravity + elastic, torques, route2, cpu)

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
+from springlab import _checks
 from springlab.energy.quadratic import dot_symbol, expand_vectors_dot
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.model.chain import STANDARD_GRAVITY, Chain, serial_chain
@@ -60,9 +61,7 @@ class Arm:
 
     def __post_init__(self):
         for name in ("m1", "m2", "l1", "g"):
-            v = getattr(self, name)
-            if not (np.isfinite(v) and v > 0):
-                raise SpringlabError(f"{name} must be finite and > 0, got {v}")
+            _checks.positive(name, getattr(self, name))
         if not (np.isfinite(self.h1) and self.h1 > 0):
             raise SpringlabError(f"h1 must be > 0 (the paper assumes the upper arm's COM beyond O), got {self.h1}")
         if not (np.isfinite(self.h2) and self.h2 != 0):

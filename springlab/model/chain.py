@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.model.rotations import (
     frames_from_directions,
@@ -39,20 +40,6 @@ SPHERICAL = "spherical"
 
 STANDARD_GRAVITY = 9.81
 """m/s^2. Papers that use another value say so in their data module."""
-
-
-def _positive_vector(name: str, values, *, allow_zero: bool = False) -> tuple[float, ...]:
-    arr = np.asarray(values, dtype=float)
-    if arr.ndim != 1 or arr.size == 0:
-        raise SpringlabError(f"{name} must be a non-empty 1-D sequence, got shape {arr.shape}")
-    for idx, v in enumerate(arr):
-        link = idx + 2
-        if not np.isfinite(v):
-            raise SpringlabError(f"{name}_{link} must be finite, got {v}")
-        if v < 0 or (v == 0 and not allow_zero):
-            bound = ">= 0" if allow_zero else "> 0"
-            raise SpringlabError(f"{name}_{link} must be {bound}, got {v}")
-    return tuple(float(v) for v in arr)
 
 
 @dataclass(frozen=True)
@@ -264,8 +251,8 @@ def serial_chain(r, d, m, g: float = STANDARD_GRAVITY, *, joints=None, com_off_l
     ...
     springlab.errors.SpringlabError: d_2 = 0.4 m puts the centre of mass off link 2 (r_2 = 0.3 m); d must lie in [0, r], or pass com_off_link=True
     """
-    r_t = _positive_vector("r", r)
-    m_t = _positive_vector("m", m)
+    r_t = _checks.positive_vector("r", r)
+    m_t = _checks.positive_vector("m", m)
     d_arr = np.asarray(d, dtype=float)
     if d_arr.ndim != 1:
         raise SpringlabError(f"d must be a 1-D sequence, got shape {d_arr.shape}")

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import SpringlabError
 
 
@@ -27,10 +28,8 @@ def linear_sweep(initial, rotation, duration: float, samples: int):
     if initial.shape != rotation.shape or initial.ndim != 2 or initial.shape[1] != 3:
         raise SpringlabError(
             f"initial and rotation must both have shape (n-1, 3); got {initial.shape} and {rotation.shape}")
-    if not (np.isfinite(duration) and duration > 0):
-        raise SpringlabError(f"duration must be > 0 s, got {duration}")
-    if int(samples) != samples or samples < 2:
-        raise SpringlabError(f"samples must be an integer >= 2, got {samples}")
+    duration = _checks.duration(duration)
+    samples = _checks.sample_count(samples, least=2)
     t = np.linspace(0.0, duration, int(samples))
     s = (t / duration)[:, None, None]
     return t, initial[None] + s * rotation[None]
@@ -67,8 +66,7 @@ class Sweep:
                 f"initial and rotation must both have shape (n-1, 3); got {initial.shape} and {rotation.shape}")
         if not (np.all(np.isfinite(initial)) and np.all(np.isfinite(rotation))):
             raise SpringlabError("initial and rotation must be finite angles in rad")
-        if not (np.isfinite(duration) and duration > 0):
-            raise SpringlabError(f"duration must be > 0 s, got {duration}")
+        duration = _checks.duration(duration)
         if law not in _LAWS:
             raise SpringlabError(f"law must be one of {_LAWS}, got {law!r}")
         self.initial, self.rotation, self.duration, self.law = initial, rotation, float(duration), law

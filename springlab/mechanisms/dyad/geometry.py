@@ -22,6 +22,21 @@ def potential_energy(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
     return comp.gravity_energy(phi) + 0.5 * comp.k * (y - comp.l0) ** 2
 
 
+def energies(comp: Compensator, dyad: Dyad, phi) -> dict:
+    """Route 2 energies (J) at link angles phi (rad): {'gravity': G s (1 + cos phi) (002 Eq. 1),
+    'springs': k (y - l0)^2 / 2 with y from the linkage (002 Eqs. 2, 24), 'total':
+    :func:`potential_energy`}, each shaped like phi."""
+    y = slider_height(dyad, phi)
+    return {"gravity": comp.gravity_energy(phi), "springs": 0.5 * comp.k * (y - comp.l0) ** 2,
+            "total": potential_energy(comp, dyad, phi)}
+
+
+def holding_torques(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
+    """The torque (N m) an actuator at O applies to hold the link at each angle phi (rad),
+    positive towards larger phi: dP/dphi = -:func:`unbalanced_moment`."""
+    return -unbalanced_moment(comp, dyad, phi)
+
+
 def unbalanced_moment(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
     """The unbalanced moment about O by virtual work: -dP/dphi (N m), the moment
     of gravity and spring together, positive towards larger phi (as the paper's

@@ -13,8 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab import _checks
 from springlab.energy.multibody import SimSettings, check_constraints, solver_settings
-from springlab.errors import SpringlabError
 from springlab.mechanisms.dyad.model import Compensator, Dyad, closing, slider_height
 from springlab.model.rotations import rot_z
 from springlab.model.trajectories import quintic
@@ -32,8 +32,8 @@ class Drive:
     cpu_seconds: float
 
 
-def simulate_drive(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: float, *,
-                   duration: float = 10.0, samples: int = 121, step: float = 1e-2) -> Drive:
+def follow(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: float, *,
+           duration: float = 10.0, samples: int = 121, step: float = 1e-2) -> Drive:
     """Drive the link from ``phi_start`` to ``phi_end`` (rad), rest to rest (quintic law),
     in an exudyn model: link 2 on a revolute joint at O, rod 3 jointed to it at A and
     to slider 4 at B, the slider on a vertical prismatic joint through O, the spring
@@ -53,10 +53,8 @@ def simulate_drive(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: flo
         SensorObject,
     )
 
-    if not (np.isfinite(duration) and duration > 0):
-        raise SpringlabError(f"duration must be > 0 s, got {duration}")
-    if int(samples) != samples or samples < 2:
-        raise SpringlabError(f"samples must be an integer >= 2, got {samples}")
+    duration = _checks.duration(duration)
+    samples = _checks.sample_count(samples, least=2)
     span = float(phi_end - phi_start)
     closing(dyad, np.linspace(phi_start, phi_end, 64))  # raises if the dyad cannot close
 

@@ -10,8 +10,6 @@ Non-zero Length Spring (no DOI printed in the text).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from springlab.errors import SpringlabError
@@ -23,6 +21,7 @@ from springlab.mechanisms.dyad.algebra import (
 )
 from springlab.mechanisms.dyad.geometry import max_unbalanced, unbalanced_moment
 from springlab.mechanisms.dyad.model import Compensator, Dyad, slider_height
+from springlab.optimum import Optimum
 
 EQ32_READINGS = ("signed sum", "sum of magnitudes", "sum of squares", "maximum magnitude")
 """How Eq. (31)'s total of the moments at the prescribed positions can be read."""
@@ -120,15 +119,6 @@ def choose_C(comp: Compensator, phi, reading: str, *, moment: str = "virtual wor
     return float(res.x)
 
 
-@dataclass(frozen=True)
-class Optimum:
-    """The best dyad found: its largest |M_ub| (N m) over the grid, and l0 (m)."""
-
-    dyad: Dyad
-    l0: float
-    max_moment: float
-
-
 def optimise(comp: Compensator, phi, start: Dyad, *, free_l0: bool = False,
              bounds: dict | None = None) -> Optimum:
     """Minimise the largest |M_ub| (virtual work) over the angles ``phi`` by
@@ -165,7 +155,9 @@ def optimise(comp: Compensator, phi, start: Dyad, *, free_l0: bool = False,
     res = minimize(lambda x: x[-1], x0, method="SLSQP", constraints=cons,
                    bounds=[b[k] for k in keys] + [(0, None)], options={"maxiter": 500, "ftol": 1e-12})
     d, c = unpack(res.x[:-1])
-    return Optimum(d, c.l0, max_unbalanced(c, d, phi))
+    return Optimum(d, {"r": d.r, "l": d.l, "beta": d.beta, "l0": c.l0}, "largest |M_ub| (N m), minimised",
+                   max_unbalanced(c, d, phi), int(res.nfev), {k: b[k] for k in keys},
+                   {"free_l0": free_l0})
 
 
 # --- the readings the paper allows, searched in batches -----------------------------
@@ -324,7 +316,7 @@ def optimise_from_many(comp: Compensator, phi, starts, *, free_l0: bool = False)
             continue
     if not runs:
         raise SpringlabError("the optimiser failed from every start; give starts whose dyad closes over phi")
-    return min(runs, key=lambda o: o.max_moment), runs
+    return min(runs, key=lambda o: o.value), runs
 
 
 def start_grid(r=(0.08, 0.13, 0.2), l=(0.4, 0.55, 0.8), beta_deg=(-10.0, 0.0, 10.0)) -> list[Dyad]:  # noqa: E741

@@ -14,6 +14,7 @@ import itertools
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.mechanisms.planar.model import PlanarArm, PlanarSpring, Workspace, relative_angles
 from springlab.mechanisms.planar.quadratic import term_values, terms
@@ -97,9 +98,7 @@ def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: flo
     from tqdm import tqdm
 
     if samples is not None:
-        if int(samples) != samples or samples < 1:
-            raise SpringlabError(f"samples must be an integer >= 1 (an empty sample has no mean), got {samples}")
-        samples = int(samples)
+        samples = _checks.sample_count(samples, least=1, why=" (an empty sample has no mean)")
         if seed is None:
             raise SpringlabError("Monte Carlo sampling needs a seed")
         total, done = 0.0, 0

@@ -20,7 +20,7 @@ def _direction(angle):
     return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
 
 
-def direct_energy(arm: PlanarArm, springs, theta) -> dict:
+def energies(arm: PlanarArm, springs, theta) -> dict:
     """Route 2: place the joints, COMs and attachment points in the plane and sum
     m g h and k |AB|^2 / 2. Returns {'gravity', 'springs', 'total'}, each (N,) in J."""
     theta = relative_angles(theta, arm.n)

@@ -57,6 +57,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import SpringlabError
 
 
@@ -271,7 +272,6 @@ class Workspace:
 
     def sample(self, count: int, seed) -> np.ndarray:
         """``count`` poses uniform in the box (rad), (count, joints)."""
-        if int(count) != count or count < 1:
-            raise SpringlabError(f"sample count must be an integer >= 1, got {count}")
+        count = _checks.sample_count(count, least=1, name="sample count")
         rng = np.random.default_rng(seed)
         return np.radians(rng.uniform(self.low, self.high, (int(count), self.joints)))

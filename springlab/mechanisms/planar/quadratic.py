@@ -93,6 +93,21 @@ def quadratic_energy(arm: PlanarArm, springs, theta) -> np.ndarray:
     return values @ scale + const
 
 
+def energies(arm: PlanarArm, springs, theta) -> dict:
+    """Route 1 energies (J): {'gravity', 'springs', 'total'}, each (N,): gravity's terms
+    (003 Eqs. 5-7), the springs' pseudo-stiffness terms and constants (003 Eqs. 10-12),
+    and their sum, :func:`quadratic_energy`. Heights from the base joint."""
+    theta = relative_angles(theta, arm.n)
+    tl = terms(arm, springs, criteria=False)
+    values = term_values(tl, theta)
+    scale = np.array([arm.r[t.u - 1] * arm.r[t.v - 1] for t in tl])
+    grav = np.array([t.source == "G" for t in tl])
+    const = sum(0.5 * sp.k * (sp.a**2 + sp.b**2 + np.sum(arm.r[sp.i:sp.j - 1] ** 2)) for sp in springs)
+    gravity = values[:, grav] @ scale[grav]
+    return {"gravity": gravity, "springs": values[:, ~grav] @ scale[~grav] + const,
+            "total": quadratic_energy(arm, springs, theta)}
+
+
 def spatial_coefficients(arm: PlanarArm, springs) -> tuple[np.ndarray, np.ndarray]:
     """The planar energy's pose-dependent part as sum_{u<v} C_uv x_u . x_v + S_uv n . (x_u x x_v),
     in 000's frame (x_1 vertical), (n, n) upper-triangular arrays in J.

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import functools
 import itertools
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -27,6 +26,7 @@ from springlab.mechanisms.planar.model import (
     wrap_degrees,
 )
 from springlab.mechanisms.planar.quadratic import gravity_terms, spring_terms
+from springlab.optimum import Optimum
 
 # --- balancing equations, configurations, design (Eqs. 16, 26-27, 32; Tables 1-2) ---------------
 CONFIGURATIONS = {
@@ -213,20 +213,6 @@ def com_distances(r, m, G, g: float) -> np.ndarray:
     return (G * r[0] / g - beyond) * r[1:] / m
 
 
-@dataclass(frozen=True)
-class Optimum:
-    """The best index found: ``choices`` (the free parameters), ``springs``, ``index``,
-    and the bounds respected."""
-
-    config: str
-    choices: dict
-    springs: list
-    index: float
-    bounds: dict
-    k_max: float
-    evaluations: int
-
-
 def optimise_index(arm: PlanarArm, config: str, free: dict, fixed: dict, workspace: Workspace, *,
                    step: float = 5.0, k_max: float = 20000.0, start: dict | None = None) -> Optimum:
     """Maximise the efficiency index (grid ``step``, 'magnitudes' reading) over the
@@ -265,4 +251,6 @@ def optimise_index(arm: PlanarArm, config: str, free: dict, fixed: dict, workspa
     springs = springs_of(list(best.values()))
     if max(s.k for s in springs) > k_max * (1 + 1e-6):
         raise UnbalanceableError(f"no design of {config} within k <= {k_max} N/m was found")
-    return Optimum(config, best, springs, efficiency_index(arm, springs, workspace, step=step), dict(free), k_max, count[0])
+    return Optimum(springs, best, f"efficiency index (grid step {step:g} deg, 'magnitudes'), maximised",
+                   efficiency_index(arm, springs, workspace, step=step), count[0], dict(free),
+                   {"config": config, "k_max": k_max})

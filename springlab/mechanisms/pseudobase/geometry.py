@@ -50,8 +50,9 @@ def positions(arm: PseudobaseArm, springs, q) -> dict:
 
 
 def energies(arm: PseudobaseArm, springs, q) -> dict:
-    """Route 2 energies (J) at joint angles q (N, n): 'gravity_primary', 'gravity_aux',
-    'gravity_pseudobase', 'gravity' (their sum), 'elastic', 'total', each (N,).
+    """Route 2 energies (J) at joint angles q (N, n): 'gravity', 'springs', 'total' (the
+    shape every route's ``energies`` has), and gravity's parts 'gravity_primary',
+    'gravity_aux', 'gravity_pseudobase', each (N,).
     Heights are measured along ``up`` from O_0."""
     p = positions(arm, springs, q)
     mod = np.asarray(arm.modules) - 1
@@ -62,6 +63,20 @@ def energies(arm: PseudobaseArm, springs, q) -> dict:
     }
     out["gravity"] = out["gravity_primary"] + out["gravity_aux"] + out["gravity_pseudobase"]
     K = np.array([sp.K for sp in springs])
-    out["elastic"] = 0.5 * (np.sum((p["A"] - p["B"]) ** 2, axis=-1) @ K) if len(K) else np.zeros(len(p["O"]))
-    out["total"] = out["gravity"] + out["elastic"]
+    out["springs"] = 0.5 * (np.sum((p["A"] - p["B"]) ** 2, axis=-1) @ K) if len(K) else np.zeros(len(p["O"]))
+    out["total"] = out["gravity"] + out["springs"]
+    return out
+
+
+def holding_torques(arm: PseudobaseArm, springs, poses, *, spring_scale: float = 1.0,
+                           delta: float = 1e-6) -> np.ndarray:
+    """Holding torques dV/dq (N m), (N, n), route 2: the total energy of :func:`energies`
+    differentiated by central differences (step ``delta`` rad); springs scaled by ``spring_scale``."""
+    poses = arm.dh.check_angles(poses)
+    scaled = [sp.scaled(spring_scale) for sp in springs]
+    out = np.zeros(poses.shape)
+    for j in range(arm.n):
+        e = np.zeros(arm.n)
+        e[j] = delta
+        out[:, j] = (energies(arm, scaled, poses + e)["total"] - energies(arm, scaled, poses - e)["total"]) / (2 * delta)
     return out

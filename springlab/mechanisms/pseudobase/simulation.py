@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab import _checks
 from springlab.energy.multibody import SimSettings, add_sensor, frame_with_z, solver_settings
 from springlab.errors import SpringlabError
 from springlab.mechanisms.pseudobase.geometry import energies, positions
@@ -152,7 +153,7 @@ def build_model(arm: PseudobaseArm, springs, q0, *, model: str = "rssr", joints:
 
 @dataclass(frozen=True)
 class FollowRun:
-    """One driven run. t (T,) s; gravity, elastic, total (T,) J from exudyn's body
+    """One driven run. t (T,) s; gravity, springs, total (T,) J from exudyn's body
     positions and spring connectors (heights from O_0); tilt (T, k) rad, each
     pseudobase's axis from vertical; torques (T, n) N m, each actuator's torque
     about its joint axis; route2: route 2's energies at the same angles."""
@@ -162,7 +163,7 @@ class FollowRun:
     t: np.ndarray
     q: np.ndarray
     gravity: np.ndarray
-    elastic: np.ndarray
+    springs: np.ndarray
     total: np.ndarray
     tilt: np.ndarray
     torques: np.ndarray
@@ -183,10 +184,8 @@ def follow(arm: PseudobaseArm, springs, trajectory, duration: float, *, model: s
            inertias: Inertias = Inertias(), settings: SimSettings = _SETTINGS) -> FollowRun:
     """Drive the primary joints along ``trajectory`` (t -> (n,) rad) for ``duration`` s
     and record energies, pseudobase tilts and actuator torques at ``samples`` times."""
-    if not (np.isfinite(duration) and duration > 0):
-        raise SpringlabError(f"duration must be > 0 s, got {duration}")
-    if int(samples) != samples or samples < 2:
-        raise SpringlabError(f"samples must be an integer >= 2, got {samples}")
+    duration = _checks.duration(duration)
+    samples = _checks.sample_count(samples, least=2)
     q0 = np.asarray(trajectory(0.0), dtype=float)
     m = build_model(arm, springs, q0, model=model, joints="driven", trajectory=trajectory,
                     spring_scale=spring_scale, inertias=inertias, settings=settings)
@@ -207,7 +206,7 @@ def follow(arm: PseudobaseArm, springs, trajectory, duration: float, *, model: s
     data = [m.mbs.GetSensorStoredData(s) for s in pos]
     t = data[0][:, 0]
     gravity = sum(arm.g * mass * (d[:, 1:] @ arm.up) for (_, mass), d in zip(bodies, data, strict=True))
-    elastic = sum((m.mbs.GetSensorStoredData(s)[:, 1] for s in pot), np.zeros_like(t))
+    spring_energy = sum((m.mbs.GetSensorStoredData(s)[:, 1] for s in pot), np.zeros_like(t))
     tilt = []
     for s in rot:
         Rm = m.mbs.GetSensorStoredData(s)[:, 1:].reshape(-1, 3, 3)
@@ -215,7 +214,7 @@ def follow(arm: PseudobaseArm, springs, trajectory, duration: float, *, model: s
         tilt.append(np.arctan2(np.linalg.norm(np.cross(axis, arm.up), axis=1), axis @ arm.up))
     torques = np.stack([_DRIVEN_Z_SIGN * m.mbs.GetSensorStoredData(s)[:, 3] for s in tq], axis=1)
     q = np.array([trajectory(x) for x in t])
-    return FollowRun(model, spring_scale, t, q, gravity, elastic, gravity + elastic, np.stack(tilt, axis=1),
+    return FollowRun(model, spring_scale, t, q, gravity, spring_energy, gravity + spring_energy, np.stack(tilt, axis=1),
                      torques, energies(arm, [sp.scaled(spring_scale) for sp in springs], q), cpu)
 
 
@@ -235,17 +234,4 @@ def holding_torques(arm: PseudobaseArm, springs, poses, *, model: str = "ideal",
         m.mbs.Assemble()
         m.mbs.SolveDynamic(solver_settings(settings, hold))
         out[k] = [_LOCKED_Z_SIGN * m.mbs.GetObjectOutput(j, exu.OutputVariableType.TorqueLocal)[2] for j in m.drives]
-    return out
-
-
-def route2_holding_torques(arm: PseudobaseArm, springs, poses, *, spring_scale: float = 1.0,
-                           delta: float = 1e-6) -> np.ndarray:
-    """dV/dq (N m), (N, n): route 2's total energy differentiated by central differences."""
-    poses = arm.dh.check_angles(poses)
-    scaled = [sp.scaled(spring_scale) for sp in springs]
-    out = np.zeros(poses.shape)
-    for j in range(arm.n):
-        e = np.zeros(arm.n)
-        e[j] = delta
-        out[:, j] = (energies(arm, scaled, poses + e)["total"] - energies(arm, scaled, poses - e)["total"]) / (2 * delta)
     return out
