@@ -1,4 +1,11 @@
 """Spring designs for an arm (paper 000's method and its extensions): the rules R1-R6
 (:mod:`.rules`), solving 000 Eqs. (39) and searching for a design (:mod:`.solve`), which
 configurations can balance at all (:mod:`.feasibility`), designs ranked for a user's arm
-(:mod:`.rank`) and their sensitivity to manufacturing tolerances (:mod:`.tolerance`)."""
+(:mod:`.rank`) and their sensitivity to manufacturing tolerances (:mod:`.tolerance`).
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
+"""

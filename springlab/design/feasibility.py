@@ -1,12 +1,12 @@
-"""Which spring multisets balance an arm: paper 000's rules R1-R6 tested against Eqs. (39).
+"""Which spring multisets balance an arm: paper 000's rules R1-R6 tested against 000 Eqs. (39).
 
 A configuration is a **multiset** of springs over the paper's sign alphabet
 (:func:`alphabet`): ground springs S(1,j) (+,+), S(1,2) also (-,-); every other
 pair (+,+), (-,-) or (+,-); two springs on one pair in different patterns, and on
 a pair spanning three or more joints (j - i >= 3) the same pattern twice.
 
-It is **balanceable** when Eqs. (39) have a solution with every k > 0 and every
-a, b of its pattern's sign. Eqs. (39) are linear in P = k a b, A = k a, B = k b
+It is **balanceable** when 000 Eqs. (39) have a solution with every k > 0 and every
+a, b of its pattern's sign. 000 Eqs. (39) are linear in P = k a b, A = k a, B = k b
 and k of each spring (000 Eqs. 23a-d) except for P k = A B, which binds only for
 springs spanning three or more joints. So:
 
@@ -30,6 +30,12 @@ forbid every superset of it (sum of its z <= size - 1). When the programme becom
 infeasible there is no further minimal multiset. If every one found is confirmed
 by a design, the relaxation's minimal multisets are exactly the true ones (a true
 balanceable multiset contains a relaxation-minimal one, which is then balanceable).
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
 """
 
 from __future__ import annotations
@@ -76,7 +82,7 @@ def alphabet(n: int) -> list[SpringSlot]:
 
 
 def _quantities(chain: Chain, s: SpringSlot) -> list[tuple[int, dict[tuple[int, int], float]]]:
-    """The spring's linear quantities that enter Eqs. (39): (sign, {entry: coefficient}), from
+    """The spring's linear quantities that enter 000 Eqs. (39): (sign, {entry: coefficient}), from
     :func:`springlab.design.solve.linear_columns` (000 Eqs. 23a-d written linearly), with lengths
     measured in the mean link length. A quantity that enters no entry (A and B of a spring
     over one joint, k of one over fewer than three) is left out."""
@@ -122,7 +128,7 @@ def _programme(chain: Chain, items) -> _Programme:
 
 
 def relaxation_feasible(chain: Chain, slots) -> bool:
-    """True when the linear relaxation of Eqs. (39) has a solution in which every
+    """True when the linear relaxation of 000 Eqs. (39) has a solution in which every
     spring's quantities carry their signs by at least :data:`EPS` (a necessary
     condition for balance; False is a proof that the multiset cannot balance)."""
     slots = list(slots)
@@ -147,7 +153,7 @@ def _fixed_ratio(x0: np.ndarray, N: np.ndarray, i: int, j: int) -> float | None:
 
 
 def tightened_infeasible(chain: Chain, slots) -> bool:
-    """True when Eqs. (39) with P k = A B provably have no solution with the stated signs.
+    """True when 000 Eqs. (39) with P k = A B provably have no solution with the stated signs.
 
     Exact consequences of the coupling are added to the linear equations until none is new:
     where the equations force B = c k for a spring (its b fixed at c), P k = A B gives P = c A;
@@ -190,7 +196,7 @@ def tightened_infeasible(chain: Chain, slots) -> bool:
 
 
 def _entry_signs(chain: Chain, s: SpringSlot) -> dict[tuple[int, int], set[int]]:
-    """The signs of the terms a spring puts into each entry of Eqs. (39)."""
+    """The signs of the terms a spring puts into each entry of 000 Eqs. (39)."""
     out: dict[tuple[int, int], set[int]] = {}
     for sign, entries in _quantities(chain, s):
         for key, coef in entries.items():
@@ -202,7 +208,7 @@ _HIGHS = None
 
 
 def _phase_one(prog: _Programme):
-    """Least total violation of Eqs. (39) with every quantity in its sign box: (value, y),
+    """Least total violation of 000 Eqs. (39) with every quantity in its sign box: (value, y),
     y the equations' dual values (a subgradient of the value in the right-hand side).
 
     Solved by HiGHS through highspy, which scipy's linprog also wraps: called directly it
@@ -235,7 +241,7 @@ def _phase_one(prog: _Programme):
 
 def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list[tuple[SpringSlot, ...]]:
     """Every inclusion-minimal multiset over :func:`alphabet` whose linear relaxation of
-    Eqs. (39) is feasible, fewest springs first, then in label order.
+    000 Eqs. (39) is feasible, fewest springs first, then in label order.
 
     Branch and prune on certificates: a multiset C whose relaxation is infeasible has
     a phase-one dual y with value f > 0, and any feasible T containing C must add a
@@ -302,9 +308,9 @@ def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list
 
 
 def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
-    """Springs with the slots' signs that satisfy Eqs. (39) exactly, or None.
+    """Springs with the slots' signs that satisfy 000 Eqs. (39) exactly, or None.
 
-    Eqs. (39) are linear in (P, A, B, k) per spring; the coupling P k = A B binds for
+    000 Eqs. (39) are linear in (P, A, B, k) per spring; the coupling P k = A B binds for
     springs spanning three or more joints (for shorter ones k, or a and b, are free to
     meet it). Two searches, each polished by bounded least squares (scipy) on the
     equations and the couplings together:

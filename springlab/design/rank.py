@@ -9,7 +9,7 @@ the reason kept in the report.
 
 Spatial system spring efficiency
 --------------------------------
-Paper 003 defines e_sys = (X + Y) / (X + 2Y) (Eq. 25) for planar arms. Paper 000's
+Paper 003 defines e_sys = (X + Y) / (X + 2Y) (003 Eq. 25) for planar arms. Paper 000's
 quadratic form gives the same pieces in space: the energy's pose-dependent part
 is sum_{u<v} M_uv x_u . x_v, each spring S contributing entries K^S_uv (000 Eqs.
 23a-d) and gravity G_1v. Divided by r_u r_v (r_1 = 1 m, as 003 sets it), an entry
@@ -20,9 +20,20 @@ is exactly 003's C1/C2 classification. Then, at each pose,
 
     X = sum_v |G_1v x_1 . x_v| / r_v,   Y = sum_{S, u<v, K^S_uv > 0} |K^S_uv x_u . x_v| / (r_u r_v)
 
-and e_sys = (X + Y)/(X + 2Y): 003's Eq. (25), 'magnitudes' reading. For a planar
+and e_sys = (X + Y)/(X + 2Y): 003 Eq. (25), 'magnitudes' reading. For a planar
 motion x_u . x_v = cos Theta_uv and it reduces to 003's (tested against
-:func:`springlab.mechanisms.planar.system_efficiency`).
+:func:`springlab.mechanisms.planar.efficiency.system_efficiency`).
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
+Lin, P.-Y., Shieh, W.-B., Chen, D.-Z. (2010). Design of a gravity-balanced general spatial
+serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10.1115/1.4001816
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2022). Spring efficiency assessment and efficient
+use of spring methods of statically balanced planar serial manipulators with revolute
+joints only. Mechanical Sciences (2022).
 """
 
 from __future__ import annotations
@@ -51,7 +62,7 @@ VERIFY_TOLERANCE = 1e-10
 
 
 def spatial_system_efficiency(chain: Chain, springs, X) -> np.ndarray:
-    """e_sys (Eq. 25 of 003, generalised; module docstring) at each pose X (N, n, 3), (N,)."""
+    """e_sys (003 Eq. 25, generalised; module docstring) at each pose X (N, n, 3), (N,)."""
     X = chain.check_directions(X)
     r = {1: 1.0} | {t: chain.r[t - 2] for t in range(2, chain.n + 1)}
     dots = np.einsum("nuk,nvk->nuv", X, X)
@@ -167,7 +178,7 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
         from rules R1-R6, fewest springs and then fewest spanned joints first
         (:func:`~springlab.design.rules.best_first_configurations`); each solved within
         the arm's limits), or 'ground springs' (the n - 1 springs from the base column
-        of :func:`ground_springs`, which 000's Eq. 41 forbids: one design)
+        of :func:`ground_springs`, which 000's 000 Eq. 41 forbids: one design)
     :param max_designs: stop after this many verified designs
     :param max_configurations: stop after trying this many configurations (None: all)
     :param finder: the solver (default :func:`springlab.design.solve.find_design`); any design it
@@ -198,7 +209,7 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
             break
         report.configurations_tried += 1
         if relaxation_margin(chain, cfg) <= 1e-9:
-            report.rejected.append((cfg, "Eqs. (39) have no solution with these signs (linear relaxation)"))
+            report.rejected.append((cfg, "000 Eqs. (39) have no solution with these signs (linear relaxation)"))
             continue
         try:
             springs = finder(chain, cfg, seed=seed, restarts=restarts, max_extension=spec.max_attachment)
@@ -248,7 +259,7 @@ def springs_from_dict(items) -> list[Spring]:
 
 def all_pattern_slots(n: int) -> list[SpringSlot]:
     """Every spring S(i,j) of an n-link arm with every sign pattern, the paper's
-    criteria (Eq. 41, Fig. 10) ignored."""
+    criteria (000 Eq. 41, Fig. 10) ignored."""
     from springlab.design.rules import PATTERNS
 
     return [SpringSlot(i, j, p) for i in range(1, n) for j in range(i + 1, n + 1) for p in PATTERNS]
@@ -275,7 +286,7 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
 
     Every set of ``count`` slots that includes S(1,n) (the only spring with an entry
     (1, n), which gravity's G_1n needs; (+,+) or (-,-)) is screened by the linear
-    relaxation of Eqs. (39) (:func:`springlab.design.solve.relaxation_margin`), then solved
+    relaxation of 000 Eqs. (39) (:func:`springlab.design.solve.relaxation_margin`), then solved
     by least squares (free choices spent on the smallest largest force if
     ``minimise_force``) and verified by route 2 over ``samples`` random poses. The
     candidates number about C(2 n (n - 1), count - 1): practical to n = 5.
@@ -301,7 +312,7 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
 
 def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False) -> tuple[int, int]:
     """(candidates, survivors): how many sets of ``count`` springs, any sign pattern, any
-    attachment (limits ignored), pass the linear relaxation of Eqs. (39). No survivor
+    attachment (limits ignored), pass the linear relaxation of 000 Eqs. (39). No survivor
     proves that no ``count`` springs without auxiliary links balance this arm: the
     relaxation only drops constraints (P k = A B per spring)."""
     from tqdm import tqdm
@@ -316,7 +327,7 @@ def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False) -> t
 def ground_springs(n: int) -> tuple[SpringSlot, ...]:
     """n - 1 springs, all anchored on the base column (x_1, above the base joint):
     S(1,n) (+,+) and S(1,j) (+,-) for j = 3..n. Balances an arm of any n (see
-    :func:`ground_spring_design`). Eq. (41) of 000 allows only (+,+) on the ground."""
+    :func:`ground_spring_design`). 000 Eq. (41) of 000 allows only (+,+) on the ground."""
     if int(n) != n or n < 3:
         raise SpringlabError(f"n (links with the ground) must be an integer >= 3, got {n}")
     return tuple(sorted([SpringSlot(1, n, "(+,+)")] + [SpringSlot(1, j, "(+,-)") for j in range(3, n + 1)]))
@@ -329,7 +340,7 @@ def ground_spring_design(spec_or_chain, *, max_extension: float | None = None, m
 
     Why n - 1 springs suffice. Spring S(1,j) with A = k a, B = k b puts k r_t r_v on every
     entry (t, v) between joints it spans (2 <= t < v < j, 000 Eq. 23c) and r_t B on (t, j)
-    (Eq. 23d). Entry (t, v) of Eqs. (39) therefore reads r_t (B_v + r_v K_v) = 0, with
+    (000 Eq. 23d). Entry (t, v) of 000 Eqs. (39) therefore reads r_t (B_v + r_v K_v) = 0, with
     B_v the sum of B over springs ending on link v and K_v the stiffness of those reaching
     past it: one condition per link v, the same for every t. A (+,-) spring ending on v
     (B_v < 0) meets it, and S(1,n)'s pair meets it at v = n. The ground entries (1, v)
@@ -433,7 +444,7 @@ def compare_methods(spec: ArmSpec, report: DesignReport | None = None, **pseudob
     try:
         d = ground_spring_design(spec, samples=spec.samples, seed=spec.seed)
         out.append(MethodSummary("ground springs, n - 1 (any signs)", d.spring_count, d.stiffness_sum, d.max_force, 0.0,
-                                 d.efficiency, d.energy_variation, "Eq. (41) forbids the (+,-) ground springs"))
+                                 d.efficiency, d.energy_variation, "000 Eq. (41) forbids the (+,-) ground springs"))
     except (UnbalanceableError, SpringlabError) as err:
         out.append(MethodSummary("ground springs, n - 1 (any signs)", spec.n - 1, float("nan"), float("nan"), 0.0,
                                  float("nan"), float("nan"), f"none within the limits: {err}"[:120]))

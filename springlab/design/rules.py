@@ -6,17 +6,23 @@ A configuration is a set of springs S(i,j), each with a sign pattern
 join the same pair of links with different patterns (the paper's S and S').
 
 Each spring contributes to the entries (u, v), u < v, of the balance matrix
-M = G + sum K_S with known signs (Eqs. 23a-d)::
+M = G + sum K_S with known signs (000 Eqs. 23a-d)::
 
     (i, j): -k a b -> sign -(sa sb)     (i, t): -r_t k a -> sign -sa
     (t, j):  r_t k b -> sign  sb        (t, v):  r_t r_v k -> always +
 
 Gravity fills row 1 with positive G_{1,j}. The paper's rules say which springs
 must be present so that every positive entry has a negative partner; they are
-implemented here word for word (:func:`rule_violations`). Whether Eqs. (39)
+implemented here word for word (:func:`rule_violations`). Whether 000 Eqs. (39)
 really have a solution with k > 0 and the stated signs is a separate, plain
 check (:func:`springlab.design.feasibility`), and the two are compared in the
 paper-000 notebook.
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
 """
 
 from __future__ import annotations
@@ -77,7 +83,7 @@ def as_slots(slots) -> list[SpringSlot]:
 
 
 def contributions(s: SpringSlot) -> dict[tuple[int, int], int]:
-    """Signs of the off-diagonal entries a spring contributes to M (Eqs. 23a-d)."""
+    """Signs of the off-diagonal entries a spring contributes to M (000 Eqs. 23a-d)."""
     out = {(s.i, s.j): -s.sa * s.sb}
     for t in range(s.i + 1, s.j):
         out[(s.i, t)] = -s.sa
@@ -149,7 +155,7 @@ def rule_violations(n: int, slots) -> list[Violation]:
             allowed = ("(+,+)", "(-,-)") if s.j == 2 else ("(+,+)",)
             if s.pattern not in allowed:
                 out.append(Violation(
-                    "Eq. (41)",
+                    "000 Eq. (41)",
                     f"ground-connected {s} must be (+,+)" + (" or (-,-)" if s.j == 2 else "")
                     + ", or its first-row components add to gravity instead of cancelling it"))
         elif s.pattern == "(-,+)":

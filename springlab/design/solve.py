@@ -1,15 +1,21 @@
-"""Designing the springs: solve the balancing equations (Eqs. 39a-b of 000).
+"""Designing the springs: solve the balancing equations (000 Eqs. 39a-b of 000).
 
 Three tools:
 
 * :func:`solve_design`: the paper's way. For a configuration and the user's
-  free choices (for example a and k of some springs), solve Eqs. (39a-b)
+  free choices (for example a and k of some springs), solve 000 Eqs. (39a-b)
   exactly (sympy, rational arithmetic) for the rest, or say why it cannot.
 * :func:`find_design`: any balanced design of a configuration, found
   numerically (least squares on the logarithms of |a|, |b|, k, so the signs hold
   by construction). Used for random arms and for the plain feasibility check.
 * :func:`feasibility`: the plain criterion, independent of rules R1-R6: do
-  Eqs. (39) have a solution with k > 0 and the stated signs of a and b?
+  000 Eqs. (39) have a solution with k > 0 and the stated signs of a and b?
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
 """
 
 from __future__ import annotations
@@ -68,7 +74,7 @@ def _rational(x: float) -> sp.Rational:
 
 
 def solve_design(chain: Chain, specs, *, max_extension: float | None = None) -> Design:
-    """Solve Eqs. (39a-b) for the unknown spring parameters, exactly.
+    """Solve 000 Eqs. (39a-b) for the unknown spring parameters, exactly.
 
     :param chain: the arm
     :param specs: :class:`SpringSpec` per spring; give each spring's pattern and
@@ -111,20 +117,20 @@ def solve_design(chain: Chain, specs, *, max_extension: float | None = None) -> 
     if not unknowns:
         bad = {key: e for key, e in equations.items() if e != 0}
         if bad:
-            raise UnbalanceableError(f"the fixed springs leave Eqs. (39) unsatisfied at {sorted(bad)}")
+            raise UnbalanceableError(f"the fixed springs leave 000 Eqs. (39) unsatisfied at {sorted(bad)}")
         solutions = [{}]
     else:
         solutions = sp.solve(eqs, unknowns, dict=True)
     if not solutions:
         raise UnbalanceableError(
-            "Eqs. (39a-b) have no solution with these free choices; the configuration cannot "
+            "000 Eqs. (39a-b) have no solution with these free choices; the configuration cannot "
             "balance this arm, or the fixed values contradict each other")
     reasons, designs = [], []
     for sol in solutions:
         missing = [u for u in unknowns if u not in sol or sol[u].free_symbols]
         if missing:
             raise SpringlabError(
-                "Eqs. (39a-b) leave " + ", ".join(str(u) for u in missing) +
+                "000 Eqs. (39a-b) leave " + ", ".join(str(u) for u in missing) +
                 " undetermined: fix that many more of a, b, k")
         try:
             exact, springs = _springs_of_solution(chain, specs, params, sol, max_extension)
@@ -133,12 +139,12 @@ def solve_design(chain: Chain, specs, *, max_extension: float | None = None) -> 
             continue
         designs.append(Design(springs, exact, equations))
     if not designs:
-        raise UnbalanceableError("no admissible solution of Eqs. (39a-b): " + "; ".join(reasons))
+        raise UnbalanceableError("no admissible solution of 000 Eqs. (39a-b): " + "; ".join(reasons))
     return designs[0]
 
 
 def _springs_of_solution(chain, specs, params, sol, max_extension):
-    """The springs of one exact solution of Eqs. (39), or UnbalanceableError saying
+    """The springs of one exact solution of 000 Eqs. (39), or UnbalanceableError saying
     what is wrong with it (not real, a negative stiffness, a sign against the
     pattern, an attachment off the link)."""
     exact, springs = {}, []
@@ -168,7 +174,7 @@ def _residual_entries(chain: Chain, slots) -> list[tuple[int, int]]:
 
 
 def linear_columns(chain: Chain, slots) -> list[dict[str, dict[tuple[int, int], float]]]:
-    """Per spring, the entries of Eqs. (39) that P = k a b, A = k a, B = k b and k
+    """Per spring, the entries of 000 Eqs. (39) that P = k a b, A = k a, B = k b and k
     carry (000 Eqs. 23a-d, written linearly): {'P': {(i, j): -1}, 'A': ..., 'B': ..., 'K': ...}."""
     rr = {t: chain.r[t - 2] for t in range(2, chain.n + 1)}
     out = []
@@ -181,7 +187,7 @@ def linear_columns(chain: Chain, slots) -> list[dict[str, dict[tuple[int, int], 
 
 
 def _linear_system(chain: Chain, slots, keys) -> tuple[np.ndarray, np.ndarray]:
-    """Eqs. (39) at the entries ``keys`` as M @ v + g = 0, v = (P, A, B, k) per spring (SI units)."""
+    """000 Eqs. (39) at the entries ``keys`` as M @ v + g = 0, v = (P, A, B, k) per spring (SI units)."""
     row = {key: idx for idx, key in enumerate(keys)}
     M = np.zeros((len(keys), 4 * len(as_slots(slots))))
     for idx, cols in enumerate(linear_columns(chain, slots)):
@@ -220,7 +226,7 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
 
     Least squares over (log k, log|a|, log|b|) of every spring, with the signs
     of the slots' patterns, from random starts. Succeeds when every entry of
-    Eqs. (39) is below ``tol`` times the largest G_1,j.
+    000 Eqs. (39) is below ``tol`` times the largest G_1,j.
 
     :param within_links: keep every end on its link (see :func:`check_attachments`)
         and every bracket (an end beyond a joint) no longer than ``max_extension``
@@ -265,7 +271,7 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         P = signs[:, 0] * signs[:, 1] * length**2 * np.exp(z[:, 1] + z[:, 2]) * k
         return np.stack([P, A, B, k], axis=1).ravel()
 
-    def residual(z):  # Eqs. (39), linear in (P, A, B, k)
+    def residual(z):  # 000 Eqs. (39), linear in (P, A, B, k)
         with np.errstate(over="ignore", invalid="ignore"):  # a wild step: least squares backs off
             return M @ values(z) + g_keys
 
@@ -346,13 +352,13 @@ def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = 
     """Spend a configuration's free choices on the smallest largest spring force.
 
     A spring's force over the workspace is at most k (|a| + R + |b|) =
-    |A| + R k + |B| (N) with A = k a, B = k b (:func:`longest_stretch`), and Eqs. (39)
+    |A| + R k + |B| (N) with A = k a, B = k b (:func:`longest_stretch`), and 000 Eqs. (39)
     are linear in P = k a b, A, B and k: only P k = A B per spring is not. So the
     problem is a linear programme but for one bilinear equation per spring: minimise t
-    subject to Eqs. (39), |A| + R k + |B| <= t, the slots' signs, the attachment limits
+    subject to 000 Eqs. (39), |A| + R k + |B| <= t, the slots' signs, the attachment limits
     of :func:`find_design` (|A| <= reach k, linear too) and k <= ``max_stiffness``
     (N/m) if given, and P k = A B. Solved by scipy's SLSQP from the balanced design
-    ``springs``, then polished by least squares until Eqs. (39) hold to ``tol`` of the
+    ``springs``, then polished by least squares until 000 Eqs. (39) hold to ``tol`` of the
     largest G_1,j. Returns the input unchanged when that does not improve on it.
     """
     from scipy.optimize import minimize
@@ -370,7 +376,7 @@ def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = 
     units = np.tile([scale_u, scale_k * length, scale_k * length, scale_k], m)
     A_eq = np.hstack([M * units / scale_u, np.zeros((len(keys), 1))])
     b_eq = -g_keys / scale_u
-    # Eqs. (39) repeat themselves (springs spanning the same joints give proportional rows):
+    # 000 Eqs. (39) repeat themselves (springs spanning the same joints give proportional rows):
     # keep independent combinations, or SLSQP's subproblem is singular
     U, S, Vt = np.linalg.svd(A_eq, full_matrices=False)
     rank = int(np.sum(S > 1e-10 * S[0]))
@@ -445,7 +451,7 @@ def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = 
 
 
 def _polish_linear(chain, slots, x0, bounds, M, g, scale_k, length, reach, max_stiffness, tol, scale_u):
-    """Least squares on Eqs. (39) (M x + g = 0, scaled) and P k = A B, from x0 within the sign
+    """Least squares on 000 Eqs. (39) (M x + g = 0, scaled) and P k = A B, from x0 within the sign
     boxes ``bounds``: springs balanced to ``tol`` of the largest G_1,j within the limits, or None."""
     from scipy.optimize import least_squares
 
@@ -500,7 +506,7 @@ class Feasibility:
 
 
 def relaxation_margin(chain: Chain, slots) -> float:
-    """Largest margin t such that Eqs. (39), written linearly in P = k a b,
+    """Largest margin t such that 000 Eqs. (39), written linearly in P = k a b,
     A = k a, B = k b and k of each spring, hold with every quantity carrying
     its pattern's sign by at least t (in units of max G). Drops only the
     coupling P k = A B, which binds only for springs spanning 3 or more links,
@@ -541,7 +547,7 @@ def relaxation_margin(chain: Chain, slots) -> float:
 
 
 def feasibility(chain: Chain, slots, *, seed=0, restarts: int = 30) -> Feasibility:
-    """The plain criterion: do Eqs. (39) have a solution with k > 0 and the signs
+    """The plain criterion: do 000 Eqs. (39) have a solution with k > 0 and the signs
     of the slots' patterns, for this arm? See :class:`Feasibility`."""
     slots = as_slots(slots)
     margin = relaxation_margin(chain, slots)

@@ -6,4 +6,10 @@
 
 Routes 2 and 3 never import route 1, directly or through a helper (an import contract in
 ``pyproject.toml``, run by the tests). This package's ``__init__`` imports none of them.
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
 """

@@ -1,30 +1,36 @@
 """Route 1: the quadratic form of gravity and spring energy (Juang, Jhuang, Chen 2023).
 
-With the link unit vectors stacked as X = [x_1, ..., x_n] (Eq. 15), the gravity
-energy is U_g = X^T G X (Eq. 14) with G nonzero in its first row only (Eq. 18)::
+With the link unit vectors stacked as X = [x_1, ..., x_n] (000 Eq. 15), the gravity
+energy is U_g = X^T G X (000 Eq. 14) with G nonzero in its first row only (000 Eq. 18)::
 
     G_{1,j} = g (m_j d_j + r_j sum_{t>j} m_t)                         # 000 Eq. (18)
 
 and a zero-free-length spring S(i,j) attached on the joint lines (P1) has
-U_S = X^T K_S X (Eq. 24), nonzero in the block bounded by row i, column j and
-the diagonal (Eq. 26)::
+U_S = X^T K_S X (000 Eq. 24), nonzero in the block bounded by row i, column j and
+the diagonal (000 Eq. 26)::
 
-    K_{i,j} = -k a b                       (Eq. 23a)
-    K_{i,v} = -r_v k a        i < v < j    (Eq. 23b)
-    K_{u,v} =  r_u r_v k      i < u < v < j (Eq. 23c)
-    K_{u,j} =  r_u k b        i < u < j    (Eq. 23d)
+    K_{i,j} = -k a b                       (000 Eq. 23a)
+    K_{i,v} = -r_v k a        i < v < j    (000 Eq. 23b)
+    K_{u,v} =  r_u r_v k      i < u < v < j (000 Eq. 23c)
+    K_{u,j} =  r_u k b        i < u < j    (000 Eq. 23d)
 
-The constant C^S of Eq. (22) is spread over the diagonal (k a^2/2 at (i,i),
+The constant C^S of 000 Eq. (22) is spread over the diagonal (k a^2/2 at (i,i),
 k r_t^2/2 at (t,t), k b^2/2 at (j,j)); since x_u . x_u = 1 this makes X^T K_S X
 the spring's whole energy, not just its pose-dependent part.
 
 The arm is balanced when the strictly upper triangle of M = G + sum K_S is zero
-(Eqs. 39a-b): then U = sum_u M_uu, the same at every pose.
+(000 Eqs. 39a-b): then U = sum_u M_uu, the same at every pose.
 
 One set of entry formulas serves both the numeric (numpy, floats) and the
 symbolic (sympy) forms; :func:`expand_gravity_energy` and
 :func:`expand_spring_energy` derive the same energies from the geometry, with
 no entry formula, so that the formulas can be checked against them.
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
 """
 
 from __future__ import annotations
@@ -41,7 +47,7 @@ DEFAULT_CHUNK = 16384
 
 # --- entry formulas (shared by numeric and symbolic) ---------------------------
 def gravity_entries(r, d, m, g) -> dict[tuple[int, int], object]:
-    """Nonzero entries of G (Eq. 18), keyed (1, j); r, d, m list links 2..n."""
+    """Nonzero entries of G (000 Eq. 18), keyed (1, j); r, d, m list links 2..n."""
     n = len(r) + 1
     out = {}
     for j in range(2, n + 1):
@@ -51,24 +57,24 @@ def gravity_entries(r, d, m, g) -> dict[tuple[int, int], object]:
 
 
 def spring_entries(i, j, a, b, k, r) -> dict[tuple[int, int], object]:
-    """Entries of K_S(i,j) (Eqs. 22, 23a-d), keyed (u, v) with u <= v.
+    """Entries of K_S(i,j) (000 Eqs. 22, 23a-d), keyed (u, v) with u <= v.
 
-    ``r`` lists r_2..r_n; the diagonal carries Eq. (22)'s constant.
+    ``r`` lists r_2..r_n; the diagonal carries 000 Eq. (22)'s constant.
     """
     rr = {t: r[t - 2] for t in range(2, len(r) + 2)}
-    out = {(i, i): k * a**2 / 2, (j, j): k * b**2 / 2, (i, j): -k * a * b}  # Eq. (22), (23a)
+    out = {(i, i): k * a**2 / 2, (j, j): k * b**2 / 2, (i, j): -k * a * b}  # 000 Eq. (22), (23a)
     for t in range(i + 1, j):
-        out[(t, t)] = k * rr[t] ** 2 / 2  # Eq. (22)
-        out[(i, t)] = -rr[t] * k * a  # Eq. (23b)
-        out[(t, j)] = rr[t] * k * b  # Eq. (23d)
+        out[(t, t)] = k * rr[t] ** 2 / 2  # 000 Eq. (22)
+        out[(i, t)] = -rr[t] * k * a  # 000 Eq. (23b)
+        out[(t, j)] = rr[t] * k * b  # 000 Eq. (23d)
         for v in range(t + 1, j):
-            out[(t, v)] = rr[t] * rr[v] * k  # Eq. (23c)
+            out[(t, v)] = rr[t] * rr[v] * k  # 000 Eq. (23c)
     return out
 
 
 # --- numeric -------------------------------------------------------------------
 def gravity_matrix(chain: Chain) -> np.ndarray:
-    """G (Eqs. 16, 18) as an (n, n) array in J."""
+    """G (000 Eqs. 16, 18) as an (n, n) array in J."""
     G = np.zeros((chain.n, chain.n))
     for (u, v), val in gravity_entries(chain.r, chain.d, chain.m, chain.g).items():
         G[u - 1, v - 1] = val
@@ -76,7 +82,7 @@ def gravity_matrix(chain: Chain) -> np.ndarray:
 
 
 def spring_matrix(chain: Chain, spring: Spring) -> np.ndarray:
-    """K_S(i,j) (Eqs. 22-26) as an (n, n) upper-triangular array in J."""
+    """K_S(i,j) (000 Eqs. 22-26) as an (n, n) upper-triangular array in J."""
     (spring,) = check_springs(chain, [spring])
     if spring.free_length:
         raise SpringlabError(
@@ -90,7 +96,7 @@ def spring_matrix(chain: Chain, spring: Spring) -> np.ndarray:
 
 
 def energy_matrix(chain: Chain, springs=()) -> np.ndarray:
-    """M = G + sum K_S (Eq. 37), upper triangular, in J: U(X) = sum_{u<=v} M_uv x_u . x_v."""
+    """M = G + sum K_S (000 Eq. 37), upper triangular, in J: U(X) = sum_{u<=v} M_uv x_u . x_v."""
     M = gravity_matrix(chain)
     for s in check_springs(chain, springs):
         M += spring_matrix(chain, s)
@@ -99,7 +105,7 @@ def energy_matrix(chain: Chain, springs=()) -> np.ndarray:
 
 def balance_residual(chain: Chain, springs) -> np.ndarray:
     """The strictly upper triangle of M = G + sum K_S (J): the left-hand sides of
-    Eqs. (39a-b). All zero means balanced."""
+    000 Eqs. (39a-b). All zero means balanced."""
     return np.triu(energy_matrix(chain, springs), 1)
 
 
@@ -178,7 +184,7 @@ def energies(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) -> dict[st
 
 
 def quadratic_gravity_energy(chain: Chain, X) -> np.ndarray:
-    """U_g = X^T G X (Eq. 14) in J, ndarray(N,)."""
+    """U_g = X^T G X (000 Eq. 14) in J, ndarray(N,)."""
     return quadratic_energy(chain, (), X)
 
 
@@ -244,7 +250,7 @@ def quadratic_form(M: sp.Matrix, names=None):
 
 
 def expand_gravity_energy(n: int):
-    """U_g of an n-link chain derived from the geometry (Eqs. 8-9), expanded.
+    """U_g of an n-link chain derived from the geometry (000 Eqs. 8-9), expanded.
 
     h_j = (d_j x_j + sum_{w=2}^{j-1} r_w x_w) . x_1, U_g = sum_j m_j g h_j.
     Uses no entry of G; compare with ``quadratic_form(symbolic_matrix(n, gravity_entries(...)))``.
@@ -260,11 +266,11 @@ def expand_gravity_energy(n: int):
 
 
 def expand_spring_energy(i: int, j: int, n: int, *, on_joint_lines: bool = True):
-    """U_S(i,j) = k l^2 / 2 derived from the spring vector of Eq. (19), expanded.
+    """U_S(i,j) = k l^2 / 2 derived from the spring vector of 000 Eq. (19), expanded.
 
     l = -a a_hat + b b_hat + sum_{t=i+1}^{j-1} r_t x_t. With ``on_joint_lines``
     (principle P1) a_hat = x_i and b_hat = x_j; without it a_hat, b_hat stay
-    separate unit vectors, which is Eq. (21) as printed.
+    separate unit vectors, which is 000 Eq. (21) as printed.
     """
     r, _, _, _ = chain_symbols(n)
     a, b, k = spring_symbols(i, j)
@@ -277,20 +283,20 @@ def expand_spring_energy(i: int, j: int, n: int, *, on_joint_lines: bool = True)
 
 
 def symbolic_gravity_matrix(n: int) -> sp.Matrix:
-    """G (Eq. 16-18) with symbols r_j, d_j, m_j, g."""
+    """G (000 Eq. 16-18) with symbols r_j, d_j, m_j, g."""
     r, d, m, g = chain_symbols(n)
     return symbolic_matrix(n, gravity_entries(r, d, m, g))
 
 
 def symbolic_spring_matrix(i: int, j: int, n: int) -> sp.Matrix:
-    """K_S(i,j) (Eqs. 22-26) with symbols a_S(i,j), b_S(i,j), k_S(i,j), r_t."""
+    """K_S(i,j) (000 Eqs. 22-26) with symbols a_S(i,j), b_S(i,j), k_S(i,j), r_t."""
     r, _, _, _ = chain_symbols(n)
     a, b, k = spring_symbols(i, j)
     return symbolic_matrix(n, spring_entries(i, j, a, b, k, r))
 
 
 def balancing_equations(n: int, spring_pairs) -> dict[tuple[int, int], object]:
-    """Eqs. (39a-b) for springs on the pairs ``spring_pairs`` [(i, j), ...]:
+    """000 Eqs. (39a-b) for springs on the pairs ``spring_pairs`` [(i, j), ...]:
     {(u, v): left-hand side} for every u < v the gravity or a spring touches."""
     M = symbolic_gravity_matrix(n)
     for i, j in spring_pairs:

@@ -8,7 +8,7 @@ its COM at h2 along x_2 from the elbow. Two zero-free-length springs::
     k2:  from P = a2 x_0 (on the frame, above O) to Q = l1 x_1 + b2 x_2 (on the forearm)
     k12: from U = b12 x_1 (on the upper arm, b12 from O) to V = l1 x_1 + a12 x_2 (on the forearm)
 
-balance the arm when (Eq. 15)::
+balance the arm when (004 Eq. 15)::
 
     m1 g h1 + m2 g l1 - k2 a2 l1 = 0
     m2 g h2 - k2 a2 b2 = 0
@@ -20,6 +20,11 @@ The elbow axis does not enter: every attachment lies on a link's axis, so the
 energy depends on the link directions only.
 
 Units: kg, m, N/m, m/s^2.
+
+References
+----------
+Lenzo, B. (2017). Gravity balancing of a spatial serial 4-dof arm without auxiliary links
+using minimum number of springs. AIMETA 2017.
 """
 
 from __future__ import annotations
@@ -98,14 +103,14 @@ def layout_of(a12: float, b12: float, l1: float, b2: float) -> str:
 
 
 def energy_symbols():
-    """sympy symbols of Lenzo's Eqs. (11)-(15)."""
+    """sympy symbols of Lenzo's 004 Eqs. (11)-(15)."""
     names = "m1 m2 l1 h1 h2 g k2 a2 b2 k12 a12 b12"
     return dict(zip(names.split(), sp.symbols(names, real=True), strict=True))
 
 
 def derived_conditions() -> dict[str, sp.Expr]:
-    """Eq. (15) derived from the geometry: the coefficients of x1.x0, x2.x0 and x1.x2
-    in the total energy E_g + E_s (Eqs. 11-13 without spring k1), which must vanish."""
+    """004 Eq. (15) derived from the geometry: the coefficients of x1.x0, x2.x0 and x1.x2
+    in the total energy E_g + E_s (004 Eqs. 11-13 without spring k1), which must vanish."""
     s = energy_symbols()
     x0, x1, x2 = 0, 1, 2
     com1 = {x1: s["h1"]}
@@ -120,7 +125,7 @@ def derived_conditions() -> dict[str, sp.Expr]:
 
 
 def printed_eq15() -> dict[str, sp.Expr]:
-    """Eq. (15) as printed, typed in."""
+    """004 Eq. (15) as printed, typed in."""
     s = energy_symbols()
     return {"x1.x0": s["m1"] * s["g"] * s["h1"] + s["m2"] * s["g"] * s["l1"] - s["k2"] * s["a2"] * s["l1"],
             "x2.x0": s["m2"] * s["g"] * s["h2"] - s["k2"] * s["a2"] * s["b2"],
@@ -128,7 +133,7 @@ def printed_eq15() -> dict[str, sp.Expr]:
 
 
 def solve(arm: Arm, *, a2: float, a12: float, b12: float, layout: str | None = None) -> TwoSpringDesign:
-    """Solve Eq. (15) for k2, b2 and k12 given the free choices a2, a12, b12 (m).
+    """Solve 004 Eq. (15) for k2, b2 and k12 given the free choices a2, a12, b12 (m).
 
     b2 = m2 h2 l1 / (m1 h1 + m2 l1) is fixed by the arm; its sign is h2's.
 
@@ -147,7 +152,7 @@ def solve(arm: Arm, *, a2: float, a12: float, b12: float, layout: str | None = N
         raise UnbalanceableError(f"layout {layout} needs {need}; this arm has h2 = {arm.h2} m")
     if a12 == 0 or b12 == arm.l1 or not (np.isfinite(a12) and np.isfinite(b12)):
         raise UnbalanceableError(f"a12 = {a12} m, b12 = {b12} m: spring k12 needs a12 != 0 and b12 != l1")
-    k2a2 = arm.g * (arm.m1 * arm.h1 + arm.m2 * arm.l1) / arm.l1  # Eq. (15), first line
+    k2a2 = arm.g * (arm.m1 * arm.h1 + arm.m2 * arm.l1) / arm.l1  # 004 Eq. (15), first line
     k2 = k2a2 / a2
     b2 = arm.m2 * arm.g * arm.h2 / k2a2  # second line
     k12 = k2 * b2 * arm.l1 / (a12 * (b12 - arm.l1))  # third line

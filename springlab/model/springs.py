@@ -1,7 +1,7 @@
-"""Springs attached on the joint lines (Juang, Jhuang, Chen 2023, Eq. 19 and Fig. 6).
+"""Springs attached on the joint lines (Juang, Jhuang, Chen 2023, 000 Eq. 19 and Fig. 6).
 
 A spring S(i, j), i < j, joins link i (proximally attached) to link j (distally
-attached). Its ends lie on the links' joint lines (principle P1, Eq. 38):
+attached). Its ends lie on the links' joint lines (principle P1, 000 Eq. 38):
 
 * end A on link i, at signed distance ``a`` from link i's **distal** joint,
   measured along x_i: A = J_i + a x_i;
@@ -9,7 +9,7 @@ attached). Its ends lie on the links' joint lines (principle P1, Eq. 38):
   measured along x_j: B = J_{j-1} + b x_j.
 
 So the spring vector is B - A = -a x_i + b x_j + sum_{t=i+1}^{j-1} r_t x_t
-(Eq. 19), and the paper's sign patterns read::
+(000 Eq. 19), and the paper's sign patterns read::
 
              link i                         link j
     o----------------o~ ~ ~ ~ ~ ~ ~ ~ o----------------o
@@ -24,6 +24,12 @@ A pattern is written (sign a, sign b): the example arm of 000 uses S(1,4) (+,+)
 and S(3,4) (-,-). Stiffness k is in N/m; a, b in m. Springs are zero-free-length
 unless ``free_length`` (m) is given; the quadratic form of 000 holds only for
 zero-free-length springs.
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
 """
 
 from __future__ import annotations

@@ -4,6 +4,11 @@
 initial value by a given rotation, linearly in time, over the duration T. The
 paper does not state the time law; a linear one is the plainest reading, and a
 balanced arm's total energy is constant along any law.
+
+References
+----------
+Lin, P.-Y., Shieh, W.-B., Chen, D.-Z. (2010). Design of a gravity-balanced general spatial
+serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10.1115/1.4001816
 """
 
 from __future__ import annotations
@@ -168,7 +173,7 @@ class PiecewiseCubic:
 
     def endpoint_errors(self) -> np.ndarray:
         """(n, 2): cubic(t_I) - theta_I and cubic(t_F) - theta_F (rad): the jumps
-        Eq. (26) makes at t_I and t_F when a row's coefficients miss its own endpoints."""
+        001 Eq. (26) makes at t_I and t_F when a row's coefficients miss its own endpoints."""
         a = self.coefficients
         out = np.zeros((len(a), 2))
         for k, (t_I, t_F, th_I, th_F) in enumerate(self.rows):

@@ -1,8 +1,13 @@
 """Each paper's data as typed constants, with the table it came from, and the
-registry of the notebooks that reproduce them (used by the site and the report)."""
+registry of the notebooks that reproduce them (used by the site and the report).
+
+A paper's key ("000" .. "004", the order in which the project took the papers up) is how
+the code cites it, the key before the equation's own number. :data:`BY_KEY` maps a key to its
+entry."""
 
 PAPERS = {
     "juang2023_spatial_balance": {
+        "key": "000",
         "authors": "C.-W. Juang, C.-S. Jhuang, D.-Z. Chen",
         "year": 2023,
         "title": "A novel spring gravity-balance method for spatial articulated manipulators without auxiliary links",
@@ -11,6 +16,7 @@ PAPERS = {
         "key_figure": "fig16_spatial.png",
     },
     "lin2010_pseudobases": {
+        "key": "001",
         "authors": "P.-Y. Lin, W.-B. Shieh, D.-Z. Chen",
         "year": 2010,
         "title": "Design of a Gravity-Balanced General Spatial Serial-Type Manipulator",
@@ -19,6 +25,7 @@ PAPERS = {
         "key_figure": "fig9_energies.png",
     },
     "springlab_design_your_arm": {
+        "key": None,  # built on 000 and 003, not a paper
         "authors": "springlab, from papers 000 and 003",
         "year": 2026,
         "title": "Design springs for your own arm: ranked, verified designs, a tolerance study, an exudyn check",
@@ -27,6 +34,7 @@ PAPERS = {
         "key_figure": "best_design.png",
     },
     "zhang2023_dyad": {
+        "key": "002",
         "authors": "Y. Zhang, V. Arakelian",
         "year": 2023,
         "title": "Design and Synthesis of the Gravity Compensator with a Non-zero Length Spring",
@@ -35,6 +43,7 @@ PAPERS = {
         "key_figure": "exudyn_drive.png",
     },
     "juang2022_spring_efficiency": {
+        "key": "003",
         "authors": "C.-W. Juang, C.-S. Jhuang, D.-Z. Chen",
         "year": 2022,
         "title": "Spring efficiency assessment and efficient use of spring methods of statically balanced planar "
@@ -44,6 +53,7 @@ PAPERS = {
         "key_figure": "fig7a_attachments.png",
     },
     "lenzo2017_two_spring_arm": {
+        "key": "004",
         "authors": "B. Lenzo",
         "year": 2017,
         "title": "Gravity balancing of a spatial serial 4-dof arm without auxiliary links using minimum number of springs",
@@ -53,3 +63,6 @@ PAPERS = {
     },
 }
 """Notebook stem -> the paper it reproduces (authors, year, title, venue, DOI) and its key figure."""
+
+BY_KEY = {entry["key"]: {"notebook": stem, **entry} for stem, entry in PAPERS.items() if entry["key"]}
+"""Paper key ("000".."004") -> its registry entry and notebook stem."""

@@ -3,6 +3,12 @@ spatial articulated manipulators without auxiliary links*, Mechanism and Machine
 Theory 191, 105497, doi:10.1016/j.mechmachtheory.2023.105497.
 
 SI units: m, kg, N/m, rad (the tables print degrees; converted here).
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
 """
 
 from __future__ import annotations
@@ -17,7 +23,7 @@ from springlab.model.springs import Spring
 
 G = 9.8
 """m/s^2. The paper does not print g; Table 3's k_S(1,2) = 294.00 N/m follows
-from Eq. (48c) with g = 9.8 exactly (with 9.81 it would be 294.30)."""
+from 000 Eq. (48c) with g = 9.8 exactly (with 9.81 it would be 294.30)."""
 
 # Table 2: dimension and mass of the example arm (links 2..4; link 1 is the ground).
 R = (0.30, 0.24, 0.20)  # r_2, r_3, r_4 (m)
@@ -30,7 +36,7 @@ def example_arm():
     return serial_chain(R, D, M, g=G)
 
 
-# Eq. (46): the configuration of the example.
+# 000 Eq. (46): the configuration of the example.
 EXAMPLE_CONFIGURATION = (
     SpringSlot(1, 2, "(+,+)"),
     SpringSlot(1, 4, "(+,+)"),
@@ -38,7 +44,7 @@ EXAMPLE_CONFIGURATION = (
     SpringSlot(3, 4, "(-,-)"),
 )
 
-# The free choices the paper made: the values of Table 3 that Eqs. (48a-f) do
+# The free choices the paper made: the values of Table 3 that 000 Eqs. (48a-f) do
 # not determine (six equations, twelve parameters).
 FREE_CHOICES = {
     (1, 4): {"a": 0.060},
@@ -114,7 +120,7 @@ TABLE_1 = {
 }
 """The extracted text of Table 1 garbles some cells of rows 2-3 (a spring printed in
 column 2 of row 2); they are read here as the paper's own text describes the
-configurations (Section 3.3 and Eq. 46)."""
+configurations (Section 3.3 and 000 Eq. 46)."""
 
 
 def table1_configurations(n: int) -> list[tuple[SpringSlot, ...]]:

@@ -5,6 +5,11 @@ example of Section 6, as printed. SI units: m, kg, rad, s; stiffnesses in N/m.
 Link numbering follows the paper: links 1..6, link 0 the ground. Table 2 gives no
 data for link 1 (its joint axis is vertical, so its weight never changes the
 energy); its mass is 0 here.
+
+References
+----------
+Lin, P.-Y., Shieh, W.-B., Chen, D.-Z. (2010). Design of a gravity-balanced general spatial
+serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10.1115/1.4001816
 """
 
 from __future__ import annotations
@@ -41,7 +46,7 @@ L_CB = [0.13, 0.01, 0.09, 0.05, 0.09]  # m, 2 decimals
 A = [(-0.2, 0.1, -0.1), (0.08, 0.06, 0.09), (0.08, 0.21, 0.06), (0.08, -0.1, 0.1), (0.08, -0.06, -0.06)]  # frame i
 B = [(-0.17, 0.10, -0.11), (0, 0.06, 0.09), (0, 0.12, 0.06), (0, -0.09, 0.15), (0, -0.06, 0.03)]
 
-# Table 4: joint i: t_I, t_F (s), theta_I, theta_F (rad), a_0..a_3 of Eq. (26)
+# Table 4: joint i: t_I, t_F (s), theta_I, theta_F (rad), a_0..a_3 of 001 Eq. (26)
 TABLE4 = np.array([
     [0, 5, 1.57, -0.42, 1.57, 0.0000, -0.2388, 0.0318],
     [0, 5, 1.57, 0.57, 1.57, 0.0000, -0.12, 0.016],
@@ -52,7 +57,7 @@ TABLE4 = np.array([
 ])
 TABLE4_DECIMALS = np.array([  # printed decimals of a_0..a_3, per row
     [2, 4, 4, 4], [2, 4, 2, 3], [0, 0, 2, 3], [0, 2, 1, 2], [4, 4, 4, 4], [4, 4, 4, 4]])
-DURATION = 10.0  # s, Eq. (26)
+DURATION = 10.0  # s, 001 Eq. (26)
 INITIAL_POSE = TABLE4[:, 2]  # theta_I: the pose at which Table 3 prints a_i (x_2..x_6 vertical)
 
 G = 9.81  # m/s^2; not stated. Table 3's two-digit l_CB cannot tell 9.8 from 9.81.

@@ -3,6 +3,11 @@
 ``save_figure`` writes ``<directory>/<name>.png`` and ``.svg``: the PNG without
 the 'Software' metadata, the SVG with a fixed hash salt and no date, so that
 re-running the notebooks on the pinned versions leaves ``git status`` clean.
+
+References
+----------
+Lin, P.-Y., Shieh, W.-B., Chen, D.-Z. (2010). Design of a gravity-balanced general spatial
+serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10.1115/1.4001816
 """
 
 from __future__ import annotations

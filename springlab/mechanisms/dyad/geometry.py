@@ -16,8 +16,8 @@ from springlab.mechanisms.dyad.model import Compensator, Dyad, closing, slider_h
 
 
 def potential_energy(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
-    """Total potential energy P = G s (1 + cos phi) + k (y - l0)^2 / 2 (Eqs. 1-3), J,
-    with y from the linkage's geometry (Eq. 24)."""
+    """Total potential energy P = G s (1 + cos phi) + k (y - l0)^2 / 2 (002 Eqs. 1-3), J,
+    with y from the linkage's geometry (002 Eq. 24)."""
     y = slider_height(dyad, phi)
     return comp.gravity_energy(phi) + 0.5 * comp.k * (y - comp.l0) ** 2
 
@@ -40,7 +40,7 @@ def holding_torques(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
 def unbalanced_moment(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
     """The unbalanced moment about O by virtual work: -dP/dphi (N m), the moment
     of gravity and spring together, positive towards larger phi (as the paper's
-    M_ub of Eq. 30). An actuator holds the link with the opposite torque.
+    M_ub of 002 Eq. 30). An actuator holds the link with the opposite torque.
 
     dy/dphi = -r sin(phi - beta) y / (l cos theta), so
     M_ub = G s sin(phi) + k (y - l0) r sin(phi - beta) y / (l cos theta).

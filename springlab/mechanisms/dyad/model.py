@@ -1,7 +1,7 @@
 """The model of paper 002, shared by its routes: a rotating link balanced by a non-zero-length spring through a crank-slider dyad
 (Zhang, Arakelian 2023; paper 002).
 
-Geometry (the paper's Fig. 1, as its Eqs. 1, 8 and 24 imply)::
+Geometry (the paper's Fig. 1, as its 002 Eqs. 1, 8 and 24 imply)::
 
         B  (slider 4 on the vertical line through O, height y above O)
         |\\
@@ -14,21 +14,21 @@ Geometry (the paper's Fig. 1, as its Eqs. 1, 8 and 24 imply)::
         O ---- link 2 (COM at distance s, at angle phi from the upward vertical)
 
     spring 5: between the frame at O's level and the slider, length y,
-    free length l0, stiffness k; energy k (y - l0)^2 / 2 (Eqs. 2, 7).
+    free length l0, stiffness k; energy k (y - l0)^2 / 2 (002 Eqs. 2, 7).
 
 Angles in rad (the paper prints degrees), lengths in m, G in N, k in N/m,
 energies in J, moments in N m. phi = 0 is the link pointing up; the gravity
-energy is G s (1 + cos phi) (Eq. 1).
+energy is G s (1 + cos phi) (002 Eq. 1).
 
 Two unbalanced moments are implemented side by side:
 
-* :func:`springlab.mechanisms.dyad.algebra.unbalanced_moment_paper`: Eqs. (20)-(30)
-  as printed (route 1, with the synthesis of Eqs. 5-19);
+* :func:`springlab.mechanisms.dyad.algebra.unbalanced_moment_paper`: 002 Eqs. (20)-(30)
+  as printed (route 1, with the synthesis of 002 Eqs. 5-19);
 * :func:`springlab.mechanisms.dyad.geometry.unbalanced_moment`: the moment of gravity
   and spring about O by virtual work, -dP/dphi of the total potential energy (route 2).
   Route 3 (:mod:`.simulation`) drives the linkage in exudyn.
 
-They differ in the spring's share by cos^2(theta) (theta = angle OBA): Eq. (26)
+They differ in the spring's share by cos^2(theta) (theta = angle OBA): 002 Eq. (26)
 takes the rod's force as F_sp cos(theta), but a slider guided along OB passes the
 spring force F_sp to the rod as F_sp / cos(theta).
 "
@@ -65,12 +65,12 @@ class Compensator:
         positive("l0", self.l0, allow_zero=True)
 
     def gravity_energy(self, phi) -> np.ndarray:
-        """P_G = G s (1 + cos phi) (Eq. 1), J."""
+        """P_G = G s (1 + cos phi) (002 Eq. 1), J."""
         return self.G * self.s * (1.0 + np.cos(np.asarray(phi, dtype=float)))
 
     def gravity_moment(self, phi) -> np.ndarray:
         """The moment of gravity about O, G s sin(phi) (N m), positive towards larger phi
-        (the paper's Eq. 20 prints it as M_G = -G s sin(phi))."""
+        (the paper's 002 Eq. 20 prints it as M_G = -G s sin(phi))."""
         return self.G * self.s * np.sin(np.asarray(phi, dtype=float))
 
 
@@ -101,6 +101,6 @@ def closing(dyad: Dyad, phi) -> tuple[np.ndarray, np.ndarray]:
 
 
 def slider_height(dyad: Dyad, phi) -> np.ndarray:
-    """y = r cos(phi - beta) + sqrt(l^2 - r^2 sin^2(phi - beta)) (Eq. 24), m."""
+    """y = r cos(phi - beta) + sqrt(l^2 - r^2 sin^2(phi - beta)) (002 Eq. 24), m."""
     u, l_cos_theta = closing(dyad, phi)
     return dyad.r * np.cos(u) + l_cos_theta

@@ -1,4 +1,4 @@
-"""Synthesis of paper 002's dyad: the readings of Eq. (32) that choose the energy
+"""Synthesis of paper 002's dyad: the readings of 002 Eq. (32) that choose the energy
 constant C, the searches over positions and readings, and the minimax optimum.
 It compares route 1's printed moments with route 2's virtual-work moment.
 
@@ -24,11 +24,11 @@ from springlab.mechanisms.dyad.model import Compensator, Dyad, slider_height
 from springlab.optimum import Optimum
 
 EQ32_READINGS = ("signed sum", "sum of magnitudes", "sum of squares", "maximum magnitude")
-"""How Eq. (31)'s total of the moments at the prescribed positions can be read."""
+"""How 002 Eq. (31)'s total of the moments at the prescribed positions can be read."""
 
 
 def eq32_objective(moments: np.ndarray, reading: str):
-    """Eq. (31)'s total unbalanced moment under one reading of what is summed, over the last
+    """002 Eq. (31)'s total unbalanced moment under one reading of what is summed, over the last
     axis: a float for one set of moments (P,), an array for a batch (D, P)."""
     moments = np.asarray(moments, dtype=float)
     totals = {"signed sum": lambda: np.sum(moments, axis=-1),
@@ -43,29 +43,29 @@ def eq32_objective(moments: np.ndarray, reading: str):
 
 MOMENTS = {
     "virtual work": unbalanced_moment,
-    "Eqs. (20)-(30) as printed": unbalanced_moment_paper,
-    "Eqs. (20)-(30), spring sign corrected": unbalanced_moment_paper_sign_corrected,
+    "002 Eqs. (20)-(30) as printed": unbalanced_moment_paper,
+    "002 Eqs. (20)-(30), spring sign corrected": unbalanced_moment_paper_sign_corrected,
 }
 """The unbalanced-moment definitions compared in the paper-002 notebook."""
 
 
 C_READINGS = ("signed sum stationary", "smallest |signed sum|", "sum of magnitudes", "sum of squares",
               "maximum magnitude")
-"""Readings of Eq. (32), dM_total/dC = 0: the first is literal (an extremum of the
-signed sum of Eq. 31); 'smallest |signed sum|' brings the sum closest to zero; the others minimise
+"""Readings of 002 Eq. (32), dM_total/dC = 0: the first is literal (an extremum of the
+signed sum of 002 Eq. 31); 'smallest |signed sum|' brings the sum closest to zero; the others minimise
 the sum of |M|, of M^2, or the largest |M| over the prescribed positions."""
 
 
 def design_for_C(comp: Compensator, C: float, phi, *, branch: int = -1) -> Dyad:
-    """The dyad that Eqs. (6)-(19) give for an energy constant C and positions phi."""
+    """The dyad that 002 Eqs. (6)-(19) give for an energy constant C and positions phi."""
     return synthesise(phi, slider_positions(comp, C, phi, branch=branch)).dyad
 
 
 def choose_C(comp: Compensator, phi, reading: str, *, moment: str = "virtual work",
              C_max: float | None = None, grid: int = 4000, branch: int = -1) -> float:
-    """The energy constant C (J) that one reading of Eq. (32) selects.
+    """The energy constant C (J) that one reading of 002 Eq. (32) selects.
 
-    Each C gives slider positions (Eq. 6), a dyad (Eq. 16) and the unbalanced
+    Each C gives slider positions (002 Eq. 6), a dyad (002 Eq. 16) and the unbalanced
     moments at the prescribed positions; the reading turns those into one number
     (see :data:`C_READINGS`). C is searched on a grid from the smallest value with
     real slider positions to ``C_max`` (default: that value plus 4 G s), then refined.
@@ -99,13 +99,13 @@ def choose_C(comp: Compensator, phi, reading: str, *, moment: str = "virtual wor
     ok = np.isfinite(values)
     if not np.any(ok):
         raise SpringlabError("no C in the search range gives a dyad that closes at every position")
-    if reading == "signed sum stationary":  # Eq. (32) read literally: d(sum M)/dC = 0
+    if reading == "signed sum stationary":  # 002 Eq. (32) read literally: d(sum M)/dC = 0
         from scipy.optimize import brentq
 
         slope = np.gradient(values, Cs)
         flips = np.where(ok[:-1] & ok[1:] & (np.sign(slope[:-1]) != np.sign(slope[1:])))[0]
         if not len(flips):
-            raise SpringlabError("the signed sum of Eq. (31) has no stationary point in the search range")
+            raise SpringlabError("the signed sum of 002 Eq. (31) has no stationary point in the search range")
         h = 1e-4 * (Cs[1] - Cs[0])
         k = int(flips[0])
         lo, hi = Cs[max(k - 1, 0)], Cs[min(k + 2, len(Cs) - 1)]  # np.gradient's flip lies within
@@ -162,10 +162,10 @@ def optimise(comp: Compensator, phi, start: Dyad, *, free_l0: bool = False,
 
 # --- the readings the paper allows, searched in batches -----------------------------
 def synthesis_path(comp: Compensator, phi, Cs, *, branch: int = -1) -> dict[str, np.ndarray]:
-    """The dyads Eqs. (6)-(19) give for every energy constant in ``Cs`` (J) at the
+    """The dyads 002 Eqs. (6)-(19) give for every energy constant in ``Cs`` (J) at the
     positions ``phi`` (rad), in one batch: {'C', 'r', 'l', 'beta', 'ok'}. ``ok`` is False
-    where a slider position is imaginary (Eq. 6), the system is singular or l^2 <= 0
-    (Eq. 19); the other entries there are 0, never NaN."""
+    where a slider position is imaginary (002 Eq. 6), the system is singular or l^2 <= 0
+    (002 Eq. 19); the other entries there are 0, never NaN."""
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     Cs = np.atleast_1d(np.asarray(Cs, dtype=float))
     radicand = (2.0 * Cs[:, None] - 2.0 * comp.gravity_energy(phi)[None, :]) / comp.k  # 002 Eq. (6)
@@ -234,7 +234,7 @@ def _select(Cs: np.ndarray, m: np.ndarray, reading: str) -> float:
         slope = np.diff(eq32_objective(m, "signed sum"))
         flips = np.flatnonzero(np.sign(slope[:-1]) != np.sign(slope[1:]))
         if not len(flips):
-            raise SpringlabError("the signed sum of Eq. (31) has no stationary point in the search range")
+            raise SpringlabError("the signed sum of 002 Eq. (31) has no stationary point in the search range")
         return float(Cs[flips[0] + 1])
     if reading == "smallest |signed sum|":
         value = np.abs(eq32_objective(m, "signed sum"))
@@ -245,7 +245,7 @@ def _select(Cs: np.ndarray, m: np.ndarray, reading: str) -> float:
 
 def select_C(comp: Compensator, phi, reading: str, moment: str = "virtual work", *, step: float = 0.05,
              span: float | None = None, branch: int = -1) -> float:
-    """The energy constant C (J) one reading of Eq. (32) selects, on a grid of ``step`` J
+    """The energy constant C (J) one reading of 002 Eq. (32) selects, on a grid of ``step`` J
     from the smallest C with real slider positions to that plus ``span`` (default 4 G s):
     the batch counterpart of :func:`choose_C` (same readings, :data:`C_READINGS`), without
     its final refinement.
@@ -270,8 +270,8 @@ def position_sets(low_deg: float = 30.0, high_deg: float = 150.0, step_deg: floa
 
 def readings_search(comp: Compensator, sets: dict[str, np.ndarray], printed: dict[str, tuple[float, float]], *,
                     rules=None, step: float = 0.05, refine: int = 10) -> list[dict]:
-    """For every set of prescribed positions and every rule (reading of Eq. 32, moment
-    definition) for C: the C it selects, the dyad Eqs. (6)-(19) give there, and how far
+    """For every set of prescribed positions and every rule (reading of 002 Eq. 32, moment
+    definition) for C: the C it selects, the dyad 002 Eqs. (6)-(19) give there, and how far
     each of C, r, l, beta is from the printed value in half-units of its last printed
     digit (``printed``: {'C': (value, decimals), 'r': ..., 'l': ..., 'beta_deg': ...}).
     ``worst`` <= 1 means all four reproduce to the printed rounding. C is first chosen
@@ -328,7 +328,7 @@ def readings_markdown(rows: list[dict], *, top: int = 12, always=()) -> str:
     """The first ``top`` rows of :func:`readings_search` (and every row whose positions are
     in ``always``) as a Markdown table, with each quantity's miss in half-units."""
     keep = rows[:top] + [r for r in rows[top:] if r["positions"] in always]
-    lines = ["| positions | reading of Eq. (32) | moment | C (J) | r (m) | l (m) | beta (deg) | worst miss (half-units) |",
+    lines = ["| positions | reading of 002 Eq. (32) | moment | C (J) | r (m) | l (m) | beta (deg) | worst miss (half-units) |",
              "|---|---|---|---|---|---|---|---|"]
     for r in keep:
         if r["C"] is None:
@@ -343,7 +343,7 @@ def residual_readings(comp: Compensator, dyad: Dyad, phi) -> dict[str, float]:
     """The largest residual moment (N m) of one dyad over the angles ``phi`` (rad) under the
     computations a reader of Section IV might make: each moment of :data:`MOMENTS`, beta with
     its sign flipped, beta read in degrees where radians were meant, and the spring's moment
-    F_sp r sin(psi) with Eq. (26)'s cos(theta) left out. Used to look for the computation
+    F_sp r sin(psi) with 002 Eq. (26)'s cos(theta) left out. Used to look for the computation
     behind the printed maxima."""
     out = {}
     for name, f in MOMENTS.items():
@@ -354,5 +354,5 @@ def residual_readings(comp: Compensator, dyad: Dyad, phi) -> dict[str, float]:
     y = slider_height(dyad, phi)
     psi = np.arcsin(np.clip(y * np.sin(phi - dyad.beta) / dyad.l, -1, 1))  # 002 Eq. (29)
     no_cos = comp.gravity_moment(phi) + comp.k * (y - comp.l0) * dyad.r * np.sin(psi)
-    out["Eqs. (25)-(30) without Eq. (26)'s cos(theta), sign corrected"] = float(np.max(np.abs(no_cos)))
+    out["002 Eqs. (25)-(30) without 002 Eq. (26)'s cos(theta), sign corrected"] = float(np.max(np.abs(no_cos)))
     return out

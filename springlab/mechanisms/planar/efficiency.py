@@ -22,7 +22,7 @@ from springlab.mechanisms.planar.quadratic import term_values, terms
 READINGS = ("magnitudes", "literal", "direct")
 
 
-# --- efficiency (Eqs. 17-25) -------------------------------------------------------------------
+# --- efficiency (003 Eqs. 17-25) -------------------------------------------------------------------
 def _balancing_groups(term_list):
     """For the 'literal' reading: each balanced term's group, the first spring with a
     balancing term on the same pair (u, v)."""
@@ -43,24 +43,24 @@ def _e_sys(values, term_list, reading):
     if reading == "magnitudes":  # the text: sums of magnitudes
         X = np.abs(values[:, grav]).sum(axis=1)
         Y = np.abs(values[:, bal]).sum(axis=1)
-    elif reading == "literal":  # Eqs. (30a-b) as printed: |sum| per group
+    elif reading == "literal":  # 003 Eqs. (30a-b) as printed: |sum| per group
         X = np.abs(values[:, grav].sum(axis=1))
         Y = sum((np.abs(values[:, g].sum(axis=1)) for g in _balancing_groups(term_list)), np.zeros(len(values)))
-    elif reading == "direct":  # Eq. (24) term by term
+    elif reading == "direct":  # 003 Eq. (24) term by term
         num = np.abs(values[:, balancing]).sum(axis=1)
         return num / (num + np.abs(values[:, bal]).sum(axis=1))
     else:
         raise SpringlabError(f"reading must be one of {READINGS}, got {reading!r}")
-    return (X + Y) / (X + 2 * Y)  # Eq. (25)
+    return (X + Y) / (X + 2 * Y)  # 003 Eq. (25)
 
 
 def system_efficiency(arm: PlanarArm, springs, theta, *, reading: str = "magnitudes") -> np.ndarray:
-    """e_sys at each pose, (N,) in [0.5, 1] (Eq. 25, with X and Y read as ``reading``):
+    """e_sys at each pose, (N,) in [0.5, 1] (003 Eq. 25, with X and Y read as ``reading``):
 
     * 'magnitudes': X, Y sums of the magnitudes of the balanced gravitational and
       elastic pseudo-stiffnesses, as Section 4.1 defines them;
-    * 'literal': Eqs. (30a-b) as printed, the magnitude of each group's sum;
-    * 'direct': Eq. (24) itself, balancing over all elastic pseudo-stiffnesses.
+    * 'literal': 003 Eqs. (30a-b) as printed, the magnitude of each group's sum;
+    * 'direct': 003 Eq. (24) itself, balancing over all elastic pseudo-stiffnesses.
     """
     theta = relative_angles(theta, arm.n)
     tl = terms(arm, springs)
@@ -68,8 +68,8 @@ def system_efficiency(arm: PlanarArm, springs, theta, *, reading: str = "magnitu
 
 
 def spring_efficiency(arm: PlanarArm, spring: PlanarSpring, theta) -> np.ndarray:
-    """e = x / (x + y) (Eq. 18) at each pose, (N,): x, y the magnitudes of the spring's
-    balancing and balanced pseudo-stiffnesses. 1 for a spring over one joint (Eq. 22)."""
+    """e = x / (x + y) (003 Eq. 18) at each pose, (N,): x, y the magnitudes of the spring's
+    balancing and balanced pseudo-stiffnesses. 1 for a spring over one joint (003 Eq. 22)."""
     theta = relative_angles(theta, arm.n)
     tl = [t for t in terms(arm, [spring]) if t.role != "gravity"]
     v = np.abs(term_values(tl, theta))

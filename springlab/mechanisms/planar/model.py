@@ -6,7 +6,7 @@ The model shared by :mod:`.quadratic` (route 1, the pseudo-stiffness terms),
 
 A planar serial arm with revolute joints: link 1 is the ground (a horizontal
 reference of length r_1, 1 m in the paper), links 2..n move; theta_j is link j's
-angle to link j-1 and Theta_{u,v} = theta_{u+1} + ... + theta_v (Eq. 3), so
+angle to link j-1 and Theta_{u,v} = theta_{u+1} + ... + theta_v (003 Eq. 3), so
 Theta_{1,j} is link j's angle above the horizontal. A zero-free-length spring
 S(i,j) is attached at distance a (m) from link i's distal joint, turned by
 alpha from link i, and at b (m) from link j's proximal joint, turned by beta::
@@ -22,15 +22,15 @@ alpha from link i, and at b (m) from link j's proximal joint, turned by beta::
      link i
 
 Every pose-dependent energy term is a *pseudo-stiffness* (N/m) times r_u r_v:
-gravity's G_{1,u} = |G_{1,u}| cos(90 deg - Theta_{1,u}) (Eqs. 6-7) and the
-spring's K^S_{u,v} = amplitude cos(phase - Theta_{u,v}) (Eqs. 11a-d)::
+gravity's G_{1,u} = |G_{1,u}| cos(90 deg - Theta_{1,u}) (003 Eqs. 6-7) and the
+spring's K^S_{u,v} = amplitude cos(phase - Theta_{u,v}) (003 Eqs. 11a-d)::
 
     K_{i,j} = k A B cos(alpha - beta + 180 - Theta_ij)     (11a)
     K_{i,v} = k A   cos(alpha + 180 - Theta_iv),  v < j     (11b)
     K_{u,j} = k B   cos(-beta - Theta_uj),        u > i     (11c)
     K_{u,v} = k     cos(-Theta_uv),               i < u < v < j   (11d)
 
-with A = a / r_i, B = b / r_j (Eq. 12). A :class:`Term` holds one of them.
+with A = a / r_i, B = b / r_j (003 Eq. 12). A :class:`Term` holds one of them.
 
 The planar form is the spatial one of paper 000 (:mod:`springlab.energy.quadratic`)
 restricted to a vertical plane. With 000's vertical x_1 in place of the
@@ -38,7 +38,7 @@ horizontal ground link, a term amplitude cos(phase - Theta_uv) r_u r_v is
 C_uv x_u . x_v + S_uv (x_u x x_v) . n with C = amplitude r_u r_v cos(phase')
 and S = amplitude r_u r_v sin(phase'). For the attachment angles that criteria
 C1 and C2 allow ((90, 0) on the ground, (0, 0) or (180, 180) elsewhere), S = 0
-and C is exactly 000's entry G_{1,u} or K_S(i,j)_{u,v} (Eqs. 18, 23a-d) for a
+and C is exactly 000's entry G_{1,u} or K_S(i,j)_{u,v} (000 Eqs. 18, 23a-d) for a
 spring with signed distances on the joint lines: :func:`to_spatial` gives that
 chain and those springs, and the tests check the entries equal. Other angles
 need the S part, which 000's springs (attached on the link lines) never have.
@@ -46,6 +46,9 @@ need the S part, which 000's springs (attached on the link lines) never have.
 
 References
 ----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
 Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2022). Spring efficiency assessment and efficient
 use of spring methods of statically balanced planar serial manipulators with revolute
 joints only. Mechanical Sciences (2022).
@@ -72,7 +75,7 @@ class PlanarArm:
     :ivar g: gravitational acceleration (m/s^2)
 
     >>> arm = PlanarArm(r=[1.0, 0.36, 0.445, 0.3], s=[0, 0.18, 0.2225, 0.15], m=[0, 25, 26, 18], g=9.8)
-    >>> arm.G.round(1).tolist()   # |G_12|, |G_13|, |G_14| (N/m), Eq. (7)
+    >>> arm.G.round(1).tolist()   # |G_12|, |G_13|, |G_14| (N/m), 003 Eq. (7)
     [553.7, 303.8, 88.2]
     """
 
@@ -108,7 +111,7 @@ class PlanarArm:
 
     @property
     def G(self) -> np.ndarray:
-        """|G_{1,u}| for u = 2..n (N/m), Eq. (7)."""
+        """|G_{1,u}| for u = 2..n (N/m), 003 Eq. (7)."""
         out = []
         for u in range(2, self.n + 1):
             beyond = self.m[u:].sum()  # m_{u+1} .. m_n
@@ -116,7 +119,7 @@ class PlanarArm:
         return np.array(out)
 
     def with_payload(self, mass: float) -> PlanarArm:
-        """The arm with ``mass`` (kg) added at the end link's COM (Eq. 32)."""
+        """The arm with ``mass`` (kg) added at the end link's COM (003 Eq. 32)."""
         if not (np.isfinite(mass) and mass >= 0):
             raise SpringlabError(f"payload must be >= 0 kg, got {mass}")
         m = self.m.copy()
@@ -142,10 +145,10 @@ class PlanarSpring:
         return f"S({self.i},{self.j})"
 
     def A(self, arm: PlanarArm) -> float:
-        return self.a / arm.r[self.i - 1]  # Eq. (12a)
+        return self.a / arm.r[self.i - 1]  # 003 Eq. (12a)
 
     def B(self, arm: PlanarArm) -> float:
-        return self.b / arm.r[self.j - 1]  # Eq. (12b)
+        return self.b / arm.r[self.j - 1]  # 003 Eq. (12b)
 
 
 def check_spring(arm: PlanarArm, sp: PlanarSpring, *, criteria: bool = True) -> None:

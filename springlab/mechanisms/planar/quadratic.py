@@ -5,6 +5,9 @@ Every pose-dependent energy term is a pseudo-stiffness (N/m) times r_u r_v (see
 
 References
 ----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
 Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2022). Spring efficiency assessment and efficient
 use of spring methods of statically balanced planar serial manipulators with revolute
 joints only. Mechanical Sciences (2022).
@@ -19,7 +22,7 @@ import numpy as np
 from springlab.mechanisms.planar.model import PlanarArm, check_spring, relative_angles, role_pattern
 
 
-# --- pseudo-stiffness terms (Eqs. 6-7, 11a-d) ----------------------------------------------
+# --- pseudo-stiffness terms (003 Eqs. 6-7, 11a-d) ----------------------------------------------
 @dataclass(frozen=True)
 class Term:
     """One pseudo-stiffness amplitude cos(phase - Theta_{u,v}) (N/m; phase in deg).
@@ -35,12 +38,12 @@ class Term:
 
 
 def gravity_terms(G) -> list[Term]:
-    """G_{1,u} = |G_{1,u}| cos(90 - Theta_{1,u}) (Eq. 6), u = 2..n."""
+    """G_{1,u} = |G_{1,u}| cos(90 - Theta_{1,u}) (003 Eq. 6), u = 2..n."""
     return [Term("G", 1, u, G[u - 2], 90.0, "gravity") for u in range(2, len(G) + 2)]
 
 
 def spring_terms(i, j, k, A, B, alpha, beta, *, label=None, pattern=None) -> list[Term]:
-    """The (j-i)(j-i+1)/2 pseudo-stiffnesses of S(i,j), Eqs. (11a-d); k, A, B may be
+    """The (j-i)(j-i+1)/2 pseudo-stiffnesses of S(i,j), 003 Eqs. (11a-d); k, A, B may be
     numbers or sympy expressions. ``pattern`` (see :func:`role_pattern`) sets the roles;
     None leaves them 'balancing'."""
     label = label or f"S({i},{j})"
@@ -70,7 +73,7 @@ def terms(arm: PlanarArm, springs, *, criteria: bool = True) -> list[Term]:
 
 
 def Theta(theta, u, v):
-    """Theta_{u,v} = theta_{u+1} + ... + theta_v (Eq. 3); theta[:, 0] is theta_2."""
+    """Theta_{u,v} = theta_{u+1} + ... + theta_v (003 Eq. 3); theta[:, 0] is theta_2."""
     return theta[:, u - 1:v - 1].sum(axis=1)
 
 
@@ -84,7 +87,7 @@ def term_values(term_list, theta) -> np.ndarray:
 # --- energies: route 1 (pseudo-stiffness) and route 2 (geometry) ------------------------------
 def quadratic_energy(arm: PlanarArm, springs, theta) -> np.ndarray:
     """Route 1: U = sum r_u r_v (pseudo-stiffness) + sum_S k (a^2 + b^2 + sum r_t^2) / 2
-    (Eqs. 5, 10), in J, (N,). Heights from the base joint."""
+    (003 Eqs. 5, 10), in J, (N,). Heights from the base joint."""
     theta = relative_angles(theta, arm.n)
     tl = terms(arm, springs, criteria=False)
     values = term_values(tl, theta)
@@ -115,7 +118,7 @@ def spatial_coefficients(arm: PlanarArm, springs) -> tuple[np.ndarray, np.ndarra
     Each term amplitude cos(phase - Theta_uv) r_u r_v splits into C = amplitude r_u r_v
     cos(phase - ref) and S = amplitude r_u r_v sin(phase - ref), ref = 90 deg on the
     ground row (000's x_1 is 003's ground link turned by 90 deg), 0 elsewhere. With C1/C2
-    angles S = 0 and C equals 000's G + sum K_S off the diagonal (Eqs. 18, 23a-d)."""
+    angles S = 0 and C equals 000's G + sum K_S off the diagonal (000 Eqs. 18, 23a-d)."""
     C, S = np.zeros((arm.n, arm.n)), np.zeros((arm.n, arm.n))
     for t in terms(arm, springs, criteria=False):
         ref = 90.0 if t.u == 1 else 0.0

@@ -28,7 +28,7 @@ from springlab.mechanisms.planar.model import (
 from springlab.mechanisms.planar.quadratic import gravity_terms, spring_terms
 from springlab.optimum import Optimum
 
-# --- balancing equations, configurations, design (Eqs. 16, 26-27, 32; Tables 1-2) ---------------
+# --- balancing equations, configurations, design (003 Eqs. 16, 26-27, 32; Tables 1-2) ---------------
 CONFIGURATIONS = {
     "Λ1": (((1, 2), (90.0, 0.0)),),
     "Λ2": (((1, 3), (90.0, 0.0)), ((2, 3), (0.0, 0.0))),
@@ -58,7 +58,7 @@ def _symbols(config):
 
 
 def balance_equations(config, G=None) -> dict:
-    """Eqs. (16a-b) for a configuration, in sympy: {(u, v): sum of the pair's pseudo-
+    """003 Eqs. (16a-b) for a configuration, in sympy: {(u, v): sum of the pair's pseudo-
     stiffness amplitudes, signed} = 0, with symbols k_Sij, A_Sij, B_Sij and |G_1u|
     (``G`` numbers instead of the symbols G_1u if given)."""
     import sympy as sp
@@ -81,13 +81,13 @@ def balance_equations(config, G=None) -> dict:
             sign = -1
         else:
             raise SpringlabError(f"a term of {t.source} on ({t.u},{t.v}) has phase {t.phase:g} deg: "
-                                 "not an efficient attachment; Eqs. (16) need in-phase terms")
+                                 "not an efficient attachment; 003 Eqs. (16) need in-phase terms")
         eqs[(t.u, t.v)] = eqs.get((t.u, t.v), 0) + sign * t.amplitude
     return {key: sp.expand(v) for key, v in eqs.items()}
 
 
 def solve_configuration(config, free, G=None, values=None) -> dict:
-    """Solve Eqs. (16) for every parameter not in ``free`` (names like 'A_S14', or sympy
+    """Solve 003 Eqs. (16) for every parameter not in ``free`` (names like 'A_S14', or sympy
     symbols). With ``values`` ({name: number}) the free parameters are numbers, put in
     before solving. Returns {symbol: expression}; raises UnbalanceableError if no
     positive solution exists."""
@@ -102,14 +102,14 @@ def solve_configuration(config, free, G=None, values=None) -> dict:
     sol = sp.solve([e for e in system if e != 0], unknown, dict=True)
     sol = [x for x in sol if all(v.is_positive is not False for v in x.values())]
     if not sol or any(e.subs(sol[0]).simplify() != 0 for e in system):
-        raise UnbalanceableError(f"Eqs. (16) have no positive solution for {[x.name for x in unknown]} "
+        raise UnbalanceableError(f"003 Eqs. (16) have no positive solution for {[x.name for x in unknown]} "
                                  f"with {sorted(names)} given")
     return sol[0]
 
 
 @functools.lru_cache(maxsize=64)
 def _symbolic_designer(cfg, names):
-    """Eqs. (16) solved once, with the |G| and the chosen parameters as symbols, and
+    """003 Eqs. (16) solved once, with the |G| and the chosen parameters as symbols, and
     compiled: (G values, chosen values) -> {parameter name: value}; None if sympy cannot
     solve it generally (e.g. when a chosen parameter is in fact forced)."""
     import sympy as sp
@@ -128,7 +128,7 @@ def _symbolic_designer(cfg, names):
 
 
 def design(arm: PlanarArm, config, choices: dict) -> list[PlanarSpring]:
-    """Springs of ``config`` for the arm, from Eqs. (16) and the user's ``choices``
+    """Springs of ``config`` for the arm, from 003 Eqs. (16) and the user's ``choices``
     ({'A_S14': 0.1, 'k_S12': 4998, ...}: enough of k, A, B to fix the rest).
 
     Raises :class:`UnbalanceableError` if the equations have no positive solution or
@@ -150,9 +150,9 @@ def design(arm: PlanarArm, config, choices: dict) -> list[PlanarSpring]:
         for name in ("k", "A", "B"):
             value = known.get(f"{name}_S{i}{j}")
             if value is None:
-                raise UnbalanceableError(f"S({i},{j}): {name}_S{i}{j} is not determined by Eqs. (16); choose it")
+                raise UnbalanceableError(f"S({i},{j}): {name}_S{i}{j} is not determined by 003 Eqs. (16); choose it")
             if not (np.isfinite(value) and value > 0):
-                raise UnbalanceableError(f"S({i},{j}): Eqs. (16) give {name}_S{i}{j} = {value:.6g}, not > 0")
+                raise UnbalanceableError(f"S({i},{j}): 003 Eqs. (16) give {name}_S{i}{j} = {value:.6g}, not > 0")
             got.append(float(value))
         k, A, B = got
         spring = PlanarSpring(i, j, k, A * arm.r[i - 1], B * arm.r[j - 1], alpha, beta)
@@ -163,13 +163,13 @@ def design(arm: PlanarArm, config, choices: dict) -> list[PlanarSpring]:
 
 def payload_adjustment(arm: PlanarArm, springs, config, payload: float, *, keep: str = "stiffness",
                        mono: str = "A") -> list[PlanarSpring]:
-    """Rebalance ``springs`` for a payload (kg) at the end link's COM (Eq. 32).
+    """Rebalance ``springs`` for a payload (kg) at the end link's COM (003 Eq. 32).
 
     :param keep: 'stiffness', Section 4.3's rule (Table 2): every k kept, the
-        attachments moved; or 'attachments': every A kept (and B where Eqs. (16)
-        leave it free), the stiffnesses (and the B that Eqs. 27a, c force) re-solved
+        attachments moved; or 'attachments': every A kept (and B where 003 Eqs. (16)
+        leave it free), the stiffnesses (and the B that 003 Eqs. 27a, c force) re-solved
     :param mono: under keep='stiffness', which of A, B moves on a spring over one
-        joint, where Eqs. (16) fix only the product A B
+        joint, where 003 Eqs. (16) fix only the product A B
     """
     if keep not in ("stiffness", "attachments"):
         raise SpringlabError(f"keep must be 'stiffness' or 'attachments', got {keep!r}")
@@ -186,7 +186,7 @@ def payload_adjustment(arm: PlanarArm, springs, config, payload: float, *, keep:
                 other = "B" if mono == "A" else "A"
                 choices[f"{other}_{tag}"] = sp.B(arm) if other == "B" else sp.A(arm)
         return design(loaded, cfg, choices)
-    # keep='attachments': every A and B kept, except the B that Eqs. (16) force (27a, 27c):
+    # keep='attachments': every A and B kept, except the B that 003 Eqs. (16) force (27a, 27c):
     # drop the fewest such B for a solution to exist
     base = {f"A_S{sp.i}{sp.j}": sp.A(arm) for sp in springs}
     Bs = {f"B_S{sp.i}{sp.j}": sp.B(arm) for sp in springs}
@@ -201,7 +201,7 @@ def payload_adjustment(arm: PlanarArm, springs, config, payload: float, *, keep:
 
 
 def com_distances(r, m, G, g: float) -> np.ndarray:
-    """s_2..s_n (m) that give the printed |G_{1,u}| (N/m) by Eq. (7), for a given g:
+    """s_2..s_n (m) that give the printed |G_{1,u}| (N/m) by 003 Eq. (7), for a given g:
     s_u = (|G_1u| r_1 / g - sum_{w>u} m_w) r_u / m_u.
 
     :param r: r_1..r_n (m); m: m_2..m_n (kg); G: |G_12|..|G_1n| (N/m)

@@ -7,11 +7,11 @@ RSSR modules, the equilibrator springs, fold margins, mobility and added inertia
 The gravity energy of n serial links is a sum of n *rotational subsystems*
 (001 Eqs. 5-8): subsystem i is a point mass mu_i at sigma_i, a vector fixed
 in link i, so its energy depends on link i's orientation only. Each one is
-balanced like a single-link equilibrator (Eqs. 9-18) by one zero-free-length
+balanced like a single-link equilibrator (001 Eqs. 9-18) by one zero-free-length
 spring from a point B_i of link i to a point A_i of a *pseudobase*, a body
 that keeps the line C_i A_i vertical. A spatial parallelogram RSSR module per
 link keeps the pseudobases vertical (Section 4); their own masses and those
-of the auxiliary links fold into combined subsystems (Eqs. 21-25).
+of the auxiliary links fold into combined subsystems (001 Eqs. 21-25).
 
 One module, link i, seen across the vertical parallelogram O_{i-1} C_i D_i Ô_{i-1}
 (frames i and î stay parallel; Ô = O + h up everywhere)::
@@ -29,7 +29,7 @@ Conventions (stated, tested):
   frame i is fixed on link i with origin O_i on the axis z_i of joint i+1;
   frame 0 is the ground's and the world frame; ``up`` is a unit vector in it
   (gravity acts along -up);
-* link vectors r_i = O_{i-1} - O_i in frame i (Eq. 2): r_i = -(a_i, d_i sin alpha_i,
+* link vectors r_i = O_{i-1} - O_i in frame i (001 Eq. 2): r_i = -(a_i, d_i sin alpha_i,
   d_i cos alpha_i);
 * the auxiliary chain is the primary chain translated by the vertical vector
   ``aux_offset`` (the parallelogram branch of every RSSR module, Section 4.1),
@@ -38,6 +38,11 @@ Conventions (stated, tested):
   0-based: ``m[i - 1]`` is m_i.
 
 The subsystems and why only the product mu_i sigma_i is physical: :mod:`.subsystems`.
+
+References
+----------
+Lin, P.-Y., Shieh, W.-B., Chen, D.-Z. (2010). Design of a gravity-balanced general spatial
+serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10.1115/1.4001816
 """
 
 
@@ -215,7 +220,7 @@ class Equilibrator:
     """Spring i between B_i on link i and A_i on pseudobase i, zero free length.
 
     :ivar link: i (1-based); K: stiffness (N/m); l_CA, l_CB: |C_i A_i|, |C_i B_i| (m)
-    :ivar b: (3,) B_i from O_i in frame i (m), Eq. (14); c: (3,) C_i from O_i in frame i (m)
+    :ivar b: (3,) B_i from O_i in frame i (m), 001 Eq. (14); c: (3,) C_i from O_i in frame i (m)
     """
 
     link: int
@@ -276,7 +281,7 @@ def mobility(links: int, joint_freedoms, lam: int = 6) -> int:
     :param joint_freedoms: f_i of each of the j joints (1 revolute, 3 spherical)
     :param lam: 6 in space, 3 in the plane
 
-    >>> mobility(4, [1, 3, 3, 1])   # one RSSR linkage, Eq. (19): one active + one idle DOF
+    >>> mobility(4, [1, 3, 3, 1])   # one RSSR linkage, 001 Eq. (19): one active + one idle DOF
     2
     """
     if lam not in (3, 6):

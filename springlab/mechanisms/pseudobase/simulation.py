@@ -1,18 +1,18 @@
 """Route 3 for paper 001: the arm, its auxiliary links, pseudobases and springs in exudyn.
 
-Two models of the pseudobases, built from the same :class:`~springlab.mechanisms.pseudobase.PseudobaseArm`:
+Two models of the pseudobases, built from the same :class:`~springlab.mechanisms.pseudobase.model.PseudobaseArm`:
 
 * ``'rssr'``, the mechanism of 001 Section 4: auxiliary link î turns on a free
   revolute joint about an axis parallel to joint i through Ô_{i-1} (on auxiliary
   link i-1, or on link 1 when joint 1 is vertical), and pseudobase i is a coupler
   with spherical joints at C_i (on link i) and D_i (on auxiliary link î). Nothing
   holds a pseudobase vertical but the closed loops. Its spin about C_i D_i is the
-  idle DOF of Eq. (19);
+  idle DOF of 001 Eq. (19);
 * ``'ideal'``: what the loops are meant to achieve. Each pseudobase's rotation is
   locked to the ground (a generic joint constraining rotations only), with a
   spherical joint at C_i; each auxiliary link's rotation is locked to its primary
   link, with a spherical joint at D_i. It cannot fold (see
-  :func:`springlab.mechanisms.pseudobase.fold_margin`), so it can follow paths the RSSR
+  :func:`springlab.mechanisms.pseudobase.model.fold_margin`), so it can follow paths the RSSR
   loops cannot.
 
 Every body is its mass at its COM with an isotropic radius of gyration (the
@@ -20,6 +20,11 @@ paper gives no inertia tensors); a pseudobase is a rod C_i D_i. A body the paper
 gives no mass (link 1) gets ``placeholder_mass``: it turns about a vertical axis
 with its COM on it, so it changes no energy and no holding torque of joints 2..n.
 Gravity acts along -up; springs are exudyn spring-dampers with reference length 0.
+
+References
+----------
+Lin, P.-Y., Shieh, W.-B., Chen, D.-Z. (2010). Design of a gravity-balanced general spatial
+serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10.1115/1.4001816
 """
 
 from __future__ import annotations

@@ -8,16 +8,16 @@ It never places a body in space (that is :mod:`.geometry`, route 2).
 
 Only the product mu_i sigma_i is physical
 -----------------------------------------
-Eq. (5) fixes the vector mu_i sigma_i = m_i s_i - (sum_{j>=i} m_j) r_i (kg m),
-the first moment of subsystem i. Eq. (7)'s mu_i = m_i + sum_{j>=i} m_j (which
+001 Eq. (5) fixes the vector mu_i sigma_i = m_i s_i - (sum_{j>=i} m_j) r_i (kg m),
+the first moment of subsystem i. 001 Eq. (7)'s mu_i = m_i + sum_{j>=i} m_j (which
 counts m_i twice) is a normalisation: any mu_i > 0 with sigma_i = (mu_i
 sigma_i) / mu_i gives the same energy -mu_i g . sigma_i, and the same spring
-through Eq. (16), K l_CA l_CB = mu_i g |sigma_i|. :func:`subsystems` takes
+through 001 Eq. (16), K l_CA l_CB = mu_i g |sigma_i|. :func:`subsystems` takes
 ``mu`` to show it:
 
 >>> import numpy as np
 >>> m, s, r = [2.0, 1.0], [[0.1, 0, 0], [0.2, 0, 0]], [[-0.3, 0, 0], [-0.4, 0, 0]]
->>> mu, sigma = subsystems(m, s, r)               # Eq. (7)
+>>> mu, sigma = subsystems(m, s, r)               # 001 Eq. (7)
 >>> mu2, sigma2 = subsystems(m, s, r, mu=[1.0, 1.0])
 >>> bool(np.allclose(mu[:, None] * sigma, mu2[:, None] * sigma2))
 True
@@ -52,19 +52,19 @@ def subsystems(m, s, r, mu=None):
     """(mu, sigma) of the n rotational subsystems (001 Eqs. 6-8).
 
     :param m: (n,) masses (kg); s: (n, 3) COMs from O_i; r: (n, 3) link vectors, frame i (m)
-    :param mu: (n,) normalising masses (kg, > 0); None: Eq. (7), mu_i = m_i + sum_{j>=i} m_j
-    :returns: mu (n,) kg, sigma (n, 3) m with mu_i sigma_i = Eq. (5)'s first moment
+    :param mu: (n,) normalising masses (kg, > 0); None: 001 Eq. (7), mu_i = m_i + sum_{j>=i} m_j
+    :returns: mu (n,) kg, sigma (n, 3) m with mu_i sigma_i = 001 Eq. (5)'s first moment
     """
     m = masses("m", m, len(np.atleast_1d(m)))
     n = m.size
     s, r = vector_rows("s", s, n), vector_rows("r", r, n)
     moment = subsystem_moments(m, s, r)
     if mu is None:
-        mu = m + np.cumsum(m[::-1])[::-1]  # Eq. (7)
+        mu = m + np.cumsum(m[::-1])[::-1]  # 001 Eq. (7)
     mu = np.asarray(mu, dtype=float)
     if mu.shape != (n,) or not np.all(np.isfinite(mu)) or np.any(mu <= 0):
         raise SpringlabError(f"mu must be {n} masses > 0 kg, got {mu!r}")
-    return mu, moment / mu[:, None]  # Eq. (8)
+    return mu, moment / mu[:, None]  # 001 Eq. (8)
 
 
 def combined_subsystems(arm: PseudobaseArm, mu=None):
@@ -73,14 +73,14 @@ def combined_subsystems(arm: PseudobaseArm, mu=None):
     Each body's mass is m_i + m^_i + m*_i; its first moment about O_i is
     m_i s_i + m^_i s^_i + m*_i c_i (frame i = frame î), and the mass beyond link i
     acts at -r_i (r^_i = r_i on the parallelogram branch). The constant height
-    of the pseudobase's COM above C_i drops out (Eq. 23).
+    of the pseudobase's COM above C_i drops out (001 Eq. 23).
     """
     total = arm.m + arm.m_hat + arm.m_star
     first = arm.m[:, None] * arm.s + arm.m_hat[:, None] * arm.s_hat + arm.m_star[:, None] * arm.c
     beyond = np.cumsum(total[::-1])[::-1]
-    moment = first - beyond[:, None] * arm.link_vectors()  # numerator of Eq. (25)
+    moment = first - beyond[:, None] * arm.link_vectors()  # numerator of 001 Eq. (25)
     if mu is None:
-        mu = total + beyond  # Eq. (24)
+        mu = total + beyond  # 001 Eq. (24)
     mu = np.asarray(mu, dtype=float)
     if mu.shape != (arm.n,) or np.any(~np.isfinite(mu)) or np.any(mu <= 0):
         raise SpringlabError(f"mu must be {arm.n} masses > 0 kg, got {mu!r}")
@@ -98,14 +98,14 @@ def subsystem_energy(arm: PseudobaseArm, q, mu, sigma) -> np.ndarray:
 
 def design_equilibrators(arm: PseudobaseArm, K, l_CA, *, max_l_CB: float | None = None,
                          l_CB=None) -> tuple[Equilibrator, ...]:
-    """One spring per module from K_i and l_CA,i, with l_CB,i from Eq. (16):
+    """One spring per module from K_i and l_CA,i, with l_CB,i from 001 Eq. (16):
     K_i l_CA,i l_CB,i = mu~_i g |sigma~_i|, and B_i on the line through C_i along
-    sigma~_i (Eq. 14).
+    sigma~_i (001 Eq. 14).
 
     :param K: stiffnesses (N/m, > 0), one per module; l_CA: (m, > 0)
     :param max_l_CB: the longest distance C_i B_i link i allows (m); a spring that
         needs more cannot be attached and raises :class:`UnbalanceableError`
-    :param l_CB: given lengths instead of Eq. (16) (e.g. a paper's rounded ones),
+    :param l_CB: given lengths instead of 001 Eq. (16) (e.g. a paper's rounded ones),
         for measuring what they leave unbalanced
     """
     k = len(arm.modules)
@@ -124,25 +124,25 @@ def design_equilibrators(arm: PseudobaseArm, K, l_CA, *, max_l_CB: float | None 
         if length == 0.0:
             raise UnbalanceableError(f"subsystem {i} has no first moment (sigma~_{i} = 0): it needs no spring; "
                                      "remove its module")
-        need = mu[i - 1] * arm.g * length / (K[col] * l_CA[col])  # Eq. (16)
+        need = mu[i - 1] * arm.g * length / (K[col] * l_CA[col])  # 001 Eq. (16)
         if l_CB is not None:
             need = float(np.asarray(l_CB, dtype=float)[col])
         if max_l_CB is not None and need > max_l_CB:
             raise UnbalanceableError(
-                f"spring {i} cannot be attached: Eq. (16) needs l_CB = {need:.4g} m > max_l_CB = {max_l_CB} m; "
+                f"spring {i} cannot be attached: 001 Eq. (16) needs l_CB = {need:.4g} m > max_l_CB = {max_l_CB} m; "
                 f"raise K_{i} or l_CA,{i}")
-        b = arm.c[i - 1] + need * sigma[i - 1] / length  # Eq. (14)
+        b = arm.c[i - 1] + need * sigma[i - 1] / length  # 001 Eq. (14)
         out.append(Equilibrator(i, float(K[col]), float(l_CA[col]), float(need), b, arm.c[i - 1].copy()))
     return tuple(out)
 
 
-# --- the derivation of Eqs. (4)-(8), in sympy ---------------------------------------------
+# --- the derivation of 001 Eqs. (4)-(8), in sympy ---------------------------------------------
 def symbolic_subsystems(n: int) -> dict:
     """001 Eqs. (4)-(8) for n links in sympy, with the dot products g . s_i and g . r_i
     as symbols (the energy is linear in them).
 
-    :returns: dict of sympy expressions: 'eq4' (the sum of Eq. (4) over the links),
-        'eq5', 'eq6' (with mu_i, sigma_i of Eqs. (7)-(8)); each is the total gravity
+    :returns: dict of sympy expressions: 'eq4' (the sum of 001 Eq. (4) over the links),
+        'eq5', 'eq6' (with mu_i, sigma_i of 001 Eqs. (7)-(8)); each is the total gravity
         energy, and their differences expand to 0.
 
     >>> import sympy as sp
@@ -157,9 +157,9 @@ def symbolic_subsystems(n: int) -> dict:
     m = sp.symbols(f"m1:{n + 1}", positive=True)
     gs = sp.symbols(f"gs1:{n + 1}", real=True)  # g . s_i
     gr = sp.symbols(f"gr1:{n + 1}", real=True)  # g . r_i
-    eq4 = sum(-m[i] * (gs[i] - sum(gr[j] for j in range(i + 1))) for i in range(n))  # Eqs. (3)-(4)
-    eq5 = -sum(m[i] * gs[i] - sum(m[j] for j in range(i, n)) * gr[i] for i in range(n))  # Eq. (5)
-    mu = [m[i] + sum(m[j] for j in range(i, n)) for i in range(n)]  # Eq. (7)
-    g_sigma = [(m[i] * gs[i] - sum(m[j] for j in range(i, n)) * gr[i]) / mu[i] for i in range(n)]  # Eq. (8)
-    eq6 = -sum(mu[i] * g_sigma[i] for i in range(n))  # Eq. (6)
+    eq4 = sum(-m[i] * (gs[i] - sum(gr[j] for j in range(i + 1))) for i in range(n))  # 001 Eqs. (3)-(4)
+    eq5 = -sum(m[i] * gs[i] - sum(m[j] for j in range(i, n)) * gr[i] for i in range(n))  # 001 Eq. (5)
+    mu = [m[i] + sum(m[j] for j in range(i, n)) for i in range(n)]  # 001 Eq. (7)
+    g_sigma = [(m[i] * gs[i] - sum(m[j] for j in range(i, n)) * gr[i]) / mu[i] for i in range(n)]  # 001 Eq. (8)
+    eq6 = -sum(mu[i] * g_sigma[i] for i in range(n))  # 001 Eq. (6)
     return {"eq4": eq4, "eq5": eq5, "eq6": eq6, "mu": mu, "g_sigma": g_sigma}
