@@ -33,7 +33,13 @@ def test_report_lists_every_claim(tmp_path):
     for stem, claims in site.load_claims(figures).items():
         assert f"## {stem}" in text
         for c in claims:
-            assert c["quantity"] in text
+            assert c["quantity"].replace("|", "\\|") in text  # a '|' in a cell is escaped
+    # every table row has as many cells as its header: no '|' in a claim breaks a row
+    for block in text.split("\n\n"):
+        rows = [r for r in block.splitlines() if r.startswith("|")]
+        if rows:
+            width = len(rows[0].replace("\\|", "").split("|"))
+            assert all(len(r.replace("\\|", "").split("|")) == width for r in rows), rows[0]
 
 
 def _executed_notebook(path: Path):

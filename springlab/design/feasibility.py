@@ -47,6 +47,7 @@ import numpy as np
 from springlab.design.rules import SpringSlot, rule_violations
 from springlab.errors import SolverError, SpringlabError
 from springlab.model.chain import Chain
+from springlab.tables import Table
 
 EPS = 1e-3
 """Smallest |quantity| of a present spring in the programme, in units of the largest
@@ -530,10 +531,7 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
                                rejected, same)
 
 
-def counts_markdown(results) -> str:
-    """The per-n rows of :meth:`RulesAgainstPhysics.row` as one Markdown table."""
+def counts_table(results) -> Table:
+    """The per-n rows of :meth:`RulesAgainstPhysics.row` as one table."""
     rows = [r.row() for r in results]
-    head = list(rows[0])
-    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-    lines += ["| " + " | ".join(str(row[h]) for h in head) + " |" for row in rows]
-    return "\n".join(lines)
+    return Table(list(rows[0]), rows)

@@ -56,6 +56,7 @@ from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.model.armfile import ArmSpec, load_arm
 from springlab.model.chain import Chain
 from springlab.model.springs import Spring
+from springlab.tables import Table
 
 METHODS = ("no auxiliary links", "ground springs")
 VERIFY_TOLERANCE = 1e-10
@@ -131,14 +132,13 @@ class DesignReport:
     configurations_tried: int = 0
     seconds: float = 0.0
 
-    def table(self) -> str:
-        """The ranked designs as a Markdown table."""
-        lines = ["| rank | springs | configuration | max force (N) | sum of k (N/m) | efficiency | energy variation |",
-                 "|---|---|---|---|---|---|---|"]
-        for rank, d in enumerate(self.designs, start=1):
-            lines.append(f"| {rank} | {d.spring_count} | {d.label()} | {d.max_force:.1f} | {d.stiffness_sum:.0f} | "
-                         f"{d.efficiency:.4f} | {d.energy_variation:.1e} |")
-        return "\n".join(lines)
+    def table(self) -> Table:
+        """The ranked designs as a table (shown as Markdown in a notebook)."""
+        return Table(["rank", "springs", "configuration", "max force (N)", "sum of k (N/m)", "efficiency",
+                      "energy variation"],
+                     [(rank, d.spring_count, d.label(), f"{d.max_force:.1f}", f"{d.stiffness_sum:.0f}",
+                       f"{d.efficiency:.4f}", f"{d.energy_variation:.1e}")
+                      for rank, d in enumerate(self.designs, start=1)])
 
 
 def verify(chain: Chain, springs, X) -> float:
@@ -459,10 +459,9 @@ def compare_methods(spec: ArmSpec, report: DesignReport | None = None, **pseudob
     return out
 
 
-def comparison_table(rows) -> str:
-    lines = ["| method | springs | sum of k (N/m) | largest spring force (N) | added mass (kg) | efficiency | energy variation | note |",
-             "|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        lines.append(f"| {r.method} | {r.springs} | {r.stiffness_sum:.0f} | {r.max_force:.1f} | {r.added_mass:.2f} | "
-                     f"{r.efficiency:.3f} | {r.energy_variation:.1e} | {r.note} |")
-    return "\n".join(lines)
+def comparison_table(rows) -> Table:
+    """:class:`MethodSummary` rows as a table (shown as Markdown in a notebook)."""
+    return Table(["method", "springs", "sum of k (N/m)", "largest spring force (N)", "added mass (kg)",
+                  "efficiency", "energy variation", "note"],
+                 [(r.method, r.springs, f"{r.stiffness_sum:.0f}", f"{r.max_force:.1f}", f"{r.added_mass:.2f}",
+                   f"{r.efficiency:.3f}", f"{r.energy_variation:.1e}", r.note) for r in rows])

@@ -28,6 +28,7 @@ from springlab.energy.geometry import holding_torques
 from springlab.errors import SpringlabError
 from springlab.model.chain import Chain
 from springlab.model.springs import Spring, check_springs
+from springlab.tables import Table
 
 FACTORS = ("attachment", "free_length", "stiffness", "payload")
 
@@ -85,10 +86,10 @@ class ToleranceResult:
         return [(name, float(np.median(v)), float(np.percentile(v, 95)), float(np.max(v)))
                 for name, v in self.torques.items()]
 
-    def table(self) -> str:
-        lines = ["| error | median (N m) | 95th percentile (N m) | largest (N m) |", "|---|---|---|---|"]
-        lines += [f"| {n} | {a:.3g} | {b:.3g} | {c:.3g} |" for n, a, b, c in self.summary()]
-        return "\n".join(lines)
+    def table(self) -> Table:
+        """:meth:`summary` as a table (shown as Markdown in a notebook)."""
+        return Table(["error", "median (N m)", "95th percentile (N m)", "largest (N m)"],
+                     [(n, f"{a:.3g}", f"{b:.3g}", f"{c:.3g}") for n, a, b, c in self.summary()])
 
 
 def tolerance_study(chain: Chain, springs, X, tol: Tolerances, *, samples: int = 500, seed: int = 0,

@@ -29,6 +29,7 @@ import math
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
+from springlab import tables
 from springlab.errors import SpringlabError
 
 STATUSES = ("reproduced", "rounding", "discrepancy", "not reproducible", "input", "consistent", "inconsistent")
@@ -97,16 +98,15 @@ def _number(value) -> str:
 
 def markdown_table(records: list[dict]) -> str:
     """Claim records (as in claims.json) as a Markdown table: paper, ours, difference, status."""
-    lines = ["| quantity | where | paper | ours | difference | unit | tolerance (basis) | status | note |",
-             "|---|---|---|---|---|---|---|---|---|"]
+    rows = []
     for r in records:
         band = f"; band {_number(r['band']['value'])} ({r['band']['basis']})" if r.get("band") else ""
         cause = f" Cause: {r['cause']}" if r.get("cause") else ""
-        lines.append(f"| {r['quantity']} | {r['where']} | {_number(r['paper'])} | {_number(r['ours'])} | "
-                     f"{_number(r['difference'])} | {r['unit']} | {_number(r['tolerance'])} "
-                     f"({r.get('tolerance_basis', '')}{band}) | **{r['status']}** | "
-                     f"{r['note']}{cause} |".replace("\n", " "))
-    return "\n".join(lines)
+        rows.append((r["quantity"], r["where"], _number(r["paper"]), _number(r["ours"]), _number(r["difference"]),
+                     r["unit"], f"{_number(r['tolerance'])} ({r.get('tolerance_basis', '')}{band})",
+                     f"**{r['status']}**", f"{r['note']}{cause}"))
+    return tables.markdown_table(["quantity", "where", "paper", "ours", "difference", "unit", "tolerance (basis)",
+                                  "status", "note"], rows)
 
 
 def _finite(name: str, value, quantity: str) -> float:

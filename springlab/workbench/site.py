@@ -24,6 +24,7 @@ import sys
 from collections import Counter
 from pathlib import Path
 
+from springlab import tables
 from springlab.errors import SolverError
 from springlab.papers import PAPERS
 from springlab.workbench.claims import REPORT_COLUMNS, markdown_table, report_column
@@ -51,14 +52,14 @@ def write_report(figures_dir) -> Path:
              "printed rounding explains; **discrepancy**, its cause found or not; **not reproducible** from "
              "what the paper gives; **input**, a value the notebook fed in (shown, not counted as "
              "reproduced); **consistent** / **inconsistent**, a number recomputed from the paper's own "
-             "printed numbers (a check of the paper against itself).", "",
-             "| notebook | paper | " + " | ".join(REPORT_COLUMNS) + " | total |",
-             "|---|---|" + "---|" * len(REPORT_COLUMNS) + "---|"]
+             "printed numbers (a check of the paper against itself).", ""]
+    counts = []
     for stem, records in claims.items():
         count = Counter(report_column(r) for r in records)
         paper = PAPERS.get(stem, {})
-        lines.append(f"| {stem} | {paper.get('authors', '')} ({paper.get('year', '')}) | "
-                     + " | ".join(str(count.get(s, 0)) for s in REPORT_COLUMNS) + f" | {len(records)} |")
+        counts.append([stem, f"{paper.get('authors', '')} ({paper.get('year', '')})",
+                       *(count.get(s, 0) for s in REPORT_COLUMNS), len(records)])
+    lines.append(tables.markdown_table(["notebook", "paper", *REPORT_COLUMNS, "total"], counts))
     for stem, records in claims.items():
         lines += ["", f"## {stem}", "", markdown_table(records)]
     path = Path(figures_dir) / "REPRODUCTION.md"

@@ -22,6 +22,7 @@ from springlab.mechanisms.dyad.algebra import (
 from springlab.mechanisms.dyad.geometry import max_unbalanced, unbalanced_moment
 from springlab.mechanisms.dyad.model import Compensator, Dyad, slider_height
 from springlab.optimum import Optimum
+from springlab.tables import Table
 
 EQ32_READINGS = ("signed sum", "sum of magnitudes", "sum of squares", "maximum magnitude")
 """How 002 Eq. (31)'s total of the moments at the prescribed positions can be read."""
@@ -324,19 +325,19 @@ def start_grid(r=(0.08, 0.13, 0.2), l=(0.4, 0.55, 0.8), beta_deg=(-10.0, 0.0, 10
     return [Dyad(ri, li, np.radians(bi)) for ri in r for li in l for bi in beta_deg if li > ri]
 
 
-def readings_markdown(rows: list[dict], *, top: int = 12, always=()) -> str:
+def readings_table(rows: list[dict], *, top: int = 12, always=()) -> Table:
     """The first ``top`` rows of :func:`readings_search` (and every row whose positions are
-    in ``always``) as a Markdown table, with each quantity's miss in half-units."""
+    in ``always``) as a table, with each quantity's miss in half-units."""
     keep = rows[:top] + [r for r in rows[top:] if r["positions"] in always]
-    lines = ["| positions | reading of 002 Eq. (32) | moment | C (J) | r (m) | l (m) | beta (deg) | worst miss (half-units) |",
-             "|---|---|---|---|---|---|---|---|"]
+    out = []
     for r in keep:
         if r["C"] is None:
-            lines.append(f"| {r['positions']} | {r['reading']} | {r['moment']} | none: {r['why']} | | | | |")
+            out.append((r["positions"], r["reading"], r["moment"], f"none: {r['why']}", None, None, None, None))
             continue
-        lines.append(f"| {r['positions']} | {r['reading']} | {r['moment']} | {r['C']:.2f} | {r['r']:.5f} | "
-                     f"{r['l']:.5f} | {r['beta_deg']:.4f} | {r['worst']:.2f} |")
-    return "\n".join(lines)
+        out.append((r["positions"], r["reading"], r["moment"], f"{r['C']:.2f}", f"{r['r']:.5f}", f"{r['l']:.5f}",
+                    f"{r['beta_deg']:.4f}", f"{r['worst']:.2f}"))
+    return Table(["positions", "reading of 002 Eq. (32)", "moment", "C (J)", "r (m)", "l (m)", "beta (deg)",
+                  "worst miss (half-units)"], out)
 
 
 def residual_readings(comp: Compensator, dyad: Dyad, phi) -> dict[str, float]:

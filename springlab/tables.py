@@ -1,0 +1,54 @@
+"""One Markdown table helper for the notebooks, the library's reports and the reproduction
+report. A :class:`Table` shows itself as Markdown in Jupyter (so a cell that ends with
+one renders it) and as its Markdown text elsewhere.
+
+It sits beside :mod:`springlab.errors` rather than in the workbench because the design
+and mechanism layers render tables too, and they must not import the layer above them.
+
+>>> t = Table(["link", "m (kg)"], [[2, 4.0], [3, 3.2]])
+>>> print(t)
+| link | m (kg) |
+|---|---|
+| 2 | 4.0 |
+| 3 | 3.2 |
+"""
+
+from __future__ import annotations
+
+__all__ = ["Table", "markdown_table"]
+
+
+def _cell(value) -> str:
+    return str(value).replace("\n", " ").replace("|", "\\|") if value is not None else ""
+
+
+def markdown_table(headers, rows) -> str:
+    """A Markdown table: one header row, then one line per row (each row a sequence of
+    cells, or a dict keyed by the headers). ``None`` prints as an empty cell; '|' is escaped."""
+    headers = [str(h) for h in headers]
+    lines = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(headers)]
+    for row in rows:
+        cells = [row.get(h) for h in headers] if isinstance(row, dict) else list(row)
+        if len(cells) != len(headers):
+            from springlab.errors import SpringlabError
+
+            raise SpringlabError(f"a table row has {len(cells)} cells for {len(headers)} headers: {cells!r}")
+        lines.append("| " + " | ".join(_cell(c) for c in cells) + " |")
+    return "\n".join(lines)
+
+
+class Table:
+    """Headers and rows, shown as Markdown (see :func:`markdown_table`)."""
+
+    def __init__(self, headers, rows):
+        self.headers = list(headers)
+        self.rows = [row if isinstance(row, dict) else list(row) for row in rows]
+
+    def markdown(self) -> str:
+        return markdown_table(self.headers, self.rows)
+
+    def _repr_markdown_(self) -> str:
+        return self.markdown()
+
+    def __str__(self) -> str:
+        return self.markdown()
