@@ -24,6 +24,31 @@ def test_notebook_has_a_tagged_parameters_cell_with_quick(path):
     assert "figures_dir" in params
 
 
+MAX_CELL_LINES = 12
+
+
+def long_cells(nb: dict) -> list[tuple[int, int]]:
+    """(cell index, lines) of every code cell longer than :data:`MAX_CELL_LINES`."""
+    out = []
+    for k, cell in enumerate(nb["cells"]):
+        if cell["cell_type"] == "code":
+            lines = len("".join(cell["source"]).rstrip("\n").splitlines())
+            if lines > MAX_CELL_LINES:
+                out.append((k, lines))
+    return out
+
+
+def test_the_cell_size_check_can_fail():
+    cell = {"cell_type": "code", "source": ["x = 1\n"] * (MAX_CELL_LINES + 1)}
+    assert long_cells({"cells": [cell]}) == [(0, MAX_CELL_LINES + 1)]
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_notebook_is_thin(path):
+    """Logic lives in the library: no code cell over a dozen lines."""
+    assert long_cells(json.loads(path.read_text())) == []
+
+
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
 def test_notebook_is_committed_without_outputs(path):
     nb = json.loads(path.read_text())

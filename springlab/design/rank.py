@@ -465,3 +465,82 @@ def comparison_table(rows) -> Table:
                   "efficiency", "energy variation", "note"],
                  [(r.method, r.springs, f"{r.stiffness_sum:.0f}", f"{r.max_force:.1f}", f"{r.added_mass:.2f}",
                    f"{r.efficiency:.3f}", f"{r.energy_variation:.1e}", r.note) for r in rows])
+
+
+def springs_table(chain: Chain, springs, X) -> Table:
+    """A design's springs: pattern, a, b (m), k (N/m) and the largest force (N) over the poses X."""
+    rows = []
+    for s in springs:
+        A, B = attachment_points(chain, s, X)
+        force = s.k * np.max(np.linalg.norm(B - A, axis=1))
+        rows.append((s.label, s.pattern, f"{s.a:.4f}", f"{s.b:.4f}", f"{s.k:.1f}", f"{force:.1f}"))
+    return Table(["spring", "pattern", "a (m)", "b (m)", "k (N/m)", "largest force (N)"], rows)
+
+
+FAMILY_LENGTHS = (0.30, 0.24, 0.20, 0.15, 0.12, 0.10, 0.08)  # m, links 2..8
+FAMILY_MASSES = (4.0, 3.2, 2.8, 1.5, 1.2, 1.0, 0.8)  # kg
+
+
+def example_family(ns, *, max_attachment: float = 0.3, samples: int = 1000) -> dict[int, ArmSpec]:
+    """Arms of n = 3, 4, ... links (spherical joints, COMs at mid-link, g = 9.8 m/s^2): the first
+    n - 1 of :data:`FAMILY_LENGTHS` (m) and :data:`FAMILY_MASSES` (kg), brackets up to
+    ``max_attachment`` (m), ``samples`` workspace poses seeded by n."""
+    return {n: ArmSpec(f"n = {n}", tuple(FAMILY_LENGTHS[:n - 1]), tuple(x / 2 for x in FAMILY_LENGTHS[:n - 1]),
+                       tuple(FAMILY_MASSES[:n - 1]), ("spherical",) * (n - 1), 9.8, max_attachment=max_attachment,
+                       samples=samples, seed=n) for n in ns}
+
+
+@dataclass(frozen=True)
+class SpringsPerN:
+    """What one arm of :func:`example_family` needs: the rules' fewest springs and their best
+    design, the n - 1 ground springs (largest force in N, route-2 energy variation, exudyn
+    tip drift balanced and with the springs x 0.9, m), and the n - 2 relaxation screen
+    (sets tried, sets passing; None when not screened)."""
+
+    n: int
+    rules: RankedDesign
+    necessary: int
+    ground: RankedDesign
+    hold_drift: float
+    control_drift: float
+    screen: tuple | None
+
+    @property
+    def ratio(self) -> float:
+        """The ground springs' largest force over the rules' best design's."""
+        return self.ground.max_force / self.rules.max_force
+
+
+def springs_per_n(family: dict, *, screen_up_to: int) -> list[SpringsPerN]:
+    """For each arm of ``family`` ({n: ArmSpec}): the rules' best design (:func:`design_arm`),
+    the ground-spring design checked in exudyn (two poses, 2 s), and for n <= ``screen_up_to``
+    the relaxation screen of every n - 2 spring set (:func:`relaxation_screen`)."""
+    from springlab.energy.simulation import hold_test
+    from springlab.model.chain import random_directions
+
+    out = []
+    for n, spec_n in family.items():
+        arm_n = spec_n.chain()
+        necessary = next(best_first_configurations(n))[0]
+        rules = design_arm(spec_n, max_designs=3, max_configurations=12)
+        ground = ground_spring_design(spec_n, samples=1000, seed=n)
+        hold = hold_test(arm_n, list(ground.springs), random_directions(n, 2, np.random.default_rng(n)), duration=2.0)
+        screen = relaxation_screen(arm_n, n - 2) if n <= screen_up_to else None
+        out.append(SpringsPerN(n, rules.designs[0], necessary, ground, hold.balanced.max_tip_drift,
+                               hold.control.max_tip_drift, screen))
+    return out
+
+
+def springs_per_n_table(rows: list[SpringsPerN]) -> Table:
+    return Table(["n", "rules' fewest springs", "their best: largest force (N)", "ground springs",
+                  "their largest force (N) (ratio)", "route 2 variation", "exudyn drift / control (m)", "n - 2 springs"],
+                 [(r.n, r.necessary, f"{r.rules.max_force:.0f}", r.ground.spring_count,
+                   f"{r.ground.max_force:.0f} ({r.ratio:.2f})", f"{r.ground.energy_variation:.0e}",
+                   f"{r.hold_drift:.0e} / {r.control_drift:.2f}",
+                   f"{r.screen[0]:,} sets, {r.screen[1]} pass: impossible" if r.screen else "not screened") for r in rows])
+
+
+def rank_of(report: DesignReport, configuration) -> int | None:
+    """The 1-based rank of ``configuration`` in the report, None if it is not listed."""
+    configuration = tuple(sorted(configuration))
+    return next((k + 1 for k, d in enumerate(report.designs) if d.configuration == configuration), None)

@@ -27,6 +27,7 @@ spatial articulated manipulators without auxiliary links. Mechanism and Machine 
 
 from __future__ import annotations
 
+import functools
 import itertools
 from dataclasses import dataclass
 
@@ -334,3 +335,73 @@ def best_first_configurations(n: int):
                     heapq.heappush(heap, (len(nxt), spans(nxt), nxt))
         elif _minimal_admissible(n, current):
             yield count, span, cfg
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """What paper 000's rules say of one configuration: ``labels`` ('S(1,3)(+,+)', ...),
+    whether it is one of the enumerated configurations with necessary springs
+    (:func:`enumerate_configurations`), and ``why`` ('enumerated', or the rules it breaks)."""
+
+    labels: tuple
+    enumerated: bool
+    why: str
+
+
+@functools.lru_cache(maxsize=8)
+def _enumerated_labels(n: int) -> frozenset:
+    return frozenset(tuple(sorted(str(s) for s in cfg)) for cfg in enumerate_configurations(n))
+
+
+def verdict(n: int, springs) -> Verdict:
+    """000's verdict on the configuration of ``springs`` (springs with ``i``, ``j`` and
+    ``pattern``, or :class:`SpringSlot` objects, or strings for :func:`slot`) on n links."""
+    slots = [s if isinstance(s, (str, SpringSlot)) else SpringSlot(s.i, s.j, s.pattern) for s in springs]
+    slots = as_slots(slots)
+    labels = tuple(str(s) for s in slots)
+    enumerated = tuple(sorted(labels)) in _enumerated_labels(n)
+    why = "enumerated" if enumerated else "; ".join(v.rule for v in rule_violations(n, slots)) or \
+        "admissible, but a spring can be removed (not all necessary)"
+    return Verdict(labels, enumerated, why)
+
+
+@dataclass(frozen=True)
+class ConfigurationCounts:
+    """Admissible configurations with necessary springs per n (:func:`iter_configurations`),
+    the enumeration's time (s), the best-first search's time for its first ten (s) and the
+    fewest springs it finds, and the counts beyond the last enumerated n estimated by the
+    last growth ratio."""
+
+    counts: dict
+    seconds: dict
+    first: dict
+    ratio: float
+    estimate: dict
+
+    def table(self, ns=range(3, 9)):
+        from springlab.tables import Table
+
+        return Table(["n", "configurations", "enumeration (s)", "fewest springs", "best first, first ten (s)"],
+                     [(n, self.counts.get(n, f"~{self.estimate[n]:.0e} (estimate)" if n in self.estimate else "-"),
+                       f"{self.seconds[n]:.2f}" if n in self.seconds else "-", self.first[n][1] if n in self.first else "-",
+                       f"{self.first[n][0]:.2f}" if n in self.first else "-") for n in ns])
+
+
+def configuration_counts(enumerate_ns, first_ns, *, first: int = 10) -> ConfigurationCounts:
+    """Count the configurations for each n of ``enumerate_ns`` (timed) and time the first
+    ``first`` of the best-first search for each n of ``first_ns``."""
+    import time
+
+    counts, seconds, best = {}, {}, {}
+    for n in enumerate_ns:
+        t0 = time.perf_counter()
+        counts[n] = sum(1 for _ in iter_configurations(n))
+        seconds[n] = time.perf_counter() - t0
+    for n in first_ns:
+        t0 = time.perf_counter()
+        top = list(itertools.islice(best_first_configurations(n), first))
+        best[n] = (time.perf_counter() - t0, top[0][0], top[0][1])
+    ratios = [counts[n + 1] / counts[n] for n in list(counts)[:-1]]
+    last = max(counts)
+    estimate = {last + 1: counts[last] * ratios[-1], last + 2: counts[last] * ratios[-1] ** 2}
+    return ConfigurationCounts(counts, seconds, best, ratios[-1], estimate)

@@ -48,6 +48,7 @@ from springlab.errors import SpringlabError
 from springlab.model.chain import SPHERICAL, UP, Chain
 from springlab.model.springs import check_attachments, check_springs
 from springlab.model.trajectories import Sweep
+from springlab.tables import Table
 
 JOINT_KINDS = ("spherical", "locked", "prescribed")
 
@@ -185,6 +186,13 @@ class HoldResult:
     def summary(self) -> str:
         return (f"max tip drift {self.balanced.max_tip_drift:.2e} m with the springs, "
                 f"{self.control.max_tip_drift:.2e} m with them scaled by {self.control.springs_scale}")
+
+    def table(self, balanced: str = "balanced", control: str | None = None) -> Table:
+        """Largest tip drift (m) and link direction drift (rad) of the balanced run and the control."""
+        control = control or f"scaled by {self.control.springs_scale:g} (control)"
+        return Table(["springs", "max tip drift (m)", "max link direction drift (rad)"],
+                     [(label, f"{run.max_tip_drift:.2e}", f"{run.max_angle_drift:.2e}")
+                      for label, run in ((balanced, self.balanced), (control, self.control))])
 
 
 def _hold_run(chain, springs, frames, duration, settings, scale) -> HoldRun:

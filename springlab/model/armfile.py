@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from springlab.errors import SpringlabError
+from springlab.tables import Table
 
 UNITS = {
     "length": {"m": 1.0, "cm": 1e-2, "mm": 1e-3},
@@ -108,6 +109,18 @@ class ArmSpec:
         joints = None if all(j == "spherical" for j in self.joints) else list(self.joints)
         chain = serial_chain(self.r, self.d, self.m, self.g, joints=joints)
         return chain.with_payload(self.payload) if with_payload else chain
+
+    def describe(self) -> str:
+        """One Markdown line: the arm's name, n, payload (kg), g (m/s^2) and its limits."""
+        return (f"**{self.name}** ({self.source}): n = {self.n} links with the ground, payload {self.payload:g} kg, "
+                f"g = {self.g:g} m/s², stiffness at most {self.max_stiffness:g} N/m, brackets at most "
+                f"{self.max_attachment if self.max_attachment is not None else max(self.r):g} m")
+
+    def table(self) -> Table:
+        """The moving links: length (m), COM from the proximal joint (m), mass (kg), joint."""
+        return Table(["link", "length (m)", "COM from the proximal joint (m)", "mass (kg)", "joint"],
+                     [(j + 2, f"{r:g}", f"{d:g}", f"{m:g}", jt)
+                      for j, (r, d, m, jt) in enumerate(zip(self.r, self.d, self.m, self.joints, strict=True))])
 
 
 def _field(table: dict, key: str, where: str, *, required: bool = True):

@@ -2,11 +2,18 @@
 of spring methods of statically balanced planar serial manipulators with revolute
 joints only*, Mechanical Sciences (paper 003): the 3-DOF example of Section 5, as
 printed. SI units; angles in degrees as printed.
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2022). Spring efficiency assessment and efficient
+use of spring methods of statically balanced planar serial manipulators with revolute
+joints only. Mechanical Sciences (2022).
 """
 
 from __future__ import annotations
 
 from springlab.mechanisms.planar.model import PlanarArm, PlanarSpring, Workspace
+from springlab.mechanisms.planar.synthesis import solve_configuration
 
 # Table 3: link 1 is the ground (reference length r_1 = 1 m)
 R = (1.000, 0.360, 0.445, 0.300)  # m
@@ -37,3 +44,62 @@ TABLE5 = {
     "A_S14 0.1 -> 0.4": ({"A_S14": 0.4, "A_S24": 0.5}, {"k_S12": 4998, "k_S14": 760, "k_S24": 1519, "k_S34": 1654}, 0.6224),
     "A_S24 0.5 -> 0.8": ({"A_S14": 0.1, "A_S24": 0.8}, {"k_S12": 4998, "k_S14": 3038, "k_S24": 3798, "k_S34": 4961}, 0.5426),
 }
+
+
+def table4_entries(designed):
+    """Each printed k (N/m, 0 decimals), a and b (m, 3 decimals) of Table 4 beside the designed
+    spring of the same S(i,j) (``designed`` in Table 1's order S(1,2), S(1,4), S(2,4), S(3,4)):
+    (designed spring, printed spring, name, decimals, unit) in print order."""
+    order = SPRINGS_PRINTED[1:2] + SPRINGS_PRINTED[:1] + SPRINGS_PRINTED[2:]
+    for mine, printed in zip(designed, order, strict=True):
+        if (mine.i, mine.j) != (printed.i, printed.j):
+            from springlab.errors import SpringlabError
+
+            raise SpringlabError(f"designed {mine.label} where Table 4 prints {printed.label}: pass Table 1's order")
+        for name, dec, unit in (("k", 0, "N/m"), ("a", 3, "m"), ("b", 3, "m")):
+            yield mine, printed, name, dec, unit
+
+
+def table2_comparisons():
+    """Table 2's printed payload-adjustment formulas (003 Eqs. 27-29 as the table prints them)
+    beside the same parameters solved from 003 Eqs. (16) in sympy, with the stiffnesses and
+    B of the one-joint springs kept: [(configuration, parameter, derived, printed or None)]."""
+    import sympy as sp
+
+    k = {n: sp.Symbol(f"k_S{n}", positive=True) for n in ("12", "13", "14", "23", "24", "34")}
+    B = {n: sp.Symbol(f"B_S{n}", positive=True) for n in ("12", "23", "34")}
+    G12, G13, G14 = sp.symbols("G_12 G_13 G_14", positive=True)
+
+    def solved(config, given):
+        return {key.name: v for key, v in solve_configuration(config, given).items()}
+
+    s1 = solved("Λ1", ["k_S12", "B_S12"])
+    s2 = solved("Λ2", ["k_S13", "k_S23", "B_S23"])
+    s31 = solved("Λ3-1", ["k_S12", "k_S14", "k_S24", "k_S34", "B_S12", "B_S34"])
+    s32 = solved("Λ3-2", ["k_S12", "k_S14", "k_S23", "k_S24", "B_S12", "B_S23"])
+    return [
+        ("Λ1", "(AB)'_S12", s1["A_S12"] * B["12"], G12 / k["12"]),
+        ("Λ2", "A'_S13", s2["A_S13"], G12 / k["13"]),
+        ("Λ2", "B'_S13", s2["B_S13"], G13 / G12),
+        ("Λ2", "(AB)'_S23", s2["A_S23"] * B["23"], k["13"] * G13 / (k["23"] * G12)),
+        ("Λ3-1", "A'_S14", s31["A_S14"], G13 / k["14"]),
+        ("Λ3-1", "B'_S14", s31["B_S14"], G14 / G13),
+        ("Λ3-1", "(AB)'_S34", s31["A_S34"] * B["34"], (k["14"] + k["24"]) / k["34"] * G14 / G13),
+        ("Λ3-1", "B'_S24", s31["B_S24"], None),
+        ("Λ3-1", "A'_S24 (unchanged)", s31["A_S24"], None),
+        ("Λ3-2", "A'_S14", s32["A_S14"], G13 / k["14"]),
+        ("Λ3-2", "B'_S14", s32["B_S14"], G14 / G13),
+        ("Λ3-2", "B'_S24", s32["B_S24"], G14 / G13),
+        ("Λ3-2", "(AB)'_S23", s32["A_S23"] * B["23"], (k["14"] + k["24"]) / k["23"]),
+        ("Λ3-2", "A'_S24", s32["A_S24"], None),
+    ]
+
+
+def arm_spec():
+    """The Section 5 arm as springlab's arm-file description (:class:`~springlab.model.armfile.ArmSpec`):
+    revolute joints about z, links 2..4 of Table 3."""
+    from springlab.model.armfile import arm_from_dict
+
+    return arm_from_dict({"name": "paper 003's arm (Section 5)", "g": ARM.g,
+                          "link": [{"length": float(r), "com": float(s), "mass": float(m), "joint": [0, 0, 1]}
+                                   for r, s, m in zip(ARM.r[1:], ARM.s[1:], ARM.m[1:], strict=True)]}, source="003")

@@ -79,6 +79,13 @@ TABLE_3 = (
 )
 
 
+def table3_entries():
+    """Each printed number of Table 3 in print order: (row, name 'a'/'b'/'k', unit, decimals)."""
+    for row in TABLE_3:
+        for name, unit, dec in (("a", "m", row.decimals_ab), ("b", "m", row.decimals_ab), ("k", "N/m", row.decimals_k)):
+            yield row, name, unit, dec
+
+
 def table3_springs() -> tuple[Spring, ...]:
     """Table 3's springs with the printed (rounded) values."""
     return tuple(p.spring() for p in TABLE_3)

@@ -16,7 +16,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from springlab.mechanisms.pseudobase.model import DH, PseudobaseArm, aux_offset_from_dh
+from springlab.mechanisms.pseudobase.model import (
+    DH,
+    PseudobaseArm,
+    attachment_a,
+    aux_offset_from_dh,
+)
+from springlab.mechanisms.pseudobase.subsystems import combined_subsystems
+from springlab.rounding import half_unit, propagated_rounding
 
 # Table 1: DH parameters (standard DH), primary / auxiliary chains
 DH_PRIMARY = DH(d=[0.0, 0.0, 0.0, 0.5, 0.0, 0.27],
@@ -74,3 +81,80 @@ def arm(g: float = G) -> PseudobaseArm:
         dh=DH_PRIMARY, m=np.r_[0.0, M], s=_rows(S), modules=LINKS,
         m_hat=np.r_[0.0, M_HAT], s_hat=_rows(S_HAT), m_star=np.r_[0.0, M_STAR], c=_rows(C),
         aux_offset=offset, g=g)
+
+
+# --- Tables 2 and 3 recomputed, with what their printed rounding allows ----------------------
+INPUT_DECIMALS = 2  # Table 2 prints its masses (kg) and vectors (m) with 2 decimals
+
+
+def table2_inputs() -> np.ndarray:
+    """Table 2's printed inputs as one vector (60,): m, m^, m* (kg), then s, s^, c (m) of links 2..6."""
+    return np.concatenate([M, M_HAT, M_STAR, np.ravel(S), np.ravel(S_HAT), np.ravel(C)])
+
+
+def combined_from_inputs(x, base: PseudobaseArm | None = None):
+    """(mu~, sigma~) (001 Eqs. 24-25) of the arm with Table 2's inputs replaced by ``x``
+    (as :func:`table2_inputs` orders them); the DH chain, offset and g from ``base``."""
+    base = base or arm()
+    m, mh, ms = x[:5], x[5:10], x[10:15]
+    s, sh, c = x[15:30].reshape(5, 3), x[30:45].reshape(5, 3), x[45:60].reshape(5, 3)
+    a = PseudobaseArm(dh=base.dh, m=np.r_[0, m], s=_rows(s), modules=LINKS, m_hat=np.r_[0, mh], s_hat=_rows(sh),
+                      m_star=np.r_[0, ms], c=_rows(c), aux_offset=base.aux_offset, g=base.g)
+    return combined_subsystems(a)
+
+
+def _band(f, base):
+    x = table2_inputs()
+    return propagated_rounding(f, x, np.full(x.size, half_unit(INPUT_DECIMALS))) + half_unit(INPUT_DECIMALS)
+
+
+def table2_rows(base: PseudobaseArm) -> list[dict]:
+    """Each printed mu~_i (kg) and sigma~_i component (m) of Table 2 beside ours (001 Eqs. 24-25),
+    with the band Table 2's rounded inputs allow (propagated to first order, plus half a unit):
+    dicts with quantity, where, unit, paper, ours, band, in print order."""
+    mu, sigma = combined_subsystems(base)
+    rows = []
+    for k, i in enumerate(LINKS):
+        band = _band(lambda x, i=i: combined_from_inputs(x, base)[0][i - 1], base)
+        rows.append({"quantity": f"mu~_{i}", "where": "Table 2, Eq. (24)", "unit": "kg", "paper": MU_TILDE[k],
+                     "ours": mu[i - 1], "band": band})
+        for axis, name in enumerate("xyz"):
+            band = _band(lambda x, i=i, axis=axis: combined_from_inputs(x, base)[1][i - 1, axis], base)
+            rows.append({"quantity": f"sigma~_{i},{name}", "where": "Table 2, Eq. (25)", "unit": "m",
+                         "paper": SIGMA_TILDE[k][axis], "ours": sigma[i - 1, axis], "band": band})
+    return rows
+
+
+def table3_rows(base: PseudobaseArm, springs) -> list[dict]:
+    """Table 3 beside ours, per spring: l_CB (001 Eq. 16, with its band), the largest-differing
+    component of a_i at theta_I (001 Eq. 13) and of b_i (001 Eq. 14, with its band); each a
+    dict with quantity, where, paper, ours (m), band (None: half a unit only), note, and the
+    spring's 'printed' K l_CA l_CB and 'need' mu~ g |sigma~| (N m)."""
+    mu, sigma = combined_subsystems(base)
+    a_init = attachment_a(base, springs, INITIAL_POSE)[0]
+    rows = []
+    for k, sp_ in enumerate(springs):
+        i = sp_.link
+        need = mu[i - 1] * base.g * np.linalg.norm(sigma[i - 1])  # mu~ g |sigma~|, 001 Eq. (16)
+        printed = K[k] * L_CA[k] * L_CB[k]
+
+        def l_cb(x, i=i, k=k):
+            m, s = combined_from_inputs(x, base)
+            return m[i - 1] * base.g * np.linalg.norm(s[i - 1]) / (K[k] * L_CA[k])
+
+        common = {"spring": i, "printed": printed, "need": need, "l_CB": sp_.l_CB, "b": sp_.b}
+        rows.append({"quantity": f"l_CB,{i}", "where": "Table 3, Eq. (16)", "paper": L_CB[k], "ours": sp_.l_CB,
+                     "band": _band(l_cb, base), "note": f"K l_CA l_CB printed {printed:.2f} N m vs mu~ g |sigma~| = {need:.2f} N m",
+                     **common})
+        ja = int(np.argmax(np.abs(a_init[k] - np.asarray(A[k]))))
+        rows.append({"quantity": f"a_{i}, {'xyz'[ja]} (largest difference)", "where": "Table 3, Eq. (13), at theta_I",
+                     "paper": A[k][ja], "ours": a_init[k, ja], "band": None, "note": "", **common})
+        jb = int(np.argmax(np.abs(sp_.b - np.asarray(B[k]))))
+
+        def b_comp(x, i=i, jb=jb, k=k):
+            m, s = combined_from_inputs(x, base)
+            return x[45 + 3 * (i - 2) + jb] + m[i - 1] * base.g * s[i - 1, jb] / (K[k] * L_CA[k])
+
+        rows.append({"quantity": f"b_{i}, {'xyz'[jb]} (largest difference)", "where": "Table 3, Eq. (14)",
+                     "paper": B[k][jb], "ours": sp_.b[jb], "band": _band(b_comp, base), "note": None, **common})
+    return rows

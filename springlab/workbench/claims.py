@@ -31,6 +31,7 @@ from pathlib import Path
 
 from springlab import tables
 from springlab.errors import SpringlabError
+from springlab.rounding import half_unit
 
 STATUSES = ("reproduced", "rounding", "discrepancy", "not reproducible", "input", "consistent", "inconsistent")
 REPORT_COLUMNS = ("reproduced", "rounding", "discrepancy, cause found", "discrepancy, no cause found",
@@ -64,32 +65,6 @@ def report_column(record: dict) -> str:
     if record["status"] == "discrepancy":
         return "discrepancy, cause found" if record.get("cause") else "discrepancy, no cause found"
     return record["status"]
-
-
-def half_unit(decimals: int) -> float:
-    """Half a unit of the last printed digit, with a hair for binary floats."""
-    return 0.5 * 10.0 ** (-decimals) * (1 + 1e-9)
-
-
-def propagated_rounding(f, x, half) -> float:
-    """How far f(x) can move when each printed input x_k is off by up to half a unit of
-    its last digit, ``half[k]``: sum_k |f(x + half_k e_k) - f(x - half_k e_k)| / 2, the
-    first-order worst case. Used as a tolerance where a paper's outputs were computed
-    from inputs it prints rounded.
-
-    >>> round(propagated_rounding(lambda v: v[0] + 2 * v[1], [1.0, 1.0], [0.005, 0.005]), 6)
-    0.015
-    """
-    import numpy as np
-
-    x = np.asarray(x, dtype=float)
-    half = np.broadcast_to(np.asarray(half, dtype=float), x.shape)
-    total = 0.0
-    for k in range(x.size):
-        e = np.zeros(x.size)
-        e[k] = half.flat[k]
-        total += abs(float(f((x.ravel() + e).reshape(x.shape))) - float(f((x.ravel() - e).reshape(x.shape)))) / 2
-    return total
 
 
 def _number(value) -> str:

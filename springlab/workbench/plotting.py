@@ -36,12 +36,16 @@ def save_figure(fig, name: str, directory) -> list[Path]:
     return [png, svg]
 
 
-def energy_figure(t, gravity, springs, total, *, title: str, reference=None, reference_label=None):
+def energy_figure(t, gravity, springs, total, *, title: str, reference=None, reference_label=None,
+                  markers=None, marker_every: int = 6, marker_label: str = "markers: exudyn; lines: route 2"):
     """Gravity, spring and total energy over time, the look of 000 Figs. 16-17.
 
     With a ``reference`` total (e.g. with the paper's rounded springs) a lower
     panel shows both totals' deviation from their initial value in mJ, which
     the upper panel's scale cannot show.
+
+    With ``markers`` ({'gravity', 'springs', 'total'} at the same times, e.g. another
+    route's energies) every ``marker_every``-th value is drawn as an open circle over the lines.
 
     :param t: time (s); the energies in J
     """
@@ -60,6 +64,12 @@ def energy_figure(t, gravity, springs, total, *, title: str, reference=None, ref
     ax.set_ylabel("energy (J)")
     ax.set_title(title)
     ax.legend(loc="center right")
+    if markers is not None:
+        for key, colour in (("gravity", "C0"), ("springs", "C1"), ("total", "k")):
+            ax.plot(t[::marker_every], np.asarray(markers[key])[::marker_every], "o", color=colour, markersize=3,
+                    markerfacecolor="none")
+        ax.plot([], [], "o", color="gray", markerfacecolor="none", label=marker_label)
+        ax.legend(loc="center right")
     if reference is not None:
         low = axes[1]
         low.plot(t, 1e3 * (np.asarray(total) - total[0]), color="k", label="total, exact springs")
@@ -299,6 +309,65 @@ def lines_figure(x, curves: dict, *, xlabel: str, ylabel: str, title: str = "", 
     ax.set_ylabel(ylabel)
     ax.set_title(title)
     ax.legend(loc="best", fontsize=7)
+    return fig
+
+
+def index_resolution_figure(steps, diffs: dict, *, marked_step: float = 5.0):
+    """The index minus the printed one (in 1e-4) against the grid step (deg), one curve per
+    case {label: values}, the printed rounding (+-0.5e-4) shaded and ``marked_step`` marked."""
+    fig = lines_figure(steps, diffs, xlabel="grid step (deg), both ends of each range included",
+                       ylabel="ours - printed index ($10^{-4}$)", title="The index against grid resolution ('magnitudes' reading)",
+                       logx=True, styles={k: {"marker": "o", "markersize": 3} for k in diffs})
+    ax = fig.axes[0]
+    ax.axhspan(-0.5, 0.5, color="0.85", zorder=0, label="within the printed rounding")
+    ax.axvline(marked_step, color="0.4", linestyle=":", linewidth=1.0)
+    ax.set_xticks(steps)
+    ax.set_xticklabels([f"{x:g}" for x in steps])
+    ax.minorticks_off()
+    ax.invert_xaxis()
+    ax.legend(loc="best", fontsize=7)
+    return fig
+
+
+def springs_per_n_figure(rows):
+    """Springs needed per n: the rules' fewest, the n - 1 ground springs, and n - 2 where the
+    relaxation proves it impossible (rows of :func:`springlab.design.rank.springs_per_n`)."""
+    fig, ax = plt.subplots()
+    ns = [r.n for r in rows]
+    ax.plot(ns, [r.necessary for r in rows], "o-", label="rules R1-R6 (000): fewest springs")
+    ax.plot(ns, [r.ground.spring_count for r in rows], "s-", label="any signs: n - 1 ground springs, verified")
+    proved = [r.n for r in rows if r.screen is not None]
+    ax.plot(proved, [n - 2 for n in proved], "x", color="C3", label="n - 2: impossible (linear relaxation)")
+    ax.set_xlabel("n, links with the ground")
+    ax.set_ylabel("springs")
+    ax.set_title("Springs needed per n (0.3 m brackets)")
+    ax.legend(fontsize=8)
+    return fig
+
+
+def configuration_counts_figure(result):
+    """Configurations per n, counted and estimated (a :class:`springlab.design.rules.ConfigurationCounts`)."""
+    fig, ax = plt.subplots()
+    ax.semilogy(list(result.counts), list(result.counts.values()), "o-", label="counted")
+    ax.semilogy(list(result.estimate), list(result.estimate.values()), "o--", color="0.5",
+                label=f"estimated (x{result.ratio:.0f} per link)")
+    ax.set_xlabel("n, links with the ground")
+    ax.set_ylabel("configurations with necessary springs")
+    ax.set_title("Admissible configurations (rules R1-R6) per n")
+    ax.legend()
+    return fig
+
+
+def tolerance_figure(study, *, title: str):
+    """Histograms of the largest holding torque (N m) of the built arms, one per error
+    (a :class:`springlab.design.tolerance.ToleranceResult`)."""
+    fig, ax = plt.subplots()
+    for name, values in study.torques.items():
+        ax.hist(values, bins=30, histtype="step", label=name)
+    ax.set_xlabel("largest holding torque over the workspace (N m)")
+    ax.set_ylabel("built arms")
+    ax.set_title(title)
+    ax.legend(fontsize=7)
     return fig
 
 

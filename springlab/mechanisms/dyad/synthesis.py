@@ -357,3 +357,13 @@ def residual_readings(comp: Compensator, dyad: Dyad, phi) -> dict[str, float]:
     no_cos = comp.gravity_moment(phi) + comp.k * (y - comp.l0) * dyad.r * np.sin(psi)
     out["002 Eqs. (25)-(30) without 002 Eq. (26)'s cos(theta), sign corrected"] = float(np.max(np.abs(no_cos)))
     return out
+
+
+def designs_table(comp: Compensator, designs: dict, phi) -> Table:
+    """Dyads side by side: {label: (dyad, l0)} with r, l (m), beta (deg), l0 (m) and the
+    largest |M_ub| (virtual work, N m) over the angles ``phi`` (rad)."""
+    rows = []
+    for label, (d, l0) in designs.items():
+        worst = max_unbalanced(Compensator(comp.G, comp.s, comp.k, l0), d, phi)
+        rows.append((label, f"{d.r:.4f}", f"{d.l:.4f}", f"{np.degrees(d.beta):.3f}", f"{l0:.3f}", f"{worst:.3f}"))
+    return Table(["design", "r (m)", "l (m)", "beta (deg)", "l0 (m)", "max abs M_ub (N m)"], rows)

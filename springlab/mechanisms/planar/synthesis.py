@@ -254,3 +254,27 @@ def optimise_index(arm: PlanarArm, config: str, free: dict, fixed: dict, workspa
     return Optimum(springs, best, f"efficiency index (grid step {step:g} deg, 'magnitudes'), maximised",
                    efficiency_index(arm, springs, workspace, step=step), count[0], dict(free),
                    {"config": config, "k_max": k_max})
+
+
+def index_over_attachments(arm: PlanarArm, workspace: Workspace, choices: dict, A_axis, *, step: float,
+                           config: str = "Λ3-1") -> np.ndarray:
+    """The efficiency index (grid ``step`` deg) with A_S14 and A_S24 over ``A_axis`` and the
+    other ``choices`` kept (003 Fig. 7a): array [A_S24 index, A_S14 index]."""
+    return np.array([[efficiency_index(arm, design(arm, config, choices | {"A_S14": a1, "A_S24": a2}), workspace, step=step)
+                      for a1 in A_axis] for a2 in A_axis])
+
+
+def index_over_stiffnesses(arm: PlanarArm, workspace: Workspace, choices: dict, k14_axis, k24_axis, *, step: float,
+                           config: str = "Λ3-1") -> np.ndarray:
+    """The efficiency index over k_S14 (columns) and k_S24 (rows), N/m (003 Fig. 7b): with
+    |G_13| fixed, A_S14 = |G_13| / k_S14 and A_S24 = k_S14 / k_S24 (003 Eqs. 27b, d);
+    NaN where an A would exceed 1 (the spring would leave its link)."""
+    G13 = arm.G[1]
+    out = np.full((len(k24_axis), len(k14_axis)), np.nan)
+    for i, k24 in enumerate(k24_axis):
+        for j, k14 in enumerate(k14_axis):
+            a1, a2 = G13 / k14, k14 / k24
+            if a1 <= 1 and a2 <= 1:
+                out[i, j] = efficiency_index(arm, design(arm, config, choices | {"A_S14": a1, "A_S24": a2}), workspace,
+                                             step=step)
+    return out

@@ -54,6 +54,7 @@ import numpy as np
 
 from springlab._checks import masses, vector_rows
 from springlab.errors import SpringlabError
+from springlab.tables import Table
 
 
 # --- DH kinematics (001 Table 1) -------------------------------------------------
@@ -412,3 +413,22 @@ def clearest_crank(arm: PseudobaseArm, link: int, q, samples: int = 360) -> tupl
     worst = [np.min(np.abs(fold_margin(rotate_crank(arm, link, a), q)[:, col])) for a in angles]
     best = int(np.argmax(worst))
     return float(angles[best]), float(worst[best])
+
+
+def cost_table(arm: PseudobaseArm, springs, q) -> Table:
+    """What the modules cost the arm: springs, mass of links 2..n (kg) with and without the
+    auxiliary links and pseudobases, each joint's inertia (kg m^2, :func:`joint_space_inertia`)
+    at the first pose of ``q`` and its largest increase along ``q``, and the sum of the stiffnesses."""
+    bare_mass = float(arm.m[1:].sum())
+    added = float(arm.m_hat.sum() + arm.m_star.sum())
+    M_bare = joint_space_inertia(arm, q, parts=("primary",))
+    M_all = joint_space_inertia(arm, q)
+    ratio = np.diagonal(M_all, axis1=1, axis2=2) / np.diagonal(M_bare, axis1=1, axis2=2)
+    rows = [("springs", "0", f"{len(springs)}", ""),
+            (f"mass of links 2-{arm.n} (kg)", f"{bare_mass:.2f}", f"{bare_mass + added:.2f}", f"+{100 * added / bare_mass:.1f} %"),
+            ("  of which auxiliary links / pseudobases (kg)", "", f"{arm.m_hat.sum():.2f} / {arm.m_star.sum():.2f}", "")]
+    for j in range(1, arm.n):
+        rows.append((f"inertia at joint {j + 1}, initial pose (kg m^2)", f"{M_bare[0, j, j]:.3f}", f"{M_all[0, j, j]:.3f}",
+                     f"+{100 * (ratio[0, j] - 1):.0f} % (up to +{100 * (ratio[:, j].max() - 1):.0f} % along the path)"))
+    rows.append(("sum of stiffnesses (kN/m)", "", f"{sum(s.K for s in springs) / 1e3:.0f}", ""))
+    return Table(["", "bare arm", "with the modules", "change"], rows)
