@@ -92,3 +92,21 @@ def test_statuses_and_the_written_file(tmp_path):
     records = json.loads(claims.write(tmp_path).read_text())
     assert [r["status"] for r in records] == ["rounding", "input", "consistent", "discrepancy"]
     assert check_records(records, "t") == []
+
+
+def test_diff_claims_finds_a_changed_verdict_and_nothing_else(tmp_path):
+    from springlab.workbench.claims import diff_claims
+
+    before, after = tmp_path / "before", tmp_path / "after"
+    for root in (before, after):
+        c = Claims("demo")
+        c.compare("k_S(1,2)", "Table 3", 4998.0, 4998.0 + (1e-10 if root is after else 0.0), unit="N/m",
+                  tolerance=0.5, tolerance_basis="half a unit")
+        c.compare("index", "Table 5", 0.5389, 0.53891 if root is after else 0.5389, unit="-", tolerance=5e-5,
+                  tolerance_basis="half a unit")
+        c.write(root / "demo")
+    changes = diff_claims(before, after)
+    assert len(changes) == 2 and all("ours" in x or "difference" in x for x in changes)
+    assert any("index" in x for x in changes)
+    assert diff_claims(before, after, rel=1e-3) == []  # within a loose tolerance, the same
+    assert diff_claims(before, before) == []

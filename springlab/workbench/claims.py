@@ -229,3 +229,61 @@ class Claims:
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(json.dumps(self.to_records(), indent=1, sort_keys=True, allow_nan=False) + "\n")
         return path
+
+
+NUMERIC_FIELDS = ("paper", "ours", "difference", "tolerance")
+
+
+def diff_claims(before_dir, after_dir, *, rel: float = 1e-12) -> list[str]:
+    """Every difference between two sets of ``<stem>/claims.json`` (two ``figures/`` folders):
+    a notebook or claim present in one only, a changed status or label, and a number that
+    moved by more than ``rel`` relative to the largest number of its claim. Empty: the same claims.
+    Used to show that a change of code leaves every verdict as it was."""
+    out = []
+    before = {p.parent.name: json.loads(p.read_text()) for p in sorted(Path(before_dir).glob("*/claims.json"))}
+    after = {p.parent.name: json.loads(p.read_text()) for p in sorted(Path(after_dir).glob("*/claims.json"))}
+    for stem in sorted(set(before) | set(after)):
+        if stem not in after or stem not in before:
+            out.append(f"{stem}: only {'before' if stem in before else 'after'}")
+            continue
+        old = {(r["quantity"], r["where"]): r for r in before[stem]}
+        new = {(r["quantity"], r["where"]): r for r in after[stem]}
+        for key in sorted(set(old) | set(new)):
+            if key not in new or key not in old:
+                out.append(f"{stem}: {key[0]!r} ({key[1]}) only {'before' if key in old else 'after'}")
+                continue
+            a, b = old[key], new[key]
+            # a number's change counts against the size of the quantity compared, so that a
+            # difference of 0 becoming 1e-16 J on a 100 J quantity is round-off, not a change
+            scale = max((abs(v) for r in (a, b) for f, v in r.items()
+                         if f in NUMERIC_FIELDS and isinstance(v, (int, float))), default=0.0)
+            for field in sorted(set(a) | set(b)):
+                x, y = a.get(field), b.get(field)
+                if field in NUMERIC_FIELDS and isinstance(x, (int, float)) and isinstance(y, (int, float)):
+                    if abs(x - y) > rel * max(scale, 1e-300):
+                        out.append(f"{stem}: {key[0]!r} {field} {x!r} -> {y!r}")
+                elif x != y:
+                    out.append(f"{stem}: {key[0]!r} {field} {x!r} -> {y!r}")
+    return out
+
+
+def main(argv=None) -> int:
+    """``python -m springlab.workbench.claims diff BEFORE AFTER``: list what changed."""
+    import argparse
+
+    parser = argparse.ArgumentParser(description=main.__doc__)
+    parser.add_argument("command", choices=["diff"])
+    parser.add_argument("before", help="a figures/ folder (claims.json per notebook)")
+    parser.add_argument("after", help="another figures/ folder")
+    parser.add_argument("--rel", type=float, default=1e-12, help="relative change of a number that counts")
+    args = parser.parse_args(argv)
+    changes = diff_claims(args.before, args.after, rel=args.rel)
+    print("\n".join(changes) if changes else "the same claims: every status, label and number (to "
+          f"{args.rel:g} relative) unchanged")
+    return 1 if changes else 0
+
+
+if __name__ == "__main__":
+    import sys
+
+    sys.exit(main())
