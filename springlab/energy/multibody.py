@@ -21,8 +21,8 @@ from springlab import _checks
 from springlab.errors import SolverError
 from springlab.model.rotations import frames_from_directions
 
-__all__ = ["SimSettings", "solver_settings", "frame_with_z", "add_sensor", "check_constraints",
-           "LOCKED_TORQUE_SIGN", "DRIVEN_TORQUE_SIGN"]
+__all__ = ["SimSettings", "solver_settings", "new_system", "add_body", "add_spring", "frame_with_z", "add_sensor",
+           "check_constraints", "LOCKED_TORQUE_SIGN", "DRIVEN_TORQUE_SIGN"]
 
 LOCKED_TORQUE_SIGN = np.diag([1.0, -1.0, -1.0])
 """A locked joint's holding torque is R @ LOCKED_TORQUE_SIGN @ TorqueLocal."""
@@ -72,6 +72,46 @@ def solver_settings(settings: SimSettings, end_time: float = 0.0, write_period: 
         ss.timeIntegration.endTime = end_time
         ss.timeIntegration.numberOfSteps = max(1, int(round(end_time / settings.step)))
     return ss
+
+
+def new_system():
+    """A fresh exudyn system with its ground at the origin: (SystemContainer, mbs, ground)."""
+    import exudyn as exu
+
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    return SC, mbs, mbs.CreateGround(referencePosition=[0.0, 0.0, 0.0])
+
+
+def add_body(mbs, mass: float, inertia, position, rotation=None, *, gravity=None, **initial):
+    """A rigid body: ``mass`` (kg), ``inertia`` (3, 3) about its centre of mass in its own
+    frame (kg m^2), the centre at ``position`` (m) and the frame ``rotation`` (3, 3) in the
+    reference configuration; ``gravity`` (3,) m/s^2 if the body carries its own weight
+    (None: no gravity, e.g. a weight applied as a load). ``initial`` passes exudyn's
+    initialDisplacement / initialRotationMatrix / initialVelocity through."""
+    from exudyn.utilities import RigidBodyInertia
+
+    kwargs = {"inertia": RigidBodyInertia(mass, np.asarray(inertia, dtype=float)),
+              "referencePosition": list(position)}
+    if rotation is not None:
+        kwargs["referenceRotationMatrix"] = rotation
+    kwargs.update(initial)
+    if gravity is not None:
+        kwargs["gravity"] = list(gravity)
+    return mbs.CreateRigidBody(**kwargs)
+
+
+def add_spring(mbs, body_a: int, local_a, body_b: int, local_b, *, k: float, free_length: float = 0.0,
+               damping: float = 0.0) -> int:
+    """A spring-damper between a point of ``body_a`` and a point of ``body_b`` (each given in
+    its body's frame, m): stiffness ``k`` (N/m), ``free_length`` (m; 0 is a zero-free-length
+    spring, F = k (B - A)), ``damping`` along its line (N s/m)."""
+    from exudyn.utilities import MarkerBodyPosition, ObjectConnectorSpringDamper
+
+    mA = mbs.AddMarker(MarkerBodyPosition(bodyNumber=body_a, localPosition=list(local_a)))
+    mB = mbs.AddMarker(MarkerBodyPosition(bodyNumber=body_b, localPosition=list(local_b)))
+    return mbs.AddObject(ObjectConnectorSpringDamper(markerNumbers=[mA, mB], referenceLength=float(free_length),
+                                                     stiffness=float(k), damping=float(damping)))
 
 
 def frame_with_z(axis: np.ndarray) -> np.ndarray:

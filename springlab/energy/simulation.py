@@ -40,8 +40,11 @@ from springlab.energy.multibody import (
     DRIVEN_TORQUE_SIGN,
     LOCKED_TORQUE_SIGN,
     SimSettings,
+    add_body,
     add_sensor,
+    add_spring,
     frame_with_z,
+    new_system,
     solver_settings,
 )
 from springlab.errors import SpringlabError
@@ -80,9 +83,6 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
     :param initial_frames: (n, 3, 3) frames at t = 0 if not the reference ones
     :param payload: mass (kg) added at the end link's centre of mass
     """
-    import exudyn as exu
-    from exudyn.utilities import MarkerBodyPosition, ObjectConnectorSpringDamper, RigidBodyInertia
-
     if joints not in JOINT_KINDS:
         raise SpringlabError(f"joints must be one of {JOINT_KINDS}, got {joints!r}")
     chain = chain.with_payload(payload)
@@ -97,20 +97,17 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
     ref_com = chain.com_positions(reference_frames[None, :, :, 0])[0]
     init_com = chain.com_positions(initial_frames[None, :, :, 0])[0]
 
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    bodies = [mbs.CreateGround(referencePosition=[0.0, 0.0, 0.0])]
+    SC, mbs, ground = new_system()
+    bodies = [ground]
     for j in range(2, chain.n + 1):
         r, m = chain.r[j - 2], chain.m[j - 2]
         transverse = m * r**2 / 12.0
-        inertia = RigidBodyInertia(m, np.diag([settings.axial_inertia * transverse, transverse, transverse]))
         com_ref, com_init = ref_com[j - 2], init_com[j - 2]
-        bodies.append(mbs.CreateRigidBody(
-            inertia=inertia, referencePosition=list(com_ref),
-            referenceRotationMatrix=reference_frames[j - 1],
+        bodies.append(add_body(
+            mbs, m, np.diag([settings.axial_inertia * transverse, transverse, transverse]), com_ref,
+            reference_frames[j - 1], gravity=-chain.g * UP,
             initialDisplacement=list(com_init - com_ref),
-            initialRotationMatrix=reference_frames[j - 1].T @ initial_frames[j - 1],  # superimposed on the reference
-            gravity=list(-chain.g * UP)))
+            initialRotationMatrix=reference_frames[j - 1].T @ initial_frames[j - 1]))  # superimposed on the reference
     if joints == "prescribed" and sweep is None:
         raise SpringlabError("joints='prescribed' needs a sweep")
     joint_items, joint_axes = [], []
@@ -144,11 +141,8 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
     for s in springs:
         local_a = s.a if s.i == 1 else chain.r[s.i - 2] - chain.d[s.i - 2] + s.a  # A = J_i + a x_i
         local_b = s.b - chain.d[s.j - 2]  # B = J_{j-1} + b x_j
-        mA = mbs.AddMarker(MarkerBodyPosition(bodyNumber=bodies[s.i - 1], localPosition=_local_x(local_a)))
-        mB = mbs.AddMarker(MarkerBodyPosition(bodyNumber=bodies[s.j - 1], localPosition=_local_x(local_b)))
-        spring_items.append(mbs.AddObject(ObjectConnectorSpringDamper(
-            markerNumbers=[mA, mB], referenceLength=float(s.free_length), stiffness=float(s.k),
-            damping=float(settings.damping))))
+        spring_items.append(add_spring(mbs, bodies[s.i - 1], _local_x(local_a), bodies[s.j - 1], _local_x(local_b),
+                                       k=s.k, free_length=s.free_length, damping=settings.damping))
     return Model(SC, mbs, bodies, joint_items, joint_axes, spring_items, chain, springs, joints)
 
 

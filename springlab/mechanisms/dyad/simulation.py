@@ -14,7 +14,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.energy.multibody import SimSettings, check_constraints, solver_settings
+from springlab.energy.multibody import (
+    SimSettings,
+    add_body,
+    add_sensor,
+    add_spring,
+    check_constraints,
+    new_system,
+    solver_settings,
+)
 from springlab.mechanisms.dyad.model import Compensator, Dyad, closing, slider_height
 from springlab.model.rotations import rot_z
 from springlab.model.trajectories import quintic
@@ -44,14 +52,7 @@ def follow(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: float, *,
     """
     import time as _time
 
-    import exudyn as exu
-    from exudyn.utilities import (
-        LoadForceVector,
-        MarkerBodyPosition,
-        ObjectConnectorSpringDamper,
-        RigidBodyInertia,
-        SensorObject,
-    )
+    from exudyn.utilities import LoadForceVector, MarkerBodyPosition
 
     duration = _checks.duration(duration)
     samples = _checks.sample_count(samples, least=2)
@@ -64,14 +65,12 @@ def follow(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: float, *,
     S0, A0 = along(phi_start, comp.s), along(phi_start - dyad.beta, dyad.r)
     B0 = np.array([0.0, float(slider_height(dyad, phi_start)), 0.0])
     R_link = rot_z(-phi_start)
-    token = RigidBodyInertia(1e-3, np.diag([1e-6, 1e-6, 1e-6]))
+    token = (1e-3, np.diag([1e-6, 1e-6, 1e-6]))  # 1 g: the weight is a load, inertia adds nothing
 
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    ground = mbs.CreateGround(referencePosition=[0.0, 0.0, 0.0])
-    link = mbs.CreateRigidBody(inertia=token, referencePosition=list(S0), referenceRotationMatrix=R_link)
-    rod = mbs.CreateRigidBody(inertia=token, referencePosition=list((A0 + B0) / 2))
-    slider = mbs.CreateRigidBody(inertia=token, referencePosition=list(B0))
+    SC, mbs, ground = new_system()
+    link = add_body(mbs, *token, S0, R_link)
+    rod = add_body(mbs, *token, (A0 + B0) / 2)
+    slider = add_body(mbs, *token, B0)
 
     def offset(mbs_, t, item, values):  # the link turns by -(phi - phi_start) about z
         return [0.0, 0.0, 0.0, 0.0, 0.0, -span * float(quintic(t / duration))]
@@ -83,12 +82,8 @@ def follow(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: float, *,
     mbs.CreateGenericJoint(itemNumbers=[ground, slider], position=list(B0), constrainedAxes=[1, 0, 1, 1, 1, 1])
     weight_at = mbs.AddMarker(MarkerBodyPosition(bodyNumber=link, localPosition=[0.0, 0.0, 0.0]))
     mbs.AddLoad(LoadForceVector(markerNumber=weight_at, loadVector=[0.0, -comp.G, 0.0]))
-    base = mbs.AddMarker(MarkerBodyPosition(bodyNumber=ground, localPosition=[0.0, 0.0, 0.0]))
-    end = mbs.AddMarker(MarkerBodyPosition(bodyNumber=slider, localPosition=[0.0, 0.0, 0.0]))
-    mbs.AddObject(ObjectConnectorSpringDamper(markerNumbers=[base, end], referenceLength=comp.l0,
-                                              stiffness=comp.k, damping=0.0))
-    sensor = mbs.AddSensor(SensorObject(objectNumber=drive, storeInternal=True, writeToFile=False,
-                                        outputVariableType=exu.OutputVariableType.TorqueLocal))
+    add_spring(mbs, ground, [0.0, 0.0, 0.0], slider, [0.0, 0.0, 0.0], k=comp.k, free_length=comp.l0)
+    sensor = add_sensor(mbs, "TorqueLocal", objectNumber=drive)
     mbs.Assemble()
     check_constraints(mbs, "dyad")
 

@@ -35,7 +35,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.energy.multibody import SimSettings, add_sensor, frame_with_z, solver_settings
+from springlab.energy.multibody import (
+    SimSettings,
+    add_body,
+    add_sensor,
+    add_spring,
+    frame_with_z,
+    new_system,
+    solver_settings,
+)
 from springlab.errors import SpringlabError
 from springlab.mechanisms.pseudobase.geometry import energies, positions
 from springlab.mechanisms.pseudobase.model import PseudobaseArm
@@ -74,9 +82,6 @@ def build_model(arm: PseudobaseArm, springs, q0, *, model: str = "rssr", joints:
         t -> (n,) angles with trajectory(0) = q0) or 'locked'
     :param spring_scale: multiplies every stiffness (0 removes the springs)
     """
-    import exudyn as exu
-    from exudyn.utilities import MarkerBodyPosition, ObjectConnectorSpringDamper, RigidBodyInertia
-
     if model not in MODELS:
         raise SpringlabError(f"model must be one of {MODELS}, got {model!r}")
     if joints not in ("driven", "locked"):
@@ -93,13 +98,10 @@ def build_model(arm: PseudobaseArm, springs, q0, *, model: str = "rssr", joints:
     up, g = arm.up, arm.g
     star_frame = frame_with_z(up)  # a pseudobase's frame: z along C_i D_i (vertical)
 
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    ground = mbs.CreateGround(referencePosition=[0.0, 0.0, 0.0])
+    SC, mbs, ground = new_system()
 
     def body(mass, J, com, rot):
-        return mbs.CreateRigidBody(inertia=RigidBodyInertia(mass, J), referencePosition=list(com),
-                                   referenceRotationMatrix=rot, gravity=list(-g * up))
+        return add_body(mbs, mass, J, com, rot, gravity=-g * up)
 
     rho2 = inertias.gyration**2
     links, com = [ground], {}
@@ -118,8 +120,8 @@ def build_model(arm: PseudobaseArm, springs, q0, *, model: str = "rssr", joints:
                         p["star_com"][col], star_frame)
         com[stars[i]] = p["star_com"][col]
 
-    def marker(b, world_point, rot):
-        return mbs.AddMarker(MarkerBodyPosition(bodyNumber=b, localPosition=list(rot.T @ (world_point - com[b]))))
+    def local(b, world_point, rot):  # a point given in the world, in body b's frame
+        return rot.T @ (world_point - com[b])
 
     drives = []
     for i in range(1, arm.n + 1):
@@ -148,11 +150,9 @@ def build_model(arm: PseudobaseArm, springs, q0, *, model: str = "rssr", joints:
     spring_items = []
     for col, sp in enumerate(springs):
         i = sp.link
-        mA = marker(stars[i], p["A"][col], star_frame)
-        mB = marker(links[i], p["B"][col], R[i])
-        spring_items.append(mbs.AddObject(ObjectConnectorSpringDamper(
-            markerNumbers=[mA, mB], referenceLength=0.0, stiffness=float(sp.K * spring_scale),
-            damping=float(settings.damping))))
+        spring_items.append(add_spring(mbs, stars[i], local(stars[i], p["A"][col], star_frame),
+                                       links[i], local(links[i], p["B"][col], R[i]),
+                                       k=sp.K * spring_scale, damping=settings.damping))
     return PseudobaseModel(SC, mbs, model, arm, springs, links, aux, stars, drives, spring_items)
 
 
