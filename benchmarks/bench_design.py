@@ -23,7 +23,8 @@ import time
 from pathlib import Path
 
 from springlab.design import feasibility
-from springlab.design.rank import design_arm, ground_spring_design, relaxation_screen
+from springlab.design.ground import ground_spring_design, relaxation_screen
+from springlab.design.rank import design_arm
 from springlab.design.rules import best_first_configurations, iter_configurations
 from springlab.model.chain import serial_chain
 

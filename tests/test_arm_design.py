@@ -6,6 +6,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from springlab.design import efficiency as deff
+from springlab.design import ground as fewer
+from springlab.design import methods as compare
 from springlab.design import rank as ad
 from springlab.design.rules import SpringSlot, as_slots
 from springlab.design.solve import SpringSpec, find_design, solve_design
@@ -78,7 +81,7 @@ def test_spatial_efficiency_reduces_to_003_in_the_plane():
     chain, s000 = pl.to_spatial(arm, springs)
     theta = juang2022.WORKSPACE.sample(2000, 3)
     X = chain.directions(pl.spatial_angles(theta))
-    assert np.allclose(ad.spatial_system_efficiency(chain, s000, X), ef.system_efficiency(arm, springs, theta), atol=1e-12)
+    assert np.allclose(deff.spatial_system_efficiency(chain, s000, X), ef.system_efficiency(arm, springs, theta), atol=1e-12)
 
 
 def test_paper000_arm_ranks_table3():
@@ -86,7 +89,7 @@ def test_paper000_arm_ranks_table3():
     configs = [d.configuration for d in report.designs]
     assert tuple(sorted(juang2023.EXAMPLE_CONFIGURATION)) in configs
     assert all(d.energy_variation < ad.VERIFY_TOLERANCE for d in report.designs)
-    assert [ad._rank_key(d) for d in report.designs] == sorted(ad._rank_key(d) for d in report.designs)
+    assert [ad.rank_key(d) for d in report.designs] == sorted(ad.rank_key(d) for d in report.designs)
     # the paper's own Table 3 design passes the same verification
     spec = load_arm(ARMS / "paper000_arm.toml")
     chain = spec.chain()
@@ -195,15 +198,15 @@ def test_three_springs_balance_the_paper000_arm_with_a_forbidden_pattern():
     from springlab.model.chain import random_directions
 
     spec = load_arm(ARMS / "paper000_arm.toml")
-    found = ad.fewer_springs(spec, 3, max_extension=spec.max_attachment)
+    found = fewer.fewer_springs(spec, 3, max_extension=spec.max_attachment)
     assert found and all(d.spring_count == 3 and d.energy_variation < ad.VERIFY_TOLERANCE for d in found)
     assert all(rule_violations(spec.n, d.configuration) for d in found)  # the paper's criteria reject them
-    assert ad.fewer_springs(spec, 2) == []
+    assert fewer.fewer_springs(spec, 2) == []
     chain = spec.chain()
     hold = sim.hold_test(chain, list(found[0].springs), random_directions(chain.n, 2, 5), duration=1.0)
     assert hold.balanced.max_tip_drift < 1e-8 < 1e-3 < hold.control.max_tip_drift
     with pytest.raises(SpringlabError, match="count"):
-        ad.fewer_springs(spec, 0)
+        fewer.fewer_springs(spec, 0)
 
 
 def test_n_minus_one_ground_springs_balance_random_arms_up_to_n8():
@@ -214,7 +217,7 @@ def test_n_minus_one_ground_springs_balance_random_arms_up_to_n8():
     for n in range(3, 9):
         r = rng.uniform(0.1, 0.5, n - 1)
         arm = serial_chain(r=list(r), d=list(r * rng.uniform(0.2, 0.9, n - 1)), m=list(rng.uniform(0.5, 8.0, n - 1)), g=9.81)
-        design = ad.ground_spring_design(arm, max_extension=0.4, samples=500, seed=n)
+        design = fewer.ground_spring_design(arm, max_extension=0.4, samples=500, seed=n)
         assert design.spring_count == n - 1 and all(s.i == 1 for s in design.springs)
         assert design.energy_variation < ad.VERIFY_TOLERANCE
         for s in design.springs:  # anchors up the column and brackets behind a joint within 0.4 m; ends on links
@@ -228,8 +231,8 @@ def test_n_minus_one_ground_springs_balance_random_arms_up_to_n8():
 
 def test_relaxation_screen_proves_the_minimum_for_the_paper000_arm():
     spec = load_arm(ARMS / "paper000_arm.toml")
-    assert ad.relaxation_screen(spec, 2) == (44, 0)  # no two springs, any signs, any attachments
-    candidates, survivors = ad.relaxation_screen(spec, 3)
+    assert fewer.relaxation_screen(spec, 2) == (44, 0)  # no two springs, any signs, any attachments
+    candidates, survivors = fewer.relaxation_screen(spec, 3)
     assert survivors > 0 and candidates > survivors  # three do (the screen is not vacuous)
     from springlab.model.chain import serial_chain
 
@@ -237,7 +240,7 @@ def test_relaxation_screen_proves_the_minimum_for_the_paper000_arm():
     for _ in range(5):  # not the example arm's numbers: random four-link arms cannot do with two either
         r = rng.uniform(0.1, 0.6, 3)
         arm = serial_chain(r=list(r), d=list(r * rng.uniform(0.05, 0.95, 3)), m=list(rng.uniform(0.2, 10, 3)), g=9.81)
-        assert ad.relaxation_screen(arm, 2) == (44, 0)
+        assert fewer.relaxation_screen(arm, 2) == (44, 0)
 
 
 def test_ground_springs_method_and_exudyn_hold_for_an_eight_link_arm():
@@ -260,7 +263,7 @@ def test_ground_springs_method_and_exudyn_hold_for_an_eight_link_arm():
 
 def test_pseudobase_method_summary():
     spec = load_arm(ARMS / "paper000_arm.toml")
-    row = ad.pseudobase_summary(spec, aux_mass_ratio=0.0, pseudobase_mass=0.0)
+    row = compare.pseudobase_summary(spec, aux_mass_ratio=0.0, pseudobase_mass=0.0)
     chain = spec.chain()
     # without added masses, K_i l_CA l_CB = G_1i of 000 (Eq. 18): one spring per moving link
     from springlab.energy.quadratic import gravity_entries
@@ -270,21 +273,21 @@ def test_pseudobase_method_summary():
     expected = sum(G[(1, j)] / (reach * min(reach, chain.r[j - 2])) for j in range(2, chain.n + 1))
     assert row.springs == chain.n - 1 and row.stiffness_sum == pytest.approx(expected)
     assert row.energy_variation < ad.VERIFY_TOLERANCE and row.added_mass == 0.0 and row.efficiency == 1.0
-    heavy = ad.pseudobase_summary(spec)
+    heavy = compare.pseudobase_summary(spec)
     assert heavy.added_mass > 0 and heavy.stiffness_sum > row.stiffness_sum
-    rows = ad.compare_methods(spec)
+    rows = compare.compare_methods(spec)
     assert [r.method for r in rows] == ["no auxiliary links (000)", "ground springs, n - 1 (any signs)",
                                         "pseudobases (001), idealised"]
     assert rows[1].springs == rows[0].springs - 1 and rows[1].energy_variation < ad.VERIFY_TOLERANCE
-    assert "| pseudobases (001)" in str(ad.comparison_table(rows))
+    assert "| pseudobases (001)" in str(compare.comparison_table(rows))
     with pytest.raises(SpringlabError, match="post"):
-        ad.pseudobase_summary(spec, post=0.0)
+        compare.pseudobase_summary(spec, post=0.0)
 
 
 def test_two_link_arm_compares_three_methods():
     spec = arm_from_dict({"g": 9.81, "link": [{"length": 0.30, "com": 0.13, "mass": 2.0},
                                               {"length": 0.35, "com": 0.18, "mass": 1.5, "joint": [0, 0, 1]}]})
-    rows = ad.compare_methods(spec)
+    rows = compare.compare_methods(spec)
     names = [r.method for r in rows]
     assert names == ["no auxiliary links (000)", "ground springs, n - 1 (any signs)", "pseudobases (001), idealised",
                      "two springs (004)"]

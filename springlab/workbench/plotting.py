@@ -37,7 +37,8 @@ def save_figure(fig, name: str, directory) -> list[Path]:
 
 
 def energy_figure(t, gravity, springs, total, *, title: str, reference=None, reference_label=None,
-                  markers=None, marker_every: int = 6, marker_label: str = "markers: exudyn; lines: route 2"):
+                  markers=None, marker_every: int = 6, marker_label: str = "markers: exudyn; lines: route 2",
+                  xlabel: str = "time t (s)"):
     """Gravity, spring and total energy over time, the look of 000 Figs. 16-17.
 
     With a ``reference`` total (e.g. with the paper's rounded springs) a lower
@@ -47,7 +48,7 @@ def energy_figure(t, gravity, springs, total, *, title: str, reference=None, ref
     With ``markers`` ({'gravity', 'springs', 'total'} at the same times, e.g. another
     route's energies) every ``marker_every``-th value is drawn as an open circle over the lines.
 
-    :param t: time (s); the energies in J
+    :param t: time (s), or another path parameter named by ``xlabel``; the energies in J
     """
     import numpy as np
 
@@ -77,7 +78,7 @@ def energy_figure(t, gravity, springs, total, *, title: str, reference=None, ref
                  linewidth=1.0, label=reference_label)
         low.set_ylabel("total - initial (mJ)")
         low.legend(loc="best")
-    axes[-1].set_xlabel("time t (s)")
+    axes[-1].set_xlabel(xlabel)
     axes[-1].set_xlim(t[0], t[-1])
     return fig
 
