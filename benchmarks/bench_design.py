@@ -1,4 +1,4 @@
-"""Benchmark: configurations and designs for a user's arm (springlab.design.rules, arm_design).
+"""Benchmark: configurations and designs for a user's arm (springlab.design.rules, design.rank, design.ground).
 
 * every admissible configuration with necessary springs, with its sign patterns, for
   n = 3..6 (n = 5 target: under 10 s), and the count per n;

@@ -61,7 +61,7 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
                   seed: int = 0, samples: int = 2000, progress: bool = False,
                   minimise_force: bool = True) -> list[RankedDesign]:
     """Verified designs with ``count`` springs of any sign pattern (000's criteria treated
-    as the heuristics they are), ranked like :func:`design_arm`.
+    as the heuristics they are), ranked like :func:`springlab.design.rank.design_arm`.
 
     Every set of ``count`` slots that includes S(1,n) (the only spring with an entry
     (1, n), which gravity's G_1n needs; (+,+) or (-,-)) is screened by the linear
@@ -105,7 +105,7 @@ def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False) -> t
 
 def ground_spring_design(spec_or_chain, *, max_extension: float | None = None, max_stiffness: float | None = None,
                          samples: int = 2000, seed: int = 0, restarts: int = 30) -> RankedDesign:
-    """The n - 1 ground springs of :func:`ground_springs`, solved, with the free choices
+    """The n - 1 ground springs of :func:`springlab.design.rank.ground_springs`, solved, with the free choices
     spent on the smallest largest force, and verified by route 2.
 
     Why n - 1 springs suffice. Spring S(1,j) with A = k a, B = k b puts k r_t r_v on every
@@ -172,7 +172,7 @@ class SpringsPerN:
 
 
 def springs_per_n(family: dict, *, screen_up_to: int) -> list[SpringsPerN]:
-    """For each arm of ``family`` ({n: ArmSpec}): the rules' best design (:func:`design_arm`),
+    """For each arm of ``family`` ({n: ArmSpec}): the rules' best design (:func:`springlab.design.rank.design_arm`),
     the ground-spring design checked in exudyn (two poses, 2 s), and for n <= ``screen_up_to``
     the relaxation screen of every n - 2 spring set (:func:`relaxation_screen`)."""
     from springlab.energy.simulation import hold_test

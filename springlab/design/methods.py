@@ -90,7 +90,7 @@ def pseudobase_summary(spec: ArmSpec, *, aux_mass_ratio: float = 0.09, pseudobas
 
 def compare_methods(spec: ArmSpec, report: DesignReport | None = None, **pseudobase_options) -> list[MethodSummary]:
     """The best design of each method that applies to the arm: 000's (no auxiliary links, the
-    top of ``report``), the n - 1 ground springs (:func:`ground_spring_design`), 001's
+    top of ``report``), the n - 1 ground springs (:func:`springlab.design.ground.ground_spring_design`), 001's
     pseudobases (idealised), and 004's two springs where the arm has
     two moving links (n = 3), which are 000's configurations S(1,3) + S(2,3) (Lenzo's layouts
     a and b; c and d need a COM off the link)."""

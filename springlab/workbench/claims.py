@@ -145,7 +145,7 @@ class Claims:
         :param decimals: the paper's printed decimals, for the 'rounding' status (band:
             half a unit of the last digit)
         :param rounding: instead of ``decimals``, the largest difference the paper's
-            rounding explains (e.g. its rounded inputs propagated, :func:`propagated_rounding`),
+            rounding explains (e.g. its rounded inputs propagated, :func:`springlab.rounding.propagated_rounding`),
             with ``band_basis`` saying how it was propagated
         :param expect: the status this claim must have; anything else raises AssertionError
         :param cause: for a discrepancy, its cause when one was found

@@ -44,7 +44,7 @@ def gravity_terms(G) -> list[Term]:
 
 def spring_terms(i, j, k, A, B, alpha, beta, *, label=None, pattern=None) -> list[Term]:
     """The (j-i)(j-i+1)/2 pseudo-stiffnesses of S(i,j), 003 Eqs. (11a-d); k, A, B may be
-    numbers or sympy expressions. ``pattern`` (see :func:`role_pattern`) sets the roles;
+    numbers or sympy expressions. ``pattern`` (see :func:`springlab.mechanisms.planar.model.role_pattern`) sets the roles;
     None leaves them 'balancing'."""
     label = label or f"S({i},{j})"
     out = [Term(label, i, j, k * A * B, alpha - beta + 180.0, "")]  # (11a)
