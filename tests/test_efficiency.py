@@ -204,3 +204,13 @@ def test_bad_workspaces_and_arms():
     choices = {k: v for k, v in paper.FREE_CHOICES.items() if k != "A_S34"} | {"k_S34": 100.0}
     with pytest.raises(SpringlabError, match=r"S\(3,4\): attachment ratio A = .* must lie in"):  # a too soft S(3,4)
         plsyn.design(ARM, "Λ3-1", choices)
+
+
+def test_holding_torques_vanish_for_a_balanced_design_and_not_for_the_control():
+    theta = WS.sample(200, 3)
+    balanced = plgeo.holding_torques(ARM, TABLE4, theta)
+    bare = plgeo.holding_torques(ARM, [], theta)
+    assert balanced.shape == (200, 3)
+    assert np.abs(balanced).max() < 1e-6 * np.abs(bare).max()
+    spoiled = [pl.PlanarSpring(s.i, s.j, 0.9 * s.k, s.a, s.b, s.alpha, s.beta) for s in TABLE4]
+    assert np.abs(plgeo.holding_torques(ARM, spoiled, theta)).max() > 1e-2 * np.abs(bare).max()

@@ -42,3 +42,16 @@ def energies(arm: PlanarArm, springs, theta) -> dict:
         B = joints[:, sp.j - 2] + sp.b * _direction(absolute[:, sp.j - 1] + np.radians(sp.beta))
         elastic += 0.5 * sp.k * np.sum((B - A) ** 2, axis=1)
     return {"gravity": gravity, "springs": elastic, "total": gravity + elastic}
+
+
+def holding_torques(arm: PlanarArm, springs, theta, *, delta: float = 1e-6) -> np.ndarray:
+    """Joint torques (N m) that hold each pose, (N, n-1): the derivative of route 2's total
+    energy (:func:`energies`) with respect to each joint angle theta_2..theta_n (rad), by
+    central differences of step ``delta`` rad. Zero everywhere: the arm is balanced."""
+    theta = relative_angles(theta, arm.n)
+    out = np.zeros(theta.shape)
+    for j in range(theta.shape[1]):
+        step = np.zeros(theta.shape[1])
+        step[j] = delta
+        out[:, j] = (energies(arm, springs, theta + step)["total"] - energies(arm, springs, theta - step)["total"]) / (2 * delta)
+    return out
