@@ -111,16 +111,16 @@ def _band(f, base):
 def table2_rows(base: PseudobaseArm) -> list[dict]:
     """Each printed mu~_i (kg) and sigma~_i component (m) of Table 2 beside ours (001 Eqs. 24-25),
     with the band Table 2's rounded inputs allow (propagated to first order, plus half a unit):
-    dicts with quantity, where, unit, paper, ours, band, in print order."""
+    dicts with quantity, kind ('mu' or 'sigma'), unit, paper, ours, band, in print order."""
     mu, sigma = combined_subsystems(base)
     rows = []
     for k, i in enumerate(LINKS):
         band = _band(lambda x, i=i: combined_from_inputs(x, base)[0][i - 1], base)
-        rows.append({"quantity": f"mu~_{i}", "where": "Table 2, Eq. (24)", "unit": "kg", "paper": MU_TILDE[k],
+        rows.append({"quantity": f"mu~_{i}", "kind": "mu", "unit": "kg", "paper": MU_TILDE[k],
                      "ours": mu[i - 1], "band": band})
         for axis, name in enumerate("xyz"):
             band = _band(lambda x, i=i, axis=axis: combined_from_inputs(x, base)[1][i - 1, axis], base)
-            rows.append({"quantity": f"sigma~_{i},{name}", "where": "Table 2, Eq. (25)", "unit": "m",
+            rows.append({"quantity": f"sigma~_{i},{name}", "kind": "sigma", "unit": "m",
                          "paper": SIGMA_TILDE[k][axis], "ours": sigma[i - 1, axis], "band": band})
     return rows
 
@@ -128,7 +128,7 @@ def table2_rows(base: PseudobaseArm) -> list[dict]:
 def table3_rows(base: PseudobaseArm, springs) -> list[dict]:
     """Table 3 beside ours, per spring: l_CB (001 Eq. 16, with its band), the largest-differing
     component of a_i at theta_I (001 Eq. 13) and of b_i (001 Eq. 14, with its band); each a
-    dict with quantity, where, paper, ours (m), band (None: half a unit only), note, and the
+    dict with quantity, kind ('l_CB', 'a' or 'b'), paper, ours (m), band (None: half a unit only), note, and the
     spring's 'printed' K l_CA l_CB and 'need' mu~ g |sigma~| (N m)."""
     mu, sigma = combined_subsystems(base)
     a_init = attachment_a(base, springs, INITIAL_POSE)[0]
@@ -143,11 +143,11 @@ def table3_rows(base: PseudobaseArm, springs) -> list[dict]:
             return m[i - 1] * base.g * np.linalg.norm(s[i - 1]) / (K[k] * L_CA[k])
 
         common = {"spring": i, "printed": printed, "need": need, "l_CB": sp_.l_CB, "b": sp_.b}
-        rows.append({"quantity": f"l_CB,{i}", "where": "Table 3, Eq. (16)", "paper": L_CB[k], "ours": sp_.l_CB,
+        rows.append({"quantity": f"l_CB,{i}", "kind": "l_CB", "paper": L_CB[k], "ours": sp_.l_CB,
                      "band": _band(l_cb, base), "note": f"K l_CA l_CB printed {printed:.2f} N m vs mu~ g |sigma~| = {need:.2f} N m",
                      **common})
         ja = int(np.argmax(np.abs(a_init[k] - np.asarray(A[k]))))
-        rows.append({"quantity": f"a_{i}, {'xyz'[ja]} (largest difference)", "where": "Table 3, Eq. (13), at theta_I",
+        rows.append({"quantity": f"a_{i}, {'xyz'[ja]} (largest difference)", "kind": "a",
                      "paper": A[k][ja], "ours": a_init[k, ja], "band": None, "note": "", **common})
         jb = int(np.argmax(np.abs(sp_.b - np.asarray(B[k]))))
 
@@ -155,6 +155,6 @@ def table3_rows(base: PseudobaseArm, springs) -> list[dict]:
             m, s = combined_from_inputs(x, base)
             return x[45 + 3 * (i - 2) + jb] + m[i - 1] * base.g * s[i - 1, jb] / (K[k] * L_CA[k])
 
-        rows.append({"quantity": f"b_{i}, {'xyz'[jb]} (largest difference)", "where": "Table 3, Eq. (14)",
+        rows.append({"quantity": f"b_{i}, {'xyz'[jb]} (largest difference)", "kind": "b",
                      "paper": B[k][jb], "ours": sp_.b[jb], "band": _band(b_comp, base), "note": None, **common})
     return rows
