@@ -17,6 +17,7 @@ Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance 
 spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
 105497. doi:10.1016/j.mechmachtheory.2023.105497
 """
+
 from __future__ import annotations
 
 import time
