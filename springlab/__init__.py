@@ -28,9 +28,8 @@ The packages, from the bottom up::
 Units are SI throughout: metres, kilograms, newtons, joules, radians.
 """
 
-from springlab.design.rank import design_arm
-from springlab.design.solve import SpringSpec, solve_design
-from springlab.energy import geometry, quadratic, simulation
+import importlib
+
 from springlab.errors import (
     AttachmentError,
     GeometryError,
@@ -38,9 +37,33 @@ from springlab.errors import (
     SpringlabError,
     UnbalanceableError,
 )
-from springlab.model.armfile import load_arm
 from springlab.model.chain import UP, Chain, random_directions, serial_chain
 from springlab.model.springs import Spring
+
+# Loaded on first use (PEP 562), so that importing one route, e.g. springlab.energy.geometry,
+# does not load another through this package's __init__, and the command line starts fast.
+_LAZY = {
+    "quadratic": ("springlab.energy.quadratic", None),
+    "geometry": ("springlab.energy.geometry", None),
+    "simulation": ("springlab.energy.simulation", None),
+    "SpringSpec": ("springlab.design.solve", "SpringSpec"),
+    "solve_design": ("springlab.design.solve", "solve_design"),
+    "design_arm": ("springlab.design.rank", "design_arm"),
+    "load_arm": ("springlab.model.armfile", "load_arm"),
+}
+
+
+def __getattr__(name):
+    if name not in _LAZY:
+        raise AttributeError(f"module 'springlab' has no attribute {name!r}")
+    module, attribute = _LAZY[name]
+    value = importlib.import_module(module)
+    return value if attribute is None else getattr(value, attribute)
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
+
 
 __all__ = [
     "quadratic",

@@ -88,3 +88,28 @@ def test_the_package_exports_the_entry_points():
     for name in ("quadratic", "geometry", "simulation", "solve_design", "design_arm", "load_arm",
                  "serial_chain", "Spring", "SpringlabError"):
         assert hasattr(springlab, name), name
+
+
+ROUTE_1 = ("springlab.energy.quadratic", "springlab.mechanisms.pseudobase.subsystems", "springlab.mechanisms.dyad.algebra",
+           "springlab.mechanisms.planar.quadratic")
+ROUTES_2_AND_3 = ("springlab.energy.geometry", "springlab.energy.simulation", "springlab.mechanisms.pseudobase.geometry",
+                  "springlab.mechanisms.pseudobase.simulation", "springlab.mechanisms.dyad.geometry",
+                  "springlab.mechanisms.dyad.simulation", "springlab.mechanisms.planar.geometry")
+
+
+def loaded_after_import(module: str) -> set:
+    """The springlab modules a fresh interpreter has loaded after importing ``module``."""
+    code = f"import sys, {module}; print(' '.join(m for m in sys.modules if m.startswith('springlab')))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    return set(out.split())
+
+
+@pytest.mark.parametrize("module", ROUTES_2_AND_3)
+def test_a_route_2_or_3_module_loads_no_route_1_at_run_time(module):
+    """The contract checks the import graph; this checks what actually runs, package
+    __init__ files included (springlab's own exports are loaded lazily for this reason)."""
+    assert not loaded_after_import(module) & set(ROUTE_1)
+
+
+def test_the_run_time_check_can_fail():
+    assert "springlab.energy.quadratic" in loaded_after_import("springlab.design.solve")
