@@ -15,6 +15,8 @@ and mechanism layers render tables too, and they must not import the layer above
 
 from __future__ import annotations
 
+from springlab.errors import SpringlabError
+
 __all__ = ["Table", "markdown_table"]
 
 
@@ -30,8 +32,6 @@ def markdown_table(headers, rows) -> str:
     for row in rows:
         cells = [row.get(h) for h in headers] if isinstance(row, dict) else list(row)
         if len(cells) != len(headers):
-            from springlab.errors import SpringlabError
-
             raise SpringlabError(f"a table row has {len(cells)} cells for {len(headers)} headers: {cells!r}")
         lines.append("| " + " | ".join(_cell(c) for c in cells) + " |")
     return "\n".join(lines)

@@ -29,9 +29,11 @@ from __future__ import annotations
 
 import functools
 import itertools
+import time
 from dataclasses import dataclass
 
 from springlab.errors import SpringlabError
+from springlab.tables import Table
 
 PATTERNS = ("(+,+)", "(-,-)", "(+,-)", "(-,+)")
 _SIGN = {"+": 1, "-": -1}
@@ -378,9 +380,7 @@ class ConfigurationCounts:
     ratio: float
     estimate: dict
 
-    def table(self, ns=range(3, 9)):
-        from springlab.tables import Table
-
+    def table(self, ns=range(3, 9)) -> Table:
         return Table(["n", "configurations", "enumeration (s)", "fewest springs", "best first, first ten (s)"],
                      [(n, self.counts.get(n, f"~{self.estimate[n]:.0e} (estimate)" if n in self.estimate else "-"),
                        f"{self.seconds[n]:.2f}" if n in self.seconds else "-", self.first[n][1] if n in self.first else "-",
@@ -390,8 +390,6 @@ class ConfigurationCounts:
 def configuration_counts(enumerate_ns, first_ns, *, first: int = 10) -> ConfigurationCounts:
     """Count the configurations for each n of ``enumerate_ns`` (timed) and time the first
     ``first`` of the best-first search for each n of ``first_ns``."""
-    import time
-
     counts, seconds, best = {}, {}, {}
     for n in enumerate_ns:
         t0 = time.perf_counter()

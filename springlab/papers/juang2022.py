@@ -12,8 +12,10 @@ joints only. Mechanical Sciences (2022).
 
 from __future__ import annotations
 
+from springlab.errors import SpringlabError
 from springlab.mechanisms.planar.model import PlanarArm, PlanarSpring, Workspace
 from springlab.mechanisms.planar.synthesis import solve_configuration
+from springlab.model.armfile import arm_from_dict
 
 # Table 3: link 1 is the ground (reference length r_1 = 1 m)
 R = (1.000, 0.360, 0.445, 0.300)  # m
@@ -53,8 +55,6 @@ def table4_entries(designed):
     order = SPRINGS_PRINTED[1:2] + SPRINGS_PRINTED[:1] + SPRINGS_PRINTED[2:]
     for mine, printed in zip(designed, order, strict=True):
         if (mine.i, mine.j) != (printed.i, printed.j):
-            from springlab.errors import SpringlabError
-
             raise SpringlabError(f"designed {mine.label} where Table 4 prints {printed.label}: pass Table 1's order")
         for name, dec, unit in (("k", 0, "N/m"), ("a", 3, "m"), ("b", 3, "m")):
             yield mine, printed, name, dec, unit
@@ -98,8 +98,6 @@ def table2_comparisons():
 def arm_spec():
     """The Section 5 arm as springlab's arm-file description (:class:`~springlab.model.armfile.ArmSpec`):
     revolute joints about z, links 2..4 of Table 3."""
-    from springlab.model.armfile import arm_from_dict
-
     return arm_from_dict({"name": "paper 003's arm (Section 5)", "g": ARM.g,
                           "link": [{"length": float(r), "com": float(s), "mass": float(m), "joint": [0, 0, 1]}
                                    for r, s, m in zip(ARM.r[1:], ARM.s[1:], ARM.m[1:], strict=True)]}, source="003")

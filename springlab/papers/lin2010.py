@@ -103,7 +103,7 @@ def combined_from_inputs(x, base: PseudobaseArm | None = None):
     return combined_subsystems(a)
 
 
-def _band(f, base):
+def _band(f):
     x = table2_inputs()
     return propagated_rounding(f, x, np.full(x.size, half_unit(INPUT_DECIMALS))) + half_unit(INPUT_DECIMALS)
 
@@ -115,11 +115,11 @@ def table2_rows(base: PseudobaseArm) -> list[dict]:
     mu, sigma = combined_subsystems(base)
     rows = []
     for k, i in enumerate(LINKS):
-        band = _band(lambda x, i=i: combined_from_inputs(x, base)[0][i - 1], base)
+        band = _band(lambda x, i=i: combined_from_inputs(x, base)[0][i - 1])
         rows.append({"quantity": f"mu~_{i}", "kind": "mu", "unit": "kg", "paper": MU_TILDE[k],
                      "ours": mu[i - 1], "band": band})
         for axis, name in enumerate("xyz"):
-            band = _band(lambda x, i=i, axis=axis: combined_from_inputs(x, base)[1][i - 1, axis], base)
+            band = _band(lambda x, i=i, axis=axis: combined_from_inputs(x, base)[1][i - 1, axis])
             rows.append({"quantity": f"sigma~_{i},{name}", "kind": "sigma", "unit": "m",
                          "paper": SIGMA_TILDE[k][axis], "ours": sigma[i - 1, axis], "band": band})
     return rows
@@ -139,12 +139,12 @@ def table3_rows(base: PseudobaseArm, springs) -> list[dict]:
         printed = K[k] * L_CA[k] * L_CB[k]
 
         def l_cb(x, i=i, k=k):
-            m, s = combined_from_inputs(x, base)
+            m, s = combined_from_inputs(x)
             return m[i - 1] * base.g * np.linalg.norm(s[i - 1]) / (K[k] * L_CA[k])
 
         common = {"spring": i, "printed": printed, "need": need, "l_CB": sp_.l_CB, "b": sp_.b}
         rows.append({"quantity": f"l_CB,{i}", "kind": "l_CB", "paper": L_CB[k], "ours": sp_.l_CB,
-                     "band": _band(l_cb, base), "note": f"K l_CA l_CB printed {printed:.2f} N m vs mu~ g |sigma~| = {need:.2f} N m",
+                     "band": _band(l_cb), "note": f"K l_CA l_CB printed {printed:.2f} N m vs mu~ g |sigma~| = {need:.2f} N m",
                      **common})
         ja = int(np.argmax(np.abs(a_init[k] - np.asarray(A[k]))))
         rows.append({"quantity": f"a_{i}, {'xyz'[ja]} (largest difference)", "kind": "a",
@@ -152,9 +152,9 @@ def table3_rows(base: PseudobaseArm, springs) -> list[dict]:
         jb = int(np.argmax(np.abs(sp_.b - np.asarray(B[k]))))
 
         def b_comp(x, i=i, jb=jb, k=k):
-            m, s = combined_from_inputs(x, base)
+            m, s = combined_from_inputs(x)
             return x[45 + 3 * (i - 2) + jb] + m[i - 1] * base.g * s[i - 1, jb] / (K[k] * L_CA[k])
 
         rows.append({"quantity": f"b_{i}, {'xyz'[jb]} (largest difference)", "kind": "b",
-                     "paper": B[k][jb], "ours": sp_.b[jb], "band": _band(b_comp, base), "note": None, **common})
+                     "paper": B[k][jb], "ours": sp_.b[jb], "band": _band(b_comp), "note": None, **common})
     return rows

@@ -26,9 +26,9 @@ def energies(comp: Compensator, dyad: Dyad, phi) -> dict:
     """Route 2 energies (J) at link angles phi (rad): {'gravity': G s (1 + cos phi) (002 Eq. 1),
     'springs': k (y - l0)^2 / 2 with y from the linkage (002 Eqs. 2, 24), 'total':
     :func:`potential_energy`}, each shaped like phi."""
-    y = slider_height(dyad, phi)
-    return {"gravity": comp.gravity_energy(phi), "springs": 0.5 * comp.k * (y - comp.l0) ** 2,
-            "total": potential_energy(comp, dyad, phi)}
+    gravity = comp.gravity_energy(phi)
+    springs = 0.5 * comp.k * (slider_height(dyad, phi) - comp.l0) ** 2
+    return {"gravity": gravity, "springs": springs, "total": gravity + springs}  # as potential_energy adds them
 
 
 def holding_torques(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:

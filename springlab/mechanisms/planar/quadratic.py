@@ -85,14 +85,20 @@ def term_values(term_list, theta) -> np.ndarray:
 
 
 # --- energies: route 1 (pseudo-stiffness) and route 2 (geometry) ------------------------------
+def _terms_at(arm: PlanarArm, springs, theta):
+    """Every term's value (N/m) at each pose, its r_u r_v (m^2), and the springs' constant
+    sum_S k (a^2 + b^2 + sum r_t^2) / 2 (J): the pieces of 003 Eqs. (5, 10)."""
+    theta = relative_angles(theta, arm.n)
+    tl = terms(arm, springs, criteria=False)
+    scale = np.array([arm.r[t.u - 1] * arm.r[t.v - 1] for t in tl])
+    const = sum(0.5 * sp.k * (sp.a**2 + sp.b**2 + np.sum(arm.r[sp.i:sp.j - 1] ** 2)) for sp in springs)
+    return tl, term_values(tl, theta), scale, const
+
+
 def quadratic_energy(arm: PlanarArm, springs, theta) -> np.ndarray:
     """Route 1: U = sum r_u r_v (pseudo-stiffness) + sum_S k (a^2 + b^2 + sum r_t^2) / 2
     (003 Eqs. 5, 10), in J, (N,). Heights from the base joint."""
-    theta = relative_angles(theta, arm.n)
-    tl = terms(arm, springs, criteria=False)
-    values = term_values(tl, theta)
-    scale = np.array([arm.r[t.u - 1] * arm.r[t.v - 1] for t in tl])
-    const = sum(0.5 * sp.k * (sp.a**2 + sp.b**2 + np.sum(arm.r[sp.i:sp.j - 1] ** 2)) for sp in springs)
+    _, values, scale, const = _terms_at(arm, springs, theta)
     return values @ scale + const
 
 
@@ -100,15 +106,10 @@ def energies(arm: PlanarArm, springs, theta) -> dict:
     """Route 1 energies (J): {'gravity', 'springs', 'total'}, each (N,): gravity's terms
     (003 Eqs. 5-7), the springs' pseudo-stiffness terms and constants (003 Eqs. 10-12),
     and their sum, :func:`quadratic_energy`. Heights from the base joint."""
-    theta = relative_angles(theta, arm.n)
-    tl = terms(arm, springs, criteria=False)
-    values = term_values(tl, theta)
-    scale = np.array([arm.r[t.u - 1] * arm.r[t.v - 1] for t in tl])
+    tl, values, scale, const = _terms_at(arm, springs, theta)
     grav = np.array([t.source == "G" for t in tl])
-    const = sum(0.5 * sp.k * (sp.a**2 + sp.b**2 + np.sum(arm.r[sp.i:sp.j - 1] ** 2)) for sp in springs)
-    gravity = values[:, grav] @ scale[grav]
-    return {"gravity": gravity, "springs": values[:, ~grav] @ scale[~grav] + const,
-            "total": quadratic_energy(arm, springs, theta)}
+    return {"gravity": values[:, grav] @ scale[grav], "springs": values[:, ~grav] @ scale[~grav] + const,
+            "total": values @ scale + const}
 
 
 def spatial_coefficients(arm: PlanarArm, springs) -> tuple[np.ndarray, np.ndarray]:
