@@ -33,6 +33,7 @@ import importlib
 from springlab.errors import (
     AttachmentError,
     GeometryError,
+    SearchExhaustedError,
     SolverError,
     SpringlabError,
     UnbalanceableError,
@@ -83,5 +84,6 @@ __all__ = [
     "GeometryError",
     "AttachmentError",
     "SolverError",
+    "SearchExhaustedError",
 ]
 __version__ = "0.1.0"

@@ -8,30 +8,85 @@ with a message that names the parameter, its value and its unit.
 Traceback (most recent call last):
 ...
 springlab.errors.SpringlabError: k must be finite and > 0, got 0.0
+>>> count("restarts", 2.5)
+Traceback (most recent call last):
+...
+springlab.errors.SpringlabError: restarts must be an integer >= 0, got 2.5
 """
 
 from __future__ import annotations
+
+import numbers
 
 import numpy as np
 
 from springlab.errors import SpringlabError
 
-__all__ = ["positive", "positive_vector", "vector_rows", "masses", "duration", "sample_count"]
+__all__ = ["number", "finite", "positive", "optional_positive", "instance", "at_most", "positive_vector", "vector_rows", "masses", "duration",
+           "sample_count", "count", "choice", "real_array", "angles", "memory", "MEMORY_LIMIT"]
+
+MEMORY_LIMIT = 2 * 2**30
+"""Bytes: the largest array a single request may allocate. Larger requests are refused up
+front with their size, rather than failing with a MemoryError after allocating."""
 
 
-def positive(name: str, value, *, allow_zero: bool = False) -> float:
+def number(name: str, value) -> float:
+    """``value`` as a float: a real number (not a bool, a string or None), possibly infinite or NaN."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        if isinstance(value, np.ndarray) and value.ndim == 0 and np.isrealobj(value) and value.dtype != bool:
+            return float(value)
+        raise SpringlabError(f"{name} must be a real number, got {value!r} ({type(value).__name__})")
+    return float(value)
+
+
+def finite(name: str, value, unit: str = "") -> float:
+    """``value`` as a finite float."""
+    out = number(name, value)
+    if not np.isfinite(out):
+        raise SpringlabError(f"{name} must be finite{_in(unit)}, got {value!r}")
+    return out
+
+
+def positive(name: str, value, *, allow_zero: bool = False, unit: str = "") -> float:
     """``value`` as a float, finite and > 0 (>= 0 with ``allow_zero``)."""
-    value = float(value)
+    value = number(name, value)
     if not np.isfinite(value) or value < 0 or (value == 0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
-        raise SpringlabError(f"{name} must be finite and {bound}, got {value}")
+        raise SpringlabError(f"{name} must be finite and {bound}{_in(unit)}, got {value}")
     return value
+
+
+def optional_positive(name: str, value, unit: str = "", *, allow_inf: bool = False) -> float | None:
+    """None, or a float > 0, finite unless ``allow_inf`` (a limit that may be left unset)."""
+    if value is None or (allow_inf and number(name, value) == np.inf):
+        return None if value is None else np.inf
+    return positive(name, value, unit=unit)
+
+
+def instance(name: str, value, kind, what: str = ""):
+    """``value`` if it is a ``kind`` (a class or a tuple of classes), else an error naming what to pass."""
+    if not isinstance(value, kind):
+        want = what or (kind.__name__ if isinstance(kind, type) else " or ".join(k.__name__ for k in kind))
+        raise SpringlabError(f"{name} must be a {want}, got {_short(value)} ({type(value).__name__})")
+    return value
+
+
+def at_most(name: str, value, limit: float, unit: str = "", *, why: str = "") -> float:
+    """A positive finite ``value`` no larger than ``limit``; ``why`` is added to the message."""
+    value = positive(name, value, unit=unit)
+    if value > limit:
+        raise SpringlabError(f"{name} = {value:g}{_in(unit)} is above {limit:g}{why}")
+    return value
+
+
+def _in(unit: str) -> str:
+    return f" {unit}" if unit else ""
 
 
 def positive_vector(name: str, values, *, allow_zero: bool = False, first: int = 2) -> tuple[float, ...]:
     """A non-empty 1-D sequence of finite values > 0 (>= 0 with ``allow_zero``); element
     ``idx`` is named ``{name}_{idx + first}`` (links are numbered from 2 on a chain)."""
-    arr = np.asarray(values, dtype=float)
+    arr = real_array(name, values, finite_only=False)
     if arr.ndim != 1 or arr.size == 0:
         raise SpringlabError(f"{name} must be a non-empty 1-D sequence, got shape {arr.shape}")
     for idx, v in enumerate(arr):
@@ -44,9 +99,35 @@ def positive_vector(name: str, values, *, allow_zero: bool = False, first: int =
     return tuple(float(v) for v in arr)
 
 
+def real_array(name: str, value, *, shape=None, finite_only: bool = True) -> np.ndarray:
+    """``value`` as a float array of real numbers (no strings, None or complex numbers), of
+    ``shape`` if given (None entries in ``shape`` match any length), finite unless
+    ``finite_only`` is False."""
+    if isinstance(value, str | bytes) or value is None:
+        raise SpringlabError(f"{name} must be an array of numbers, got {value!r}")
+    try:
+        out = np.asarray(value)
+    except ValueError as err:  # ragged nesting
+        raise SpringlabError(f"{name} must be a rectangular array of numbers: {err}") from None
+    if out.dtype == object or out.dtype.kind not in "biuf":
+        raise SpringlabError(f"{name} must be an array of real numbers, got dtype {out.dtype} ({_short(value)})")
+    out = out.astype(float)
+    if shape is not None and (out.ndim != len(shape) or any(s is not None and s != o for s, o in zip(shape, out.shape, strict=True))):
+        want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ")"
+        raise SpringlabError(f"{name} must have shape {want}, got {out.shape}")
+    if finite_only and not np.all(np.isfinite(out)):
+        raise SpringlabError(f"{name} contains NaN or infinity: every entry must be finite")
+    return out
+
+
+def _short(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
 def vector_rows(name: str, value, n: int) -> np.ndarray:
     """An (n, 3) array of finite lengths (m)."""
-    out = np.asarray(value, dtype=float)
+    out = real_array(name, value, finite_only=False)
     if out.shape != (n, 3) or not np.all(np.isfinite(out)):
         raise SpringlabError(f"{name} must be finite with shape ({n}, 3) (m), got shape {np.shape(value)}")
     return out
@@ -54,7 +135,7 @@ def vector_rows(name: str, value, n: int) -> np.ndarray:
 
 def masses(name: str, value, n: int) -> np.ndarray:
     """n finite masses >= 0 (kg); element i is link i + 1."""
-    out = np.asarray(value, dtype=float)
+    out = real_array(name, value, finite_only=False)
     if out.shape != (n,) or not np.all(np.isfinite(out)):
         raise SpringlabError(f"{name} must be {n} finite masses (kg), got {value!r}")
     bad = np.flatnonzero(out < 0)
@@ -63,15 +144,57 @@ def masses(name: str, value, n: int) -> np.ndarray:
     return out
 
 
-def duration(value) -> float:
+def duration(value, name: str = "duration") -> float:
     """A simulated or prescribed duration, finite and > 0 (s)."""
+    value = number(name, value)
     if not (np.isfinite(value) and value > 0):
-        raise SpringlabError(f"duration must be > 0 s, got {value}")
+        raise SpringlabError(f"{name} must be > 0 s, got {value}")
     return float(value)
+
+
+def count(name: str, value, *, least: int = 0, why: str = "") -> int:
+    """An integer (not a bool, a float with a fraction or a string) >= ``least``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not np.isfinite(value) \
+            or int(value) != value or value < least:
+        raise SpringlabError(f"{name} must be an integer >= {least}{why}, got {value!r}")
+    return int(value)
 
 
 def sample_count(value, *, least: int = 2, name: str = "samples", why: str = "") -> int:
     """An integer count >= ``least``; ``why`` is added to the message."""
-    if int(value) != value or value < least:
-        raise SpringlabError(f"{name} must be an integer >= {least}{why}, got {value}")
-    return int(value)
+    return count(name, value, least=least, why=why)
+
+
+def choice(name: str, value, options) -> str:
+    """One of ``options``."""
+    options = tuple(options)
+    if not isinstance(value, str) or value not in options:
+        raise SpringlabError(f"{name} must be one of {options}, got {value!r}")
+    return value
+
+
+def angles(name: str, value, *, unit: str = "rad") -> np.ndarray:
+    """A non-empty array of finite angles (in ``unit``), at least 1-D."""
+    out = np.atleast_1d(real_array(name, value, finite_only=False))
+    if out.size == 0:
+        raise SpringlabError(f"{name} is empty: give at least one angle ({unit})")
+    if not np.all(np.isfinite(out)):
+        raise SpringlabError(f"{name} contains NaN or infinity: every angle must be finite ({unit})")
+    return out
+
+
+def memory(what: str, elements: float, *, bytes_per: int = 8, limit: int | None = None, hint: str = "") -> None:
+    """Refuse up front a request that would allocate more than ``limit`` bytes
+    (default :data:`MEMORY_LIMIT`): ``elements`` float values of ``bytes_per`` bytes."""
+    limit = MEMORY_LIMIT if limit is None else limit
+    need = float(elements) * bytes_per
+    if need > limit:
+        raise SpringlabError(f"{what} would need about {_bytes(need)} of memory, over the limit of {_bytes(limit)}"
+                             f"{'; ' + hint if hint else ''}")
+
+
+def _bytes(n: float) -> str:
+    for unit, size in (("TiB", 2**40), ("GiB", 2**30), ("MiB", 2**20), ("kiB", 2**10)):
+        if n >= size:
+            return f"{n / size:.3g} {unit}"
+    return f"{n:.0f} B"

@@ -5,6 +5,7 @@
 
     SpringlabError (ValueError)          bad input: names the parameter, its value, what to do
     |-- UnbalanceableError               a configuration or design cannot balance the arm (a proof)
+    |-- SearchExhaustedError             a search ran out of starts, configurations or time: not a proof
     |-- GeometryError                    attachment points, reach, a linkage that cannot close
     |   `-- AttachmentError (also an UnbalanceableError)  a spring end off its link
     `-- SolverError (also RuntimeError)  a numerical solver or a simulation model failed
@@ -17,6 +18,12 @@ class SpringlabError(ValueError):
 
 class UnbalanceableError(SpringlabError):
     """A spring configuration or design cannot balance the arm; the message says why."""
+
+
+class SearchExhaustedError(SpringlabError):
+    """A search (random starts, configurations, a time limit) ended without a design. This
+    is not a proof that none exists: the message names the limits it ran under and what to
+    raise to search further."""
 
 
 class GeometryError(SpringlabError):

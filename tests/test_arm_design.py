@@ -128,7 +128,7 @@ def test_a_design_that_fails_verification_is_never_returned(monkeypatch):
 def test_stiffness_limit_rejects():
     data = {"link": BASE["link"] + [{"length": 0.2, "com": 0.1, "mass": 2.8}], "g": 9.8, "limits": {"max_stiffness": "10 N/m"}}
     report = ad.design_arm(arm_from_dict(data), max_configurations=2)
-    assert report.designs == [] and all("N/m > 10 N/m" in why for _, why in report.rejected)
+    assert report.designs == [] and all("> max_stiffness = 10 N/m" in why for _, why in report.rejected)
 
 
 def test_cli_prints_and_writes_json(tmp_path, capsys):
@@ -161,7 +161,7 @@ def test_best_first_search_finds_the_same_configurations_in_order():
         assert keys == sorted(keys) and all(s == spans(c) and k == len(c) for k, s, c in found)
     first8 = next(best_first_configurations(8))
     assert first8[0] == 10  # springs
-    with pytest.raises(SpringlabError, match="n must be"):
+    with pytest.raises(SpringlabError, match="n .links with the ground. must be"):
         next(best_first_configurations(1))
 
 
@@ -225,8 +225,9 @@ def test_n_minus_one_ground_springs_balance_random_arms_up_to_n8():
         if n >= 4:
             assert rule_violations(n, design.configuration)  # Eq. (41) forbids the (+,-) ground springs
             assert design.spring_count < next(best_first_configurations(n))[0]
-    with pytest.raises(SpringlabError, match="n"):
-        ad.ground_springs(2)
+    assert ad.ground_springs(2) == (SpringSlot(1, 2, "(+,+)"),)  # one link: one spring from the base column
+    with pytest.raises(SpringlabError, match="n .links with the ground. must be an integer >= 2"):
+        ad.ground_springs(1)
 
 
 def test_relaxation_screen_proves_the_minimum_for_the_paper000_arm():

@@ -17,7 +17,7 @@ from springlab import random_directions, serial_chain
 from springlab.design.rules import iter_configurations
 from springlab.design.solve import find_design, relaxation_margin
 from springlab.energy import geometry, quadratic
-from springlab.errors import UnbalanceableError
+from springlab.errors import SearchExhaustedError
 
 
 @st.composite
@@ -40,7 +40,7 @@ def balanced_springs(chain, skip):
         try:
             # signs only (no bounds on the attachments): the property is the energy's balance
             springs = find_design(chain, cfg, seed=found, restarts=10, within_links=False)
-        except UnbalanceableError:
+        except SearchExhaustedError:
             continue
         if found == skip:
             return springs

@@ -34,11 +34,17 @@ import numpy as np
 
 from springlab.energy.quadratic import gravity_entries, spring_entries
 from springlab.model.chain import Chain
+from springlab.model.springs import check_springs
 
 
 def spatial_system_efficiency(chain: Chain, springs, X) -> np.ndarray:
-    """e_sys (003 Eq. 25, generalised; module docstring) at each pose X (N, n, 3), (N,)."""
+    """e_sys (003 Eq. 25, generalised; module docstring) at each pose X (N, n, 3), (N,).
+
+    Where no spring term is balanced (Y = 0) e_sys is 1, its limit as Y -> 0, also at a
+    pose where X = 0 too (every link horizontal and no spring working): there 003 Eq. (25)
+    reads 0/0, and no spring energy is wasted."""
     X = chain.check_directions(X)
+    springs = check_springs(chain, springs)
     r = {1: 1.0} | {t: chain.r[t - 2] for t in range(2, chain.n + 1)}
     dots = np.einsum("nuk,nvk->nuv", X, X)
     Xs = np.zeros(len(X))
@@ -49,4 +55,5 @@ def spatial_system_efficiency(chain: Chain, springs, X) -> np.ndarray:
         for (u, v), value in spring_entries(s.i, s.j, s.a, s.b, s.k, chain.r).items():
             if u < v and value > 0:
                 Ys += np.abs(value * dots[:, u - 1, v - 1]) / (r[u] * r[v])
-    return (Xs + Ys) / (Xs + 2 * Ys)
+    den = Xs + 2 * Ys
+    return np.divide(Xs + Ys, den, out=np.ones_like(den), where=Ys > 0)  # 003 Eq. (25)

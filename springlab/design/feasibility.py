@@ -44,6 +44,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab import _checks
 from springlab.design.rules import SpringSlot, rule_violations
 from springlab.errors import SolverError, SpringlabError
 from springlab.model.chain import Chain
@@ -70,8 +71,7 @@ def alphabet(n: int) -> list[SpringSlot]:
     or more joints appears twice (its k enters entries of its own, so a second copy
     of one pattern is not the same as a stiffer first one).
     """
-    if int(n) != n or n < 2:
-        raise SpringlabError(f"n must be an integer >= 2, got {n}")
+    n = _checks.count("n", n, least=2)
     out = [SpringSlot(1, 2, "(+,+)"), SpringSlot(1, 2, "(-,-)")]
     for j in range(3, n + 1):
         out += [SpringSlot(1, j)] * (2 if j - 1 >= 3 else 1)

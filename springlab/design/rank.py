@@ -25,16 +25,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from springlab import _checks
 from springlab.design.efficiency import spatial_system_efficiency
 from springlab.design.rules import SpringSlot, as_slots, best_first_configurations
 from springlab.design.solve import (
+    balanced_core,
     find_design,
     largest_force_bound,
     minimise_largest_force,
     relaxation_margin,
 )
 from springlab.energy.geometry import attachment_points, energies
-from springlab.errors import SpringlabError, UnbalanceableError
+from springlab.errors import SearchExhaustedError, SpringlabError, UnbalanceableError
 from springlab.model.armfile import ArmSpec, load_arm
 from springlab.model.chain import Chain
 from springlab.model.springs import Spring
@@ -44,11 +46,17 @@ METHODS = ("no auxiliary links", "ground springs")
 
 
 VERIFY_TOLERANCE = 1e-10
+PROOF = "proof"
+"""Prefix of a rejection that is proved (the linear relaxation): any other reason is a search
+that ran out of starts or limits, not a proof."""
 
 
 def random_poses(chain: Chain, samples: int, seed) -> np.ndarray:
     """``samples`` seeded link-direction sets (N, n, 3): uniform directions for a spherical
     chain, uniform joint angles for one with revolute joints."""
+    samples = _checks.count("samples", samples, least=1)
+    _checks.memory(f"{samples} workspace samples of a {chain.n}-link arm", 6.0 * samples * chain.n * 3,
+                   hint="use fewer samples")
     rng = np.random.default_rng(seed)
     if chain.all_spherical:
         from springlab.model.chain import random_directions
@@ -99,6 +107,21 @@ class DesignReport:
     rejected: list = field(default_factory=list)
     configurations_tried: int = 0
     seconds: float = 0.0
+    stopped: str = ""  # why the search ended
+    notes: list = field(default_factory=list)  # what the designer assumed of this arm
+
+    def reasons(self, top: int = 5) -> list[tuple[int, str]]:
+        """The rejections' reasons, grouped (numbers and configurations stripped), most frequent
+        first: (count, reason)."""
+        import re
+        from collections import Counter
+
+        kinds = Counter(re.sub(r"S\(\d+,\d+\)(\([+-],[+-]\))?|[-+]?\d[\d.e+-]*", "#", why)
+                        for _, why in self.rejected)
+        examples = {}
+        for _, why in self.rejected:
+            examples.setdefault(re.sub(r"S\(\d+,\d+\)(\([+-],[+-]\))?|[-+]?\d[\d.e+-]*", "#", why), why)
+        return [(count, examples[kind]) for kind, count in kinds.most_common(top)]
 
     def table(self) -> Table:
         """The ranked designs as a table (shown as Markdown in a notebook)."""
@@ -111,13 +134,29 @@ class DesignReport:
 
 def verify(chain: Chain, springs, X) -> float:
     """Route 2: (max - min) of the total energy over the poses X, over the gravity energy's range.
-    Raises UnbalanceableError above :data:`VERIFY_TOLERANCE`."""
+    Raises UnbalanceableError above :data:`VERIFY_TOLERANCE`.
+
+    The poses must move the gravity energy (two or more distinct poses); for an arm whose
+    gravity energy cannot vary (its centre of mass on the base joint), the total energy's
+    range is compared with m g times the arm's reach instead."""
     E = energies(chain, springs, X)
-    rel = float(np.ptp(E["total"]) / np.ptp(E["gravity"]))
+    spread, gravity = float(np.ptp(E["total"])), float(np.ptp(E["gravity"]))
+    scale = chain.g * sum(chain.m) * sum(chain.r)
+    if gravity <= 1e-12 * scale:
+        if any(G > 0 for G in _gravity_moments(chain)):
+            raise SpringlabError(f"the {len(E['total'])} workspace pose(s) do not move the arm's gravity energy, "
+                                 "so they cannot judge balance: use two or more distinct poses (samples >= 2)")
+        gravity = scale
+    rel = spread / gravity
     if not rel < VERIFY_TOLERANCE:
         raise UnbalanceableError(f"route 2: the total energy varies by {rel:.2e} of the gravity range "
                                  f"(> {VERIFY_TOLERANCE:g}): not balanced")
     return rel
+
+
+def _gravity_moments(chain: Chain) -> list[float]:
+    """m_j d_j + r_j (masses beyond j), j = 2..n (kg m): the arm's gravity moments, by geometry."""
+    return [chain.m[j] * chain.d[j] + chain.r[j] * sum(chain.m[j + 1:]) for j in range(chain.n - 1)]
 
 
 def evaluate(method: str, chain: Chain, configuration, springs, X) -> RankedDesign:
@@ -139,7 +178,7 @@ def rank_key(d: RankedDesign):
 
 def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10, max_configurations: int | None = None,
                restarts: int = 8, seed: int = 0, progress: bool = False, finder=None,
-               minimise_force: bool = True, force_starts: int = 2) -> DesignReport:
+               minimise_force: bool = True, force_starts: int = 2, time_limit: float | None = None) -> DesignReport:
     """Ranked, verified spring designs for an arm.
 
     :param arm: an :class:`~springlab.model.armfile.ArmSpec` or the path of an arm file
@@ -148,49 +187,87 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
         (:func:`~springlab.design.rules.best_first_configurations`); each solved within
         the arm's limits), or 'ground springs' (the n - 1 springs from the base column
         of :func:`ground_springs`, which 000 Eq. 41 forbids: one design)
-    :param max_designs: stop after this many verified designs
+    :param max_designs: stop after this many verified designs (integer >= 1)
     :param max_configurations: stop after trying this many configurations (None: all)
+    :param restarts: random starts of the finder per configuration (integer >= 0)
     :param finder: the solver (default :func:`springlab.design.solve.find_design`); any design it
         returns is verified before it is kept
     :param minimise_force: spend each configuration's free choices on the smallest largest
         spring force (:func:`springlab.design.solve.minimise_largest_force`), within the limits,
         from ``force_starts`` solutions of the finder (the problem has local minima)
+    :param time_limit: stop the search after this many seconds (None: no limit); the report's
+        ``stopped`` says so
+    :param progress: show a progress bar (tqdm) of the search steps, configurations and designs
+
+    An end link whose centre of mass is on its proximal joint needs no spring
+    (:func:`~springlab.design.solve.balanced_core`): the configurations are those of the
+    links before it. The report's ``stopped`` says why the search ended, and each rejected
+    configuration's reason says whether it is a proof (the linear relaxation) or a search
+    that ran out of starts or limits.
     """
     from tqdm import tqdm
 
     spec = arm if isinstance(arm, ArmSpec) else load_arm(arm)
-    if method not in METHODS:
-        raise SpringlabError(f"method must be one of {METHODS}, got {method!r}")
+    method = _checks.choice("method", method, METHODS)
+    max_designs = _checks.count("max_designs", max_designs, least=1)
+    if max_configurations is not None:
+        max_configurations = _checks.count("max_configurations", max_configurations, least=1)
+    restarts = _checks.count("restarts", restarts)
+    seed = _checks.count("seed", seed)
+    force_starts = _checks.count("force_starts", force_starts, least=1)
+    time_limit = _checks.optional_positive("time_limit", time_limit, "s")
     finder = finder or find_design
     chain = spec.chain()
     X = workspace_poses(spec, chain)
     report = DesignReport(spec)
     t0 = time.perf_counter()
+    deadline = None if time_limit is None else t0 + time_limit
+    core = balanced_core(chain)
+    if core is None:  # the centre of mass is on the base joint: no spring to add
+        report.designs.append(evaluate(method, chain, (), (), X))
+        report.stopped = "the arm is balanced without springs (its centre of mass is on the base joint)"
+        report.seconds = time.perf_counter() - t0
+        return report
+    if core is not chain:
+        report.notes.append(f"link {chain.n}'s centre of mass is on its proximal joint (d_{chain.n} = 0, "
+                            f"G_1,{chain.n} = 0): it needs no spring; the configurations are those of links 2..{core.n}")
+    bar = tqdm(disable=not progress, desc="search steps", mininterval=1.0)
     # fewest springs first, then fewest spanned joints: best first, without enumerating the rest
     if method == "ground springs":
-        configs = iter([ground_springs(chain.n)])
+        configs = iter([ground_springs(core.n)])
     else:
-        configs = (cfg for _, _, cfg in best_first_configurations(chain.n))
-    for cfg in tqdm(configs, disable=not progress, desc="configurations", mininterval=1.0):
+        configs = (cfg for _, _, cfg in best_first_configurations(core.n, deadline=deadline, step=bar.update))
+    report.stopped = "every configuration was tried"
+    for cfg in configs:
         if max_configurations is not None and report.configurations_tried >= max_configurations:
+            report.stopped = f"max_configurations = {max_configurations} configurations were tried"
             break
         if len(report.designs) >= max_designs:
+            report.stopped = f"max_designs = {max_designs} verified designs were found"
+            break
+        if deadline is not None and time.perf_counter() > deadline:
             break
         report.configurations_tried += 1
-        if relaxation_margin(chain, cfg) <= 1e-9:
-            report.rejected.append((cfg, "000 Eqs. (39) have no solution with these signs (linear relaxation)"))
+        bar.set_postfix(configurations=report.configurations_tried, designs=len(report.designs), refresh=False)
+        if relaxation_margin(core, cfg) <= 1e-9:
+            report.rejected.append((cfg, PROOF + ": 000 Eqs. (39) have no solution with these signs "
+                                    "(linear relaxation)"))
             continue
         try:
-            springs = finder(chain, cfg, seed=seed, restarts=restarts, max_extension=spec.max_attachment)
+            springs = finder(core, cfg, seed=seed, restarts=restarts, max_extension=spec.max_attachment)
             stiff = [s for s in springs if s.k > spec.max_stiffness]
             if stiff:
-                raise UnbalanceableError(f"{stiff[0].label} needs k = {stiff[0].k:.0f} N/m > {spec.max_stiffness:.0f} N/m")
+                raise SearchExhaustedError(f"{stiff[0].label} needs k = {stiff[0].k:.0f} N/m > max_stiffness = "
+                                           f"{spec.max_stiffness:.0f} N/m")
             if minimise_force:
-                springs = least_force(chain, cfg, springs, finder, seed, restarts, force_starts,
-                                       max_extension=spec.max_attachment, max_stiffness=spec.max_stiffness)
+                springs = least_force(core, cfg, springs, finder, seed, restarts, force_starts,
+                                      max_extension=spec.max_attachment, max_stiffness=spec.max_stiffness)
             report.designs.append(evaluate(method, chain, cfg, springs, X))
-        except (UnbalanceableError, SpringlabError) as err:
+        except (UnbalanceableError, SearchExhaustedError) as err:
             report.rejected.append((cfg, str(err)))
+    if deadline is not None and time.perf_counter() > deadline and report.stopped == "every configuration was tried":
+        report.stopped = f"the time limit of {time_limit:g} s was reached"
+    bar.close()
     report.designs.sort(key=rank_key)
     report.seconds = time.perf_counter() - t0
     return report
@@ -203,7 +280,7 @@ def least_force(chain, cfg, springs, finder, seed, restarts, starts, *, max_exte
     for extra in range(1, max(1, int(starts))):
         try:
             candidates.append(finder(chain, cfg, seed=seed + extra, restarts=restarts, max_extension=max_extension))
-        except (UnbalanceableError, SpringlabError):
+        except (UnbalanceableError, SearchExhaustedError):
             continue
     best, best_force = springs, np.inf
     for start in candidates:
@@ -230,8 +307,7 @@ def ground_springs(n: int) -> tuple[SpringSlot, ...]:
     """n - 1 springs, all anchored on the base column (x_1, above the base joint):
     S(1,n) (+,+) and S(1,j) (+,-) for j = 3..n. Balances an arm of any n (see
     :func:`springlab.design.ground.ground_spring_design`). 000 Eq. (41) allows only (+,+) on the ground."""
-    if int(n) != n or n < 3:
-        raise SpringlabError(f"n (links with the ground) must be an integer >= 3, got {n}")
+    n = _checks.count("n (links with the ground)", n, least=2)
     return tuple(sorted([SpringSlot(1, n, "(+,+)")] + [SpringSlot(1, j, "(+,-)") for j in range(3, n + 1)]))
 
 

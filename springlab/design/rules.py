@@ -29,9 +29,12 @@ from __future__ import annotations
 
 import functools
 import itertools
+import numbers
+import re
 import time
 from dataclasses import dataclass
 
+from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.tables import Table
 
@@ -48,6 +51,11 @@ class SpringSlot:
     pattern: str = "(+,+)"
 
     def __post_init__(self):
+        for name in ("i", "j"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, numbers.Integral | float) or int(value) != value:
+                raise SpringlabError(f"spring link index {name} of S(i,j) must be an integer, got {value!r}")
+            object.__setattr__(self, name, int(value))
         if not (1 <= self.i < self.j):
             raise SpringlabError(f"a spring S(i,j) needs 1 <= i < j, got i={self.i}, j={self.j}")
         if self.pattern not in PATTERNS:
@@ -71,13 +79,14 @@ class SpringSlot:
 
 def slot(text: str) -> SpringSlot:
     """Parse 'S(2,4)(+,-)' (the pattern may be omitted for (+,+))."""
-    body = text.strip().replace(" ", "")
-    if not body.startswith("S("):
-        raise SpringlabError(f"cannot read a spring from {text!r}; write e.g. 'S(2,4)(+,-)'")
-    close = body.index(")")
-    i, j = (int(v) for v in body[2:close].split(","))
-    pattern = body[close + 1 :] or "(+,+)"
-    return SpringSlot(i, j, pattern)
+    if not isinstance(text, str):
+        raise SpringlabError(f"a spring label must be a string like 'S(2,4)(+,-)', got {text!r}")
+    body = text.replace(" ", "")
+    match = re.fullmatch(r"S\((\d+),(\d+)\)(\([+-],[+-]\))?", body)
+    if not match:
+        raise SpringlabError(f"cannot read a spring from {text!r}; write S(i,j) with integers i < j and "
+                             "optionally a pattern, e.g. 'S(2,4)(+,-)'")
+    return SpringSlot(int(match.group(1)), int(match.group(2)), match.group(3) or "(+,+)")
 
 
 def as_slots(slots) -> list[SpringSlot]:
@@ -187,6 +196,10 @@ def is_admissible(n: int, slots) -> bool:
     return not rule_violations(n, slots)
 
 
+def _count_links(n) -> int:
+    return _checks.count("n (links with the ground)", n, least=2)
+
+
 def _ground_sets(n: int):
     """Minimal sets of ground springs under R1 and R2, with S(1,2)'s two patterns."""
     middle = list(range(2, n))
@@ -224,8 +237,9 @@ def _minimal_admissible(n: int, current) -> bool:
 def iter_configurations(n: int, *, max_springs: int | None = None):
     """Yield the admissible configurations with necessary springs only, for n links,
     in a deterministic order (see :func:`enumerate_configurations`)."""
-    if int(n) != n or n < 2:
-        raise SpringlabError(f"n must be an integer >= 2, got {n}")
+    n = _count_links(n)
+    if max_springs is not None:
+        max_springs = _checks.count("max_springs", max_springs, least=1)
     max_springs = max_springs or n * (n - 1)
     seen: set[frozenset] = set()
     stack = [frozenset(g) for g in reversed(list(_ground_sets(n)))]
@@ -305,7 +319,7 @@ def spans(slots) -> int:
     return sum(s.j - s.i for s in slots)
 
 
-def best_first_configurations(n: int):
+def best_first_configurations(n: int, *, deadline: float | None = None, step=None):
     """The configurations of :func:`iter_configurations`, fewest springs first and, among
     those, fewest spanned joints (003's efficient configurations, generalised), found
     without enumerating the rest.
@@ -313,17 +327,25 @@ def best_first_configurations(n: int):
     The same branching as the paper's construction, taken best first: a partial
     configuration's (springs, spanned joints) only grows as springs are added, so
     configurations leave the queue in that order. Yields (springs, spans, configuration).
+
+    :param deadline: a ``time.perf_counter()`` value after which the search stops (it can
+        take long before its first configuration for n of 9 or more)
+    :param step: called with no argument for each partial configuration taken from the queue
+        (a progress bar's ``update``)
     """
     import heapq
 
-    if int(n) != n or n < 2:
-        raise SpringlabError(f"n must be an integer >= 2, got {n}")
+    n = _count_links(n)
     heap = []
     for g in _ground_sets(n):
         cfg = tuple(sorted(g))
         heapq.heappush(heap, (len(cfg), spans(cfg), cfg))
     seen: set[frozenset] = set()
     while heap:
+        if deadline is not None and time.perf_counter() > deadline:
+            return
+        if step is not None:
+            step()
         count, span, cfg = heapq.heappop(heap)
         current = frozenset(cfg)
         if current in seen:

@@ -26,9 +26,16 @@ import numpy as np
 import sympy as sp
 from scipy.optimize import least_squares, linprog
 
+from springlab import _checks
 from springlab.design.rules import SpringSlot, as_slots
 from springlab.energy.quadratic import gravity_entries, spring_entries
-from springlab.errors import SolverError, SpringlabError, UnbalanceableError
+from springlab.errors import (
+    AttachmentError,
+    SearchExhaustedError,
+    SolverError,
+    SpringlabError,
+    UnbalanceableError,
+)
 from springlab.model.chain import Chain
 from springlab.model.springs import Spring, check_attachments, sign_char
 
@@ -46,13 +53,16 @@ class SpringSpec:
     k: float | None = None
 
     def __post_init__(self):
+        for name in ("i", "j"):
+            object.__setattr__(self, name, _checks.count(
+                f"spring link index {name}", getattr(self, name), least=1, why=" (S(i,j) needs 1 <= i < j)"))
         SpringSlot(self.i, self.j, self.pattern or "(+,+)")  # validates indices and pattern
-        if self.k is not None and not (np.isfinite(self.k) and self.k > 0):
-            raise SpringlabError(f"k of S({self.i},{self.j}) must be > 0 N/m, got {self.k}")
+        object.__setattr__(self, "k", _checks.optional_positive(f"k of S({self.i},{self.j})", self.k, "N/m"))
         for name in ("a", "b"):
             v = getattr(self, name)
-            if v is not None and not np.isfinite(v):
-                raise SpringlabError(f"{name} of S({self.i},{self.j}) must be finite, got {v}")
+            if v is not None:
+                v = _checks.finite(f"{name} of S({self.i},{self.j})", v, "m")
+                object.__setattr__(self, name, v)
             if v is not None and self.pattern is not None:
                 want = self.pattern[1] if name == "a" else self.pattern[3]
                 if sign_char(v) != want:
@@ -84,9 +94,17 @@ def solve_design(chain: Chain, specs, *, max_extension: float | None = None) -> 
         contradicts the pattern, or an attachment off the link
     :raises SpringlabError: the free choices leave unknowns undetermined
     """
+    _checks.instance("chain", chain, Chain)
+    max_extension = _checks.optional_positive("max_extension", max_extension, "m")
+    if isinstance(specs, str) or not hasattr(specs, "__iter__"):
+        raise SpringlabError(f"specs must be a list of SpringSpec, got {specs!r}")
     specs = list(specs)
+    for s in specs:
+        _checks.instance("each of specs", s, SpringSpec)
     if not specs:
-        raise UnbalanceableError("no springs: gravity cannot be balanced without springs")
+        if balanced_core(chain) is None:
+            return Design(())
+        raise UnbalanceableError("no springs: gravity cannot be balanced without springs (G_1,j > 0, 000 Eq. 18)")
     r = [_rational(v) for v in chain.r]
     d = [_rational(v) for v in chain.d]
     m = [_rational(v) for v in chain.m]
@@ -233,13 +251,16 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         (m; default the longest link). ``False`` asks for the signs only.
     :param max_stiffness: largest k (N/m), or None
     :param start: springs to start from (first), before the random starts
-    :raises UnbalanceableError: when no start converges
+    :raises SearchExhaustedError: when no start converges (not a proof: more ``restarts``
+        may find one; :func:`relaxation_margin` <= 0 is the proof that none exists)
     """
-    slots = as_slots(slots)
-    for s in slots:
-        if s.j > chain.n:
-            raise SpringlabError(f"{s} attaches to link {s.j}, but the chain has {chain.n} links")
-    rng = np.random.default_rng(seed)
+    _checks.instance("chain", chain, Chain)
+    slots = _slots_on(chain, slots)
+    restarts = _checks.count("restarts", restarts)
+    tol = _checks.positive("tol", tol)
+    max_extension = _checks.optional_positive("max_extension", max_extension, "m")
+    max_stiffness = _checks.optional_positive("max_stiffness", max_stiffness, "N/m", allow_inf=True)
+    rng = _rng("seed", seed)
     scale_u, length, scale_k = _scales(chain)
     signs = np.array([(s.sa, s.sb) for s in slots], dtype=float)
     keys = _residual_entries(chain, slots)
@@ -312,9 +333,32 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
             if within_links:
                 check_attachments(chain, springs, max_extension=reach * (1 + 1e-9))
             return springs
-    raise UnbalanceableError(
-        f"no balanced design found for {' '.join(map(str, slots))} after {restarts} starts "
-        f"(best relative residual {best[0] if best else float('nan'):.3g})")
+    best_text = f"best relative residual {best[0]:.3g}" if best else "no start could be evaluated"
+    raise SearchExhaustedError(
+        f"no balanced design found for {' '.join(map(str, slots))} after {restarts} random starts "
+        f"({best_text}; limits: max_extension = {reach if within_links else 'none'} m, "
+        f"max_stiffness = {max_stiffness if max_stiffness is not None else 'none'} N/m): "
+        "raise restarts or the limits to search further")
+
+
+def _slots_on(chain: Chain, slots) -> list[SpringSlot]:
+    """``slots`` as a non-empty list of :class:`SpringSlot`, each within the chain."""
+    if isinstance(slots, str | SpringSlot) or not hasattr(slots, "__iter__"):
+        raise SpringlabError(f"slots must be a list of springs such as ['S(1,3)(+,+)'], got {slots!r}")
+    slots = as_slots(slots)
+    if not slots:
+        raise SpringlabError("slots is empty: give the configuration's springs, e.g. ['S(1,2)(+,+)']")
+    for s in slots:
+        if s.j > chain.n:
+            raise SpringlabError(f"{s} attaches to link {s.j}, but the chain has {chain.n} links")
+    return slots
+
+
+def _rng(name: str, seed):
+    """A numpy Generator from ``seed`` (None, a non-negative integer or a Generator)."""
+    if seed is None or isinstance(seed, np.random.Generator):
+        return np.random.default_rng(seed)
+    return np.random.default_rng(_checks.count(name, seed))
 
 
 def longest_stretch(chain: Chain, spring: Spring) -> float:
@@ -437,7 +481,7 @@ def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = 
     try:  # polish the balance (SLSQP meets its constraints to about 1e-8) within the same limits
         out = find_design(chain, slots, start=candidate, restarts=0, tol=tol, max_extension=reach,
                           max_stiffness=max_stiffness)
-    except UnbalanceableError:
+    except (UnbalanceableError, SearchExhaustedError):
         out = None
     if out is None or largest_force_bound(chain, out) > 1.01 * largest_force_bound(chain, candidate):
         # the search in log(k), log|a|, log|b| can leave the optimum's neighbourhood (seen with one
@@ -511,7 +555,8 @@ def relaxation_margin(chain: Chain, slots) -> float:
     its pattern's sign by at least t (in units of max G). Drops only the
     coupling P k = A B, which binds only for springs spanning 3 or more links,
     so t <= 0 proves the configuration infeasible."""
-    slots = as_slots(slots)
+    _checks.instance("chain", chain, Chain)
+    slots = _slots_on(chain, slots)
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
     scale = max(abs(v) for v in G.values())
     keys = _residual_entries(chain, slots)
@@ -555,7 +600,7 @@ def feasibility(chain: Chain, slots, *, seed=0, restarts: int = 30) -> Feasibili
         return Feasibility("infeasible", margin)
     try:
         springs = find_design(chain, slots, seed=seed, restarts=restarts, within_links=False)
-    except UnbalanceableError:
+    except SearchExhaustedError:
         return Feasibility("unknown", margin)
     return Feasibility("feasible", margin, springs)
 
@@ -597,20 +642,62 @@ def tally_comparison(results) -> dict[str, int]:
     return out
 
 
+def balanced_core(chain: Chain, *, rel: float = 1e-13) -> Chain | None:
+    """The chain the springs must balance.
+
+    G_{1,j} (000 Eq. 18) is positive for every link j < n (masses are positive), but
+    G_{1,n} = g m_n d_n vanishes when the end link's centre of mass is on its proximal
+    joint (d_n = 0, or below ``rel`` times the largest entry). Gravity then does not
+    depend on x_n, and link n needs no spring: the core is the chain of links 2..n-1 with
+    link n's mass moved to link n-1's distal joint, which has the same G_{1,j}, j < n. A
+    design for the core, with no spring on link n, balances the whole arm (000 Eq. 39 has
+    no (1, n) entry to offset). Returns ``chain`` itself when G_{1,n} > 0, and None for
+    a one-link arm with d_2 = 0 (its centre of mass is on the base joint: balanced
+    without springs).
+    """
+    G = gravity_entries(chain.r, chain.d, chain.m, chain.g)  # 000 Eq. (18)
+    if G[(1, chain.n)] > rel * max(G.values()):
+        return chain
+    if chain.n == 2:
+        return None
+    m_prev, m_end = chain.m[-2], chain.m[-1]
+    merged = m_prev + m_end
+    d_prev = (m_prev * chain.d[-2] + m_end * chain.r[-2]) / merged
+    joints = chain.joints[:-1] if chain.joints else ()
+    return Chain(chain.r[:-1], chain.d[:-2] + (d_prev,), chain.m[:-2] + (merged,), chain.g, joints)
+
+
 def design_for(chain: Chain, *, seed=0, restarts: int = 30):
     """Springs that balance ``chain``: the first configuration from the enumerator
-    (rules R1-R6) that the plain criterion confirms, with a design found for it.
+    (rules R1-R6) that the plain criterion confirms, with a design found for it. An end
+    link whose centre of mass is on its proximal joint gets no spring (:func:`balanced_core`).
 
-    :returns: (configuration, springs)
-    :raises UnbalanceableError: when no enumerated configuration yields a design
+    :param restarts: random starts of :func:`find_design` per configuration (integer >= 0)
+    :returns: (configuration, springs); both empty when the arm needs no spring
+    :raises UnbalanceableError: when the linear relaxation refutes every enumerated
+        configuration (a proof, for the configurations of 000's rules)
+    :raises SearchExhaustedError: when some configuration was not refuted but its search
+        found no design within ``restarts`` starts
     """
     from springlab.design.rules import iter_configurations
 
-    for cfg in iter_configurations(chain.n):
-        if relaxation_margin(chain, cfg) <= 1e-9:
+    restarts = _checks.count("restarts", restarts, least=0)
+    core = balanced_core(chain)
+    if core is None:
+        return (), ()
+    exhausted = 0
+    for cfg in iter_configurations(core.n):
+        if relaxation_margin(core, cfg) <= 1e-9:
             continue
         try:
-            return cfg, find_design(chain, cfg, seed=seed, restarts=restarts)
-        except UnbalanceableError:
-            continue
-    raise UnbalanceableError(f"no configuration of the enumerator balances this {chain.n}-link arm")
+            return cfg, find_design(core, cfg, seed=seed, restarts=restarts)
+        except (SearchExhaustedError, AttachmentError):
+            exhausted += 1
+    if not exhausted:
+        raise UnbalanceableError(
+            f"no configuration of 000's rules R1-R6 balances this {chain.n}-link arm: the linear relaxation "
+            "of 000 Eqs. (39) has no solution with the stated signs for any of them (a proof)")
+    raise SearchExhaustedError(
+        f"{exhausted} configuration(s) the linear relaxation allows, but no design found within "
+        f"restarts = {restarts} random starts each (seed {seed}): raise restarts (this is not a proof "
+        "that the arm cannot be balanced)")

@@ -34,6 +34,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.tables import Table
 
@@ -59,7 +60,10 @@ def parse_quantity(value, kind: str, where: str) -> float:
     if isinstance(value, bool):
         raise SpringlabError(f"{where} = {value!r}: expected a number or a string like '1.5 {next(iter(units))}'")
     if isinstance(value, int | float):
-        number = float(value)
+        try:
+            number = float(value)
+        except OverflowError:
+            raise SpringlabError(f"{where} = {value!r} is too large for a number") from None
     elif isinstance(value, str):
         match = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\s\d].*?)?\s*", value)
         if not match:
@@ -97,6 +101,29 @@ class ArmSpec:
     seed: int = 0
     source: str = field(default="", compare=False)
 
+    def __post_init__(self):
+        if not isinstance(self.name, str):
+            raise SpringlabError(f"name must be a string, got {self.name!r}")
+        for key in ("r", "d", "m", "joints"):
+            value = getattr(self, key)
+            if isinstance(value, str) or not hasattr(value, "__len__"):
+                raise SpringlabError(f"{key} must be a sequence with one entry per moving link, got {value!r}")
+            object.__setattr__(self, key, tuple(value))
+        if len(self.joints) != len(self.r):
+            raise SpringlabError(f"joints must have one entry per moving link ({len(self.r)}), got {len(self.joints)}")
+        object.__setattr__(self, "payload", _checks.positive("payload", self.payload, allow_zero=True, unit="kg"))
+        object.__setattr__(self, "max_stiffness",
+                           _checks.optional_positive("max_stiffness", self.max_stiffness, "N/m", allow_inf=True))
+        if self.max_stiffness is None:
+            object.__setattr__(self, "max_stiffness", math.inf)
+        object.__setattr__(self, "max_attachment", _checks.optional_positive("max_attachment", self.max_attachment, "m"))
+        samples = _checks.count("samples", self.samples, least=2,
+                                why=" (route 2 judges balance by how the energy varies over the workspace samples)")
+        _checks.memory(f"samples = {samples} workspace poses", 6.0 * samples * self.n * 3, hint="use fewer samples")
+        object.__setattr__(self, "samples", samples)
+        object.__setattr__(self, "seed", _checks.count("seed", self.seed))
+        self.chain()  # validates r, d, m, g and the joints, naming the link
+
     @property
     def n(self) -> int:
         """Links, the ground included (paper 000's n)."""
@@ -107,7 +134,7 @@ class ArmSpec:
         from springlab.model.chain import serial_chain
 
         joints = None if all(j == "spherical" for j in self.joints) else list(self.joints)
-        chain = serial_chain(self.r, self.d, self.m, self.g, joints=joints)
+        chain = serial_chain(self.r, self.d, self.m, _checks.number("g", self.g), joints=joints)
         return chain.with_payload(self.payload) if with_payload else chain
 
     def describe(self) -> str:
@@ -167,7 +194,7 @@ def arm_from_dict(data: dict, *, source: str = "arm", allow_large: bool = False)
             raise SpringlabError(f"{where}: com = {com} m must lie on the link, in [0, {length}] m")
         joint = link.get("joint", "spherical")
         if joint != "spherical":
-            if not (isinstance(joint, list) and len(joint) == 3 and all(isinstance(x, int | float) for x in joint)):
+            if not (isinstance(joint, list) and len(joint) == 3 and all(isinstance(x, int | float) and not isinstance(x, bool) for x in joint)):
                 raise SpringlabError(f"{where}: joint = {joint!r}: 'spherical' or a revolute axis [x, y, z]")
             joint = tuple(float(x) for x in joint)
         r.append(length)
@@ -204,20 +231,36 @@ def arm_from_dict(data: dict, *, source: str = "arm", allow_large: bool = False)
     if not isinstance(ws, dict):
         raise SpringlabError(f"{source}: workspace must be a table")
     samples, seed = ws.get("samples", 2000), ws.get("seed", 0)
-    if not (isinstance(samples, int) and not isinstance(samples, bool) and samples >= 1):
-        raise SpringlabError(f"{source}: workspace: samples = {samples!r} must be an integer >= 1")
+    if not (isinstance(samples, int) and not isinstance(samples, bool) and samples >= 2):
+        raise SpringlabError(f"{source}: workspace: samples = {samples!r} must be an integer >= 2 (route 2 judges "
+                             "balance by how the energy varies over the workspace samples)")
     if not (isinstance(seed, int) and not isinstance(seed, bool)):
         raise SpringlabError(f"{source}: workspace: seed = {seed!r} must be an integer")
     name = data.get("name", Path(source).stem)
-    return ArmSpec(str(name), tuple(r), tuple(d), tuple(m), tuple(joints), g, payload, k_max, reach, samples, seed, source)
+    try:
+        return ArmSpec(str(name), tuple(r), tuple(d), tuple(m), tuple(joints), g, payload, k_max, reach, samples, seed,
+                       source)
+    except SpringlabError as err:
+        raise SpringlabError(f"{source}: {err}") from None
 
 
 def load_arm(path, *, allow_large: bool = False) -> ArmSpec:
     """Read an arm file (.toml or .json) into an :class:`ArmSpec`."""
+    if not isinstance(path, str | Path):
+        raise SpringlabError(f"arm file must be a path, got {path!r}")
     path = Path(path)
     if not path.exists():
         raise SpringlabError(f"arm file {path} does not exist")
-    text = path.read_text()
+    if not path.is_file():
+        raise SpringlabError(f"arm file {path} is not a file (a directory?): give the path of a .toml or .json file")
+    if path.suffix not in (".toml", ".json"):
+        raise SpringlabError(f"{path}: arm files are .toml or .json, got {path.suffix!r}")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        raise SpringlabError(f"{path}: not a text file (UTF-8): an arm file is TOML or JSON text") from None
+    except OSError as err:
+        raise SpringlabError(f"{path}: cannot be read ({err.strerror})") from None
     if path.suffix == ".toml":
         try:
             import tomllib
@@ -231,8 +274,6 @@ def load_arm(path, *, allow_large: bool = False) -> ArmSpec:
     elif path.suffix == ".json":
         try:
             data = json.loads(text)
-        except json.JSONDecodeError as err:
+        except (json.JSONDecodeError, RecursionError) as err:
             raise SpringlabError(f"{path}: not valid JSON: {err}") from None
-    else:
-        raise SpringlabError(f"{path}: arm files are .toml or .json, got {path.suffix!r}")
     return arm_from_dict(data, source=str(path), allow_large=allow_large)

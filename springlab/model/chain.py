@@ -62,6 +62,32 @@ class Chain:
     g: float = STANDARD_GRAVITY
     joints: tuple = ()
 
+    def __post_init__(self):
+        # types, finiteness and signs; serial_chain adds the range of d (on the link)
+        r = _checks.positive_vector("r", self.r)
+        m = _checks.positive_vector("m", self.m)
+        d = _checks.real_array("d", self.d, finite_only=False)
+        if d.ndim != 1:
+            raise SpringlabError(f"d must be a 1-D sequence, got shape {d.shape}")
+        if not (len(r) == len(d) == len(m)):
+            raise SpringlabError(
+                f"r, d and m must have one entry per moving link; got {len(r)}, {len(d)}, {len(m)}")
+        for idx, dj in enumerate(d):
+            if not np.isfinite(dj):
+                raise SpringlabError(f"d_{idx + 2} must be finite, got {dj}")
+        g = _checks.number("g", self.g)
+        if not (np.isfinite(g) and g > 0):
+            raise SpringlabError(f"g must be a finite positive acceleration in m/s^2, got {self.g!r}")
+        scale = max(m) * max(max(r), float(np.max(np.abs(d)))) * len(r) * g
+        if not np.isfinite(scale * max(r)):
+            raise SpringlabError(f"masses, lengths and g this large overflow the energies (m g r ~ {scale:.3g} J): "
+                                 "give them in SI units (kg, m, m/s^2)")
+        object.__setattr__(self, "r", r)
+        object.__setattr__(self, "m", m)
+        object.__setattr__(self, "d", tuple(float(v) for v in d))
+        object.__setattr__(self, "g", g)
+        object.__setattr__(self, "joints", _joint_spec(self.joints, len(r)))
+
     def joint(self, j: int):
         """'spherical' or the revolute axis (a 3-tuple in link j-1's frame) of joint j."""
         self._check_moving(j)
@@ -251,32 +277,23 @@ def serial_chain(r, d, m, g: float = STANDARD_GRAVITY, *, joints=None, com_off_l
     ...
     springlab.errors.SpringlabError: d_2 = 0.4 m puts the centre of mass off link 2 (r_2 = 0.3 m); d must lie in [0, r], or pass com_off_link=True
     """
-    r_t = _checks.positive_vector("r", r)
-    m_t = _checks.positive_vector("m", m)
-    d_arr = np.asarray(d, dtype=float)
-    if d_arr.ndim != 1:
-        raise SpringlabError(f"d must be a 1-D sequence, got shape {d_arr.shape}")
-    if not (len(r_t) == len(d_arr) == len(m_t)):
-        raise SpringlabError(
-            f"r, d and m must have one entry per moving link; got {len(r_t)}, {len(d_arr)}, {len(m_t)}"
-        )
-    for idx, (dj, rj) in enumerate(zip(d_arr, r_t, strict=True)):
-        link = idx + 2
-        if not np.isfinite(dj):
-            raise SpringlabError(f"d_{link} must be finite, got {dj}")
-        if not com_off_link and not (0.0 <= dj <= rj):
-            raise SpringlabError(
-                f"d_{link} = {dj:g} m puts the centre of mass off link {link} (r_{link} = {rj:g} m); "
-                "d must lie in [0, r], or pass com_off_link=True"
-            )
-    if not (np.isfinite(g) and g > 0):
-        raise SpringlabError(f"g must be a finite positive acceleration in m/s^2, got {g}")
-    return Chain(r=r_t, d=tuple(float(v) for v in d_arr), m=m_t, g=float(g),
-                 joints=_joint_spec(joints, len(r_t)))
+    chain = Chain(r=r, d=d, m=m, g=g, joints=() if joints is None else joints)
+    if not com_off_link:
+        for idx, (dj, rj) in enumerate(zip(chain.d, chain.r, strict=True)):
+            if not (0.0 <= dj <= rj):
+                link = idx + 2
+                raise SpringlabError(
+                    f"d_{link} = {dj:g} m puts the centre of mass off link {link} (r_{link} = {rj:g} m); "
+                    "d must lie in [0, r], or pass com_off_link=True")
+    return chain
 
 
 def _joint_spec(joints, n_moving: int) -> tuple:
     if joints is None:
+        return ()
+    if isinstance(joints, str) or not hasattr(joints, "__len__"):
+        raise SpringlabError(f"joints must be a sequence with one entry per moving link, got {joints!r}")
+    if len(joints) == 0:
         return ()
     joints = list(joints)
     if len(joints) != n_moving:
@@ -288,7 +305,7 @@ def _joint_spec(joints, n_moving: int) -> tuple:
                 raise SpringlabError(f"joint {idx + 2} must be 'spherical' or a revolute axis, got {spec!r}")
             out.append(SPHERICAL)
             continue
-        axis = np.asarray(spec, dtype=float)
+        axis = _checks.real_array(f"revolute axis of joint {idx + 2}", spec, finite_only=False)
         norm = np.linalg.norm(axis) if axis.shape == (3,) else 0.0
         if not (np.all(np.isfinite(axis)) and norm > 1e-12):
             raise SpringlabError(f"revolute axis of joint {idx + 2} must be a nonzero 3-vector, got {spec!r}")
@@ -305,10 +322,9 @@ def random_directions(n: int, size: int, rng=None) -> np.ndarray:
     :param rng: a ``numpy.random.Generator`` or a seed
     :returns: ndarray(N, n, 3), X[:, 0] = UP
     """
-    if int(n) != n or n < 2:
-        raise SpringlabError(f"n must be an integer >= 2, got {n}")
-    if int(size) != size or size < 0:
-        raise SpringlabError(f"size must be a non-negative integer, got {size}")
+    n = _checks.count("n", n, least=2)
+    size = _checks.count("size", size, least=0)
+    _checks.memory(f"{size} poses of a {n}-link chain", 2.0 * size * n * 3, hint="ask for fewer poses")
     rng = np.random.default_rng(rng)
     v = rng.standard_normal((int(size), int(n) - 1, 3))
     v /= np.linalg.norm(v, axis=2, keepdims=True)

@@ -38,6 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import AttachmentError, SpringlabError
 
 
@@ -74,25 +75,26 @@ class Spring:
 
     def __post_init__(self):
         for name in ("i", "j"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or int(v) != v:
-                raise SpringlabError(f"spring link index {name} must be an integer, got {v!r}")
+            object.__setattr__(self, name, _checks.count(
+                f"spring link index {name}", getattr(self, name), least=1, why=" (S(i,j) needs 1 <= i < j)"))
         if not (1 <= self.i < self.j):
             raise SpringlabError(
                 f"a spring S(i,j) needs 1 <= i < j (link 1 is the ground), got i={self.i}, j={self.j}"
             )
         for name in ("a", "b"):
-            v = getattr(self, name)
-            if not np.isfinite(v):
-                raise SpringlabError(f"{name} of {self.label} must be finite, got {v}")
-        if not (np.isfinite(self.k) and self.k > 0):
+            object.__setattr__(self, name, _checks.finite(f"{name} of {self.label}", getattr(self, name), "m"))
+        k = _checks.number(f"k of {self.label}", self.k)
+        if not (np.isfinite(k) and k > 0):
             raise SpringlabError(
                 f"k of {self.label} must be a finite stiffness > 0 N/m, got {self.k}"
             )
-        if not (np.isfinite(self.free_length) and self.free_length >= 0):
+        object.__setattr__(self, "k", k)
+        free = _checks.number(f"free_length of {self.label}", self.free_length)
+        if not (np.isfinite(free) and free >= 0):
             raise SpringlabError(
                 f"free_length of {self.label} must be >= 0 m, got {self.free_length}"
             )
+        object.__setattr__(self, "free_length", free)
 
     @property
     def label(self) -> str:
@@ -109,8 +111,12 @@ class Spring:
 
 
 def check_springs(chain, springs) -> tuple[Spring, ...]:
-    """Validate that every spring fits the chain (j <= n); return them as a tuple."""
+    """Validate that every spring fits the chain (j <= n) and that its energy over the
+    chain's reach is a finite number of joules; return them as a tuple."""
+    if isinstance(springs, Spring) or isinstance(springs, str) or not hasattr(springs, "__iter__"):
+        raise SpringlabError(f"springs must be a sequence of Spring objects, got {springs!r}")
     springs = tuple(springs)
+    reach = float(sum(chain.r))
     for s in springs:
         if not isinstance(s, Spring):
             raise SpringlabError(f"expected Spring objects, got {type(s).__name__}")
@@ -118,6 +124,9 @@ def check_springs(chain, springs) -> tuple[Spring, ...]:
             raise SpringlabError(
                 f"{s.label} attaches to link {s.j}, but the chain has only {chain.n} links"
             )
+        if not np.isfinite(s.k * (reach + abs(s.a) + abs(s.b)) ** 2):
+            raise SpringlabError(f"k of {s.label} = {s.k:g} N/m overflows the spring's energy "
+                                 f"(k L^2 with L ~ {reach:g} m): give k in N/m")
     return springs
 
 

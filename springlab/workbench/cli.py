@@ -2,62 +2,131 @@
 
 Prints the ranked designs of :func:`springlab.design.rank.design_arm` as a table
 and writes the chosen one (rank 1 unless ``--pick``) as JSON.
+
+Every argument, the arm file and the output path are checked before the search
+starts. An error prints one line, ``springlab: <what is wrong and what to do>``,
+and exits with status 2; a search that finds no design prints why the
+configurations were rejected and exits with status 1.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from pathlib import Path
 
 from springlab.errors import SpringlabError
+
+TIME_LIMIT = 300.0
+"""s: the default limit on the command line's search (``--time-limit``)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, with its errors on one line and exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"springlab: {message} (see 'springlab design --help')\n")
+
+
+def _writable(path: Path, what: str) -> Path:
+    """``path`` if a file can be written there, checked before any work is done."""
+    if path.is_dir():
+        raise SpringlabError(f"{what} {path} is a directory: give a file name")
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.is_dir():
+        raise SpringlabError(f"{what} {path}: the folder {parent} does not exist")
+    if not os.access(parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise SpringlabError(f"{what} {path} cannot be written (permission denied): choose another path")
+    return path
+
+
+def _check_arguments(args) -> None:
+    from springlab import _checks
+
+    _checks.count("--pick", args.pick, least=1)
+    _checks.count("--max-designs", args.max_designs, least=1)
+    if args.max_configurations is not None:
+        _checks.count("--max-configurations", args.max_configurations, least=1)
+    _checks.count("--seed", args.seed)
+    _checks.positive("--time-limit", args.time_limit, unit="s")
+    if args.pick > args.max_designs:
+        raise SpringlabError(f"--pick = {args.pick} is above --max-designs = {args.max_designs}: "
+                             "raise --max-designs or pick a lower rank")
 
 
 def _design(args) -> int:
     from springlab.design.rank import design_arm
     from springlab.model.armfile import load_arm
 
+    _check_arguments(args)
     spec = load_arm(args.arm_file, allow_large=args.allow_large)
+    out = _writable(Path(args.json or Path(args.arm_file).with_suffix(".design.json").name), "--json")
     report = design_arm(spec, method=args.method, max_designs=args.max_designs,
-                        max_configurations=args.max_configurations, seed=args.seed, progress=not args.quiet)
+                        max_configurations=args.max_configurations, seed=args.seed, progress=not args.quiet,
+                        time_limit=args.time_limit)
     print(f"# {spec.name}: n = {spec.n} links (ground included), payload {spec.payload:g} kg")
+    for note in report.notes:
+        print(f"note: {note}")
     print(f"{report.configurations_tried} configurations tried in {report.seconds:.1f} s, "
-          f"{len(report.designs)} verified designs, {len(report.rejected)} rejected\n")
+          f"{len(report.designs)} verified designs, {len(report.rejected)} rejected; the search stopped: "
+          f"{report.stopped}\n")
     if not report.designs:
-        print("no design found within the limits; relax max_stiffness or max_attachment", file=sys.stderr)
+        tried = (f"; why the {len(report.rejected)} configurations were rejected:" if report.rejected
+                 else "; no configuration was reached")
+        print(f"springlab: no design found ({report.stopped}){tried}", file=sys.stderr)
+        for count, why in report.reasons():
+            print(f"  {count} x {why}", file=sys.stderr)
+        if "time limit" in report.stopped:
+            print("  raise --time-limit, or try --method 'ground springs' (one design for any n)", file=sys.stderr)
         return 1
     print(report.table())
-    if not 1 <= args.pick <= len(report.designs):
-        raise SpringlabError(f"--pick must be in 1..{len(report.designs)}, got {args.pick}")
+    if args.pick > len(report.designs):
+        raise SpringlabError(f"--pick = {args.pick} but only {len(report.designs)} designs were found: "
+                             f"pick one of 1..{len(report.designs)}")
     chosen = report.designs[args.pick - 1]
-    out = Path(args.json or Path(args.arm_file).with_suffix(".design.json").name)
-    out.write_text(json.dumps({"arm": spec.name, "source": str(args.arm_file), "rank": args.pick} | chosen.to_dict(),
-                              indent=1) + "\n")
+    try:
+        out.write_text(json.dumps({"arm": spec.name, "source": str(args.arm_file), "rank": args.pick}
+                                  | chosen.to_dict(), indent=1) + "\n")
+    except OSError as err:
+        raise SpringlabError(f"--json {out} cannot be written ({err.strerror})") from None
     print(f"\ndesign {args.pick} written to {out}")
     return 0
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="springlab", description="Spring gravity balancing of robot arms.")
-    sub = parser.add_subparsers(dest="command", required=True)
+    parser = _Parser(prog="springlab", description="Spring gravity balancing of robot arms.")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     p = sub.add_parser("design", help="rank verified spring designs for an arm file (.toml or .json)")
     p.add_argument("arm_file")
     p.add_argument("--json", help="where to write the chosen design (default: <arm>.design.json here)")
     p.add_argument("--pick", type=int, default=1, help="which ranked design to write (default 1)")
     p.add_argument("--method", default="no auxiliary links", choices=("no auxiliary links", "ground springs"),
                    help="paper 000's configurations (default), or n - 1 springs from the base column")
-    p.add_argument("--max-designs", type=int, default=10)
-    p.add_argument("--max-configurations", type=int, default=None)
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--max-designs", type=int, default=10, help="stop after this many verified designs (default 10)")
+    p.add_argument("--max-configurations", type=int, default=None, help="stop after this many configurations")
+    p.add_argument("--seed", type=int, default=0, help="seed of the random starts (default 0)")
+    p.add_argument("--time-limit", type=float, default=TIME_LIMIT,
+                   help=f"stop the search after this many seconds (default {TIME_LIMIT:g})")
     p.add_argument("--allow-large", action="store_true", help="allow arms of more than 8 links")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--debug", action="store_true", help="show the traceback of an unexpected error")
     args = parser.parse_args(argv)
     try:
         return _design(args)
     except SpringlabError as err:
         print(f"springlab: {err}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("springlab: interrupted", file=sys.stderr)
+        return 130
+    except Exception as err:  # a defect in springlab: one line, the traceback on request
+        if args.debug:
+            raise
+        print(f"springlab: internal error ({type(err).__name__}: {err}); rerun with --debug and report it",
+              file=sys.stderr)
+        return 3
 
 
 if __name__ == "__main__":

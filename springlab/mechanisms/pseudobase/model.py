@@ -52,6 +52,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from springlab import _checks
 from springlab._checks import masses, vector_rows
 from springlab.errors import SpringlabError
 from springlab.tables import Table
@@ -298,8 +299,7 @@ def mobility(links: int, joint_freedoms, lam: int = 6) -> int:
 def module_chain_mobility(n: int) -> int:
     """Mobility of n RSSR modules along n primary links (001 Eq. 20): 3n moving links
     plus the ground, 2n revolute and 2n spherical joints: F = 2n (n active, n idle spins)."""
-    if int(n) != n or n < 1:
-        raise SpringlabError(f"n must be an integer >= 1, got {n}")
+    n = _checks.count("n", n, least=1)
     return mobility(3 * n + 1, [1] * (2 * n) + [3] * (2 * n))
 
 

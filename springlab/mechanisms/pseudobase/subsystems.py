@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from springlab import _checks
 from springlab._checks import masses, vector_rows
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.mechanisms.pseudobase.model import Equilibrator, PseudobaseArm
@@ -152,8 +153,7 @@ def symbolic_subsystems(n: int) -> dict:
     """
     import sympy as sp
 
-    if int(n) != n or n < 1:
-        raise SpringlabError(f"n must be an integer >= 1, got {n}")
+    n = _checks.count("n", n, least=1)
     m = sp.symbols(f"m1:{n + 1}", positive=True)
     gs = sp.symbols(f"gs1:{n + 1}", real=True)  # g . s_i
     gr = sp.symbols(f"gr1:{n + 1}", real=True)  # g . r_i
