@@ -23,7 +23,8 @@ import numpy as np
 from springlab.errors import SpringlabError
 
 __all__ = ["number", "finite", "positive", "optional_positive", "instance", "at_most", "positive_vector", "vector_rows", "masses", "duration",
-           "sample_count", "count", "choice", "real_array", "angles", "memory", "MEMORY_LIMIT"]
+           "sample_count", "count", "choice", "real_array", "angles", "memory", "MEMORY_LIMIT", "poses",
+           "TIME_LIMIT"]
 
 MEMORY_LIMIT = 2 * 2**30
 """Bytes: the largest array a single request may allocate. Larger requests are refused up
@@ -191,6 +192,20 @@ def memory(what: str, elements: float, *, bytes_per: int = 8, limit: int | None 
     if need > limit:
         raise SpringlabError(f"{what} would need about {_bytes(need)} of memory, over the limit of {_bytes(limit)}"
                              f"{'; ' + hint if hint else ''}")
+
+
+TIME_LIMIT = 3600.0
+"""s: the longest single evaluation a request may ask for, estimated up front (:func:`poses`)."""
+
+
+def poses(what: str, count: float, *, rate: float, limit: float | None = None, hint: str = "") -> None:
+    """Refuse up front a request of ``count`` poses that would run longer than ``limit`` seconds
+    (default :data:`TIME_LIMIT`) at ``rate`` poses per second."""
+    limit = TIME_LIMIT if limit is None else limit
+    seconds = float(count) / rate
+    if seconds > limit:
+        raise SpringlabError(f"{what} is {float(count):.3g} poses, about {seconds / 3600:.3g} h at {rate:.0e} poses/s, "
+                             f"over the limit of {limit / 3600:g} h{'; ' + hint if hint else ''}")
 
 
 def _bytes(n: float) -> str:

@@ -167,7 +167,6 @@ def test_optimiser_respects_bounds():
     (pl.PlanarSpring(3, 4, 3000, 0.2, 0.2, 90, 0), "breaks C2"),
     (pl.PlanarSpring(1, 4, 3000, 1.5, 0.087, 90, 0), r"A = 1.5 must lie in \(0, 1\]"),
     (pl.PlanarSpring(2, 4, 3000, 0.1, 0.0, 0, 0), r"B = 0 must lie in \(0, 1\]"),
-    (pl.PlanarSpring(2, 4, -1.0, 0.1, 0.1, 0, 0), "k = -1.0 N/m"),
     (pl.PlanarSpring(2, 5, 10.0, 0.1, 0.1, 0, 0), "1 <= i < j <= 4"),
 ])
 def test_bad_springs(spring, match):
@@ -175,12 +174,17 @@ def test_bad_springs(spring, match):
         ef.system_efficiency(ARM, [spring], random_theta(3))
 
 
+def test_a_negative_stiffness_is_refused_when_the_spring_is_made():
+    with pytest.raises(SpringlabError, match=r"k of S\(2,4\) must be finite and > 0 N/m, got -1.0"):
+        pl.PlanarSpring(2, 4, -1.0, 0.1, 0.1, 0, 0)
+
+
 def test_bad_workspaces_and_arms():
     with pytest.raises(SpringlabError, match="reversed"):
         pl.Workspace(low=(-20, 140, -140), high=(180, -140, 140))
     with pytest.raises(SpringlabError, match="one entry per joint"):
         pl.Workspace(low=(), high=())
-    with pytest.raises(SpringlabError, match="grid step"):
+    with pytest.raises(SpringlabError, match="step must be"):
         WS.grid(0)
     with pytest.raises(SpringlabError, match="exactly one"):
         ef.efficiency_index(ARM, TABLE4, WS)

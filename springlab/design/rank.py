@@ -88,7 +88,7 @@ class RankedDesign:
         return len(self.springs)
 
     def label(self) -> str:
-        return " ".join(f"{s.label}{s.pattern}" for s in self.springs)
+        return " ".join(f"{s.label}{s.pattern}" for s in self.springs) or "no springs"
 
     def to_dict(self) -> dict:
         return {"method": self.method, "configuration": [str(c) for c in self.configuration],
@@ -230,7 +230,8 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
         return report
     if core is not chain:
         report.notes.append(f"link {chain.n}'s centre of mass is on its proximal joint (d_{chain.n} = 0, "
-                            f"G_1,{chain.n} = 0): it needs no spring; the configurations are those of links 2..{core.n}")
+                            f"G_1,{chain.n} = 0): it needs no spring; the configurations are those of "
+                            + (f"links 2..{core.n}" if core.n > 2 else "link 2"))
     bar = tqdm(disable=not progress, desc="search steps", mininterval=1.0)
     # fewest springs first, then fewest spanned joints: best first, without enumerating the rest
     if method == "ground springs":

@@ -656,7 +656,7 @@ def balanced_core(chain: Chain, *, rel: float = 1e-13) -> Chain | None:
     without springs).
     """
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)  # 000 Eq. (18)
-    if G[(1, chain.n)] > rel * max(G.values()):
+    if abs(G[(1, chain.n)]) > rel * max(abs(v) for v in G.values()):
         return chain
     if chain.n == 2:
         return None

@@ -44,10 +44,9 @@ class Tolerances:
 
     def __post_init__(self):
         for name in FACTORS:
-            value = getattr(self, name)
-            if not (np.isfinite(value) and value >= 0):
-                unit = {"attachment": "m", "free_length": "m", "stiffness": "(relative)", "payload": "kg"}[name]
-                raise SpringlabError(f"tolerance {name} = {value} {unit} must be finite and >= 0")
+            unit = {"attachment": "m", "free_length": "m", "stiffness": "(relative)", "payload": "kg"}[name]
+            object.__setattr__(self, name, _checks.positive(f"tolerance {name}", getattr(self, name), allow_zero=True,
+                                                            unit=unit))
 
     def only(self, factor: str) -> Tolerances:
         """The same tolerances with every other factor switched off."""

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from springlab.errors import GeometryError
 from springlab.model.chain import UP, Chain
 from springlab.model.springs import Spring, check_springs
 
@@ -157,6 +158,11 @@ def holding_torques(chain: Chain, springs, X) -> np.ndarray:
         pull = B - A
         if s.free_length:
             length = np.linalg.norm(pull, axis=1, keepdims=True)
+            if np.any(length <= 1e-12 * s.free_length):
+                pose = int(np.argmin(length))
+                raise GeometryError(
+                    f"{s.label}'s ends coincide at pose {pose}: a spring of free_length = {s.free_length:g} m has "
+                    "no line of action there; move its attachments (a, b) or leave that pose out")
             pull = pull * (1.0 - s.free_length / length)
         for j in range(s.i + 1, s.j + 1):  # joints crossed by the spring
             out[:, j - 2] += s.k * np.cross(B - joints[:, j - 2], pull)

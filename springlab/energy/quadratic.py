@@ -75,6 +75,7 @@ def spring_entries(i, j, a, b, k, r) -> dict[tuple[int, int], object]:
 # --- numeric -------------------------------------------------------------------
 def gravity_matrix(chain: Chain) -> np.ndarray:
     """G (000 Eqs. 16, 18) as an (n, n) array in J."""
+    check_springs(chain, ())
     G = np.zeros((chain.n, chain.n))
     for (u, v), val in gravity_entries(chain.r, chain.d, chain.m, chain.g).items():
         G[u - 1, v - 1] = val

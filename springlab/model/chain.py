@@ -78,8 +78,9 @@ class Chain:
         g = _checks.number("g", self.g)
         if not (np.isfinite(g) and g > 0):
             raise SpringlabError(f"g must be a finite positive acceleration in m/s^2, got {self.g!r}")
-        scale = max(m) * max(max(r), float(np.max(np.abs(d)))) * len(r) * g
-        if not np.isfinite(scale * max(r)):
+        with np.errstate(over="ignore"):
+            scale = max(m) * max(max(r), float(np.max(np.abs(d)))) * len(r) * g * max(r)
+        if not np.isfinite(scale):
             raise SpringlabError(f"masses, lengths and g this large overflow the energies (m g r ~ {scale:.3g} J): "
                                  "give them in SI units (kg, m, m/s^2)")
         object.__setattr__(self, "r", r)
@@ -121,7 +122,7 @@ class Chain:
     def check_angles(self, angles) -> np.ndarray:
         """Validate joint angles: shape (N, n-1, 3), finite; for a revolute joint only
         the first entry (the rotation about its axis) may be nonzero."""
-        angles = np.asarray(angles, dtype=float)
+        angles = _checks.real_array("angles", angles, finite_only=False)
         if angles.ndim == 2:
             angles = angles[None]
         if angles.ndim != 3 or angles.shape[1:] != (self.n - 1, 3):
@@ -130,6 +131,8 @@ class Chain:
                 f"got {angles.shape}")
         if not np.all(np.isfinite(angles)):
             raise SpringlabError("angles contain NaN or infinity")
+        if angles.shape[0] == 0:
+            raise SpringlabError("angles hold no pose (shape (0, ...)): give at least one pose")
         for j in range(2, self.n + 1):
             if self.joint(j) != SPHERICAL and np.any(angles[:, j - 2, 1:]):
                 raise SpringlabError(
@@ -159,7 +162,7 @@ class Chain:
         """Link frames (N, n, 3, 3) of a batch of poses given either as joint angles
         (N, n-1, 3) or, for a chain of spherical joints, as link directions (N, n, 3)
         (then each link's spin about its own axis is a free choice)."""
-        poses = np.asarray(poses, dtype=float)
+        poses = _checks.real_array("poses", poses, finite_only=False)
         if poses.ndim == 3 and poses.shape[1:] == (self.n - 1, 3):
             return self.frames(poses)
         X = self.check_directions(poses)
@@ -186,12 +189,14 @@ class Chain:
     def as_poses(self, X) -> np.ndarray:
         """A batch of poses as a float array of shape (N, n, 3) (a single pose
         (n, 3) becomes N = 1); checks the shape only."""
-        X = np.asarray(X, dtype=float)
+        X = _checks.real_array("poses X", X, finite_only=False)
         if X.ndim == 2:
             X = X[None]
         if X.ndim != 3 or X.shape[1:] != (self.n, 3):
             raise SpringlabError(
                 f"poses X must have shape (N, {self.n}, 3) for a {self.n}-link chain, got {X.shape}")
+        if X.shape[0] == 0:
+            raise SpringlabError("poses X hold no pose (shape (0, n, 3)): give at least one pose")
         return X
 
     def check_directions(self, X) -> np.ndarray:

@@ -113,6 +113,9 @@ class Spring:
 def check_springs(chain, springs) -> tuple[Spring, ...]:
     """Validate that every spring fits the chain (j <= n) and that its energy over the
     chain's reach is a finite number of joules; return them as a tuple."""
+    from springlab.model.chain import Chain
+
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     if isinstance(springs, Spring) or isinstance(springs, str) or not hasattr(springs, "__iter__"):
         raise SpringlabError(f"springs must be a sequence of Spring objects, got {springs!r}")
     springs = tuple(springs)

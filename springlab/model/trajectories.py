@@ -28,13 +28,14 @@ def linear_sweep(initial, rotation, duration: float, samples: int):
     :param samples: number of time samples (>= 2), both ends included
     :returns: (t, angles): t ndarray(samples,) in s, angles ndarray(samples, n-1, 3) in rad
     """
-    initial = np.asarray(initial, dtype=float)
-    rotation = np.asarray(rotation, dtype=float)
+    initial = _checks.real_array("initial (angles, rad)", initial)
+    rotation = _checks.real_array("rotation (angles, rad)", rotation)
     if initial.shape != rotation.shape or initial.ndim != 2 or initial.shape[1] != 3:
         raise SpringlabError(
             f"initial and rotation must both have shape (n-1, 3); got {initial.shape} and {rotation.shape}")
     duration = _checks.duration(duration)
     samples = _checks.sample_count(samples, least=2)
+    _checks.memory(f"samples = {samples} poses", samples * (initial.size + 1), hint="use fewer samples")
     t = np.linspace(0.0, duration, int(samples))
     s = (t / duration)[:, None, None]
     return t, initial[None] + s * rotation[None]
@@ -64,8 +65,8 @@ class Sweep:
     """
 
     def __init__(self, initial, rotation, duration: float, law: str = "quintic"):
-        initial = np.asarray(initial, dtype=float)
-        rotation = np.asarray(rotation, dtype=float)
+        initial = _checks.real_array("initial (angles, rad)", initial, finite_only=False)
+        rotation = _checks.real_array("rotation (angles, rad)", rotation, finite_only=False)
         if initial.shape != rotation.shape or initial.ndim != 2 or initial.shape[1] != 3:
             raise SpringlabError(
                 f"initial and rotation must both have shape (n-1, 3); got {initial.shape} and {rotation.shape}")
@@ -77,7 +78,7 @@ class Sweep:
         self.initial, self.rotation, self.duration, self.law = initial, rotation, float(duration), law
 
     def _law(self, t, order: int):
-        tau = np.clip(np.asarray(t, dtype=float) / self.duration, 0.0, 1.0)
+        tau = np.clip(_checks.real_array("t (times, s)", t) / self.duration, 0.0, 1.0)
         if self.law == "linear":
             value = [tau, np.ones_like(tau), np.zeros_like(tau)][order]
         else:
@@ -110,7 +111,9 @@ class Sweep:
 def rest_to_rest_cubic(t_I: float, t_F: float, theta_I: float, theta_F: float) -> np.ndarray:
     """Coefficients (a_0, a_1, a_2, a_3) of the cubic in absolute time t (s) that goes
     from theta_I at t_I to theta_F at t_F with zero rate at both ends (001 Eq. 26)."""
-    if not (np.isfinite(t_I) and np.isfinite(t_F) and t_F > t_I):
+    t_I, t_F = _checks.finite("t_I", t_I, "s"), _checks.finite("t_F", t_F, "s")
+    theta_I, theta_F = _checks.finite("theta_I", theta_I, "rad"), _checks.finite("theta_F", theta_F, "rad")
+    if not t_F > t_I:
         raise SpringlabError(f"need t_F > t_I (s), got t_I = {t_I}, t_F = {t_F}")
     T, delta = t_F - t_I, theta_F - theta_I
     # theta = theta_I + delta (3 u^2 - 2 u^3), u = (t - t_I) / T, expanded in powers of t
@@ -135,7 +138,7 @@ class PiecewiseCubic:
     """
 
     def __init__(self, rows, coefficients=None):
-        rows = np.asarray(rows, dtype=float)
+        rows = _checks.real_array("rows", rows, finite_only=False)
         if rows.ndim != 2 or rows.shape[1] != 4 or not np.all(np.isfinite(rows)):
             raise SpringlabError(f"rows must be finite with shape (n, 4): t_I, t_F, theta_I, theta_F; got {rows.shape}")
         for k, (t_I, t_F, _, _) in enumerate(rows):
@@ -149,7 +152,7 @@ class PiecewiseCubic:
         self.rows, self.coefficients = rows, coefficients
 
     def _eval(self, t, order: int) -> np.ndarray:
-        t = np.asarray(t, dtype=float)[..., None]
+        t = _checks.real_array("t (times, s)", t)[..., None]
         t_I, t_F, th_I, th_F = self.rows.T
         a0, a1, a2, a3 = self.coefficients.T
         inside = (t >= t_I) & (t < t_F)

@@ -45,8 +45,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab import _checks
 from springlab._checks import positive
-from springlab.errors import SpringlabError
+from springlab.errors import GeometryError, SpringlabError
 
 
 @dataclass(frozen=True)
@@ -66,12 +67,12 @@ class Compensator:
 
     def gravity_energy(self, phi) -> np.ndarray:
         """P_G = G s (1 + cos phi) (002 Eq. 1), J."""
-        return self.G * self.s * (1.0 + np.cos(np.asarray(phi, dtype=float)))
+        return self.G * self.s * (1.0 + np.cos(check_phi(phi)))
 
     def gravity_moment(self, phi) -> np.ndarray:
         """The moment of gravity about O, G s sin(phi) (N m), positive towards larger phi
         (the paper's 002 Eq. 20 prints it as M_G = -G s sin(phi))."""
-        return self.G * self.s * np.sin(np.asarray(phi, dtype=float))
+        return self.G * self.s * np.sin(check_phi(phi))
 
 
 @dataclass(frozen=True)
@@ -83,20 +84,30 @@ class Dyad:
     beta: float
 
     def __post_init__(self):
-        positive("r", self.r)
-        positive("l", self.l)
-        if not np.isfinite(self.beta):
-            raise SpringlabError(f"beta must be finite, got {self.beta}")
+        positive("r", self.r, unit="m")
+        positive("l", self.l, unit="m")
+        _checks.finite("beta", self.beta, "rad")
+
+
+def check_phi(phi) -> np.ndarray:
+    """Link angles phi (rad): finite, at least one, in any array shape."""
+    out = _checks.real_array("phi", phi, finite_only=False)
+    if out.size == 0:
+        raise SpringlabError("phi is empty: give at least one link angle (rad)")
+    if not np.all(np.isfinite(out)):
+        raise SpringlabError("phi contains NaN or infinity: link angles must be finite (rad)")
+    return out
 
 
 def closing(dyad: Dyad, phi) -> tuple[np.ndarray, np.ndarray]:
-    phi = np.asarray(phi, dtype=float)
+    phi = check_phi(phi)
     u = phi - dyad.beta
     horizontal = dyad.r * np.sin(u)
-    if np.any(np.abs(horizontal) > dyad.l):
+    if np.any(np.abs(horizontal) >= dyad.l):
         worst = np.degrees(np.atleast_1d(phi)[np.argmax(np.abs(np.atleast_1d(horizontal)))])
-        raise SpringlabError(
-            f"l = {dyad.l:.6g} m < r |sin(phi - beta)| at phi = {worst:.6g} deg: the dyad cannot close")
+        raise GeometryError(
+            f"l = {dyad.l:.6g} m <= r |sin(phi - beta)| at phi = {worst:.6g} deg: the dyad cannot close "
+            "(or sits at a dead centre); choose l > r or keep phi - beta away from +-90 deg")
     return u, np.sqrt(dyad.l**2 - horizontal**2)  # l cos(theta)
 
 

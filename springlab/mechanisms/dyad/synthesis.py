@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.mechanisms.dyad.algebra import (
     slider_positions,
@@ -265,6 +266,12 @@ def position_sets(low_deg: float = 30.0, high_deg: float = 150.0, step_deg: floa
     keyed '30, 60, 120 deg', in rad."""
     import itertools
 
+    low_deg, high_deg = _checks.finite("low_deg", low_deg, "deg"), _checks.finite("high_deg", high_deg, "deg")
+    step_deg = _checks.positive("step_deg", step_deg, unit="deg")
+    if not high_deg > low_deg:
+        raise SpringlabError(f"high_deg = {high_deg:g} must be above low_deg = {low_deg:g}")
+    _checks.memory(f"positions every {step_deg:g} deg", ((high_deg - low_deg) / step_deg + 1) ** 3 / 6 * 3,
+                   hint="use a coarser step_deg")
     grid = np.arange(low_deg, high_deg + step_deg / 2, step_deg)
     return {", ".join(f"{a:g}" for a in trio) + " deg": np.radians(trio) for trio in itertools.combinations(grid, 3)}
 

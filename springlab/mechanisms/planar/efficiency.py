@@ -11,6 +11,7 @@ joints only. Mechanical Sciences (2022).
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 
@@ -78,6 +79,11 @@ def spring_efficiency(arm: PlanarArm, spring: PlanarSpring, theta) -> np.ndarray
     return x / (x + y)
 
 
+RATE = 1e7
+"""Poses per second the index evaluates on one core, about (for the refusal of requests that
+would run for hours: :func:`springlab._checks.poses`)."""
+
+
 def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: float | None = None,
                      samples: int | None = None, seed=None, reading: str = "magnitudes",
                      chunk: int = 1 << 18, progress: bool = False) -> float:
@@ -99,6 +105,12 @@ def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: flo
 
     if samples is not None:
         samples = _checks.sample_count(samples, least=1, why=" (an empty sample has no mean)")
+        _checks.poses(f"the index over samples = {samples}", samples, rate=RATE, hint="use fewer samples")
+    else:
+        points = workspace.grid_size(step)
+        _checks.poses(f"the index over a grid of step = {step:g} deg", points, rate=RATE, hint="use a larger step")
+
+    if samples is not None:
         if seed is None:
             raise SpringlabError("Monte Carlo sampling needs a seed")
         total, done = 0.0, 0
@@ -111,6 +123,8 @@ def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: flo
         return total / samples
     axes = workspace.grid(step)
     split = max(0, len(axes) - 2)  # joints 2..split+1 walked, the last two vectorised
+    _checks.memory(f"the index's inner grid with step = {step:g} deg",
+                   math.prod(len(a) for a in axes[split:]) * (2 * len(tl) + 3), hint="use a larger step")
     outer, inner = axes[:split], axes[split:]
     mesh = np.meshgrid(*inner, indexing="ij")
     inner_theta = np.stack([m.ravel() for m in mesh], axis=1)  # (M, len(inner))

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from springlab import _checks
 from springlab.mechanisms.planar.model import PlanarArm, check_spring, relative_angles
 
 
@@ -49,6 +50,7 @@ def holding_torques(arm: PlanarArm, springs, theta, *, delta: float = 1e-6) -> n
     energy (:func:`energies`) with respect to each joint angle theta_2..theta_n (rad), by
     central differences of step ``delta`` rad. Zero everywhere: the arm is balanced."""
     theta = relative_angles(theta, arm.n)
+    delta = _checks.positive("delta", delta, unit="rad")
     out = np.zeros(theta.shape)
     for j in range(theta.shape[1]):
         step = np.zeros(theta.shape[1])

@@ -56,6 +56,7 @@ joints only. Mechanical Sciences (2022).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -85,7 +86,7 @@ class PlanarArm:
     g: float = 9.81
 
     def __post_init__(self):
-        r, s, m = (np.atleast_1d(np.asarray(getattr(self, k), dtype=float)) for k in ("r", "s", "m"))
+        r, s, m = (np.atleast_1d(_checks.real_array(k, getattr(self, k), finite_only=False)) for k in ("r", "s", "m"))
         if not (r.shape == s.shape == m.shape) or r.ndim != 1 or r.size < 2:
             raise SpringlabError(f"r, s, m need one entry per link (ground included, n >= 2), got {r.shape}, {s.shape}, {m.shape}")
         for name, v in (("r", r), ("s", s), ("m", m)):
@@ -100,10 +101,17 @@ class PlanarArm:
                 raise SpringlabError(f"s_{j + 1} = {s[j]} m puts the centre of mass off link {j + 1} (r = {r[j]} m)")
         if r[0] <= 0:
             raise SpringlabError(f"r_1 (the ground's reference length) = {r[0]} m must be > 0")
-        if not (np.isfinite(self.g) and self.g > 0):
+        g = _checks.number("g", self.g)
+        if not (np.isfinite(g) and g > 0):
             raise SpringlabError(f"g must be > 0 m/s^2, got {self.g}")
+        with np.errstate(over="ignore"):
+            scale = m.sum() * g * r.sum() / r[0] * r.sum()
+        if not np.isfinite(scale):
+            raise SpringlabError("masses, lengths and g this large overflow the energies: give them in SI units "
+                                 "(kg, m, m/s^2)")
         for k, v in (("r", r), ("s", s), ("m", m)):
             object.__setattr__(self, k, v)
+        object.__setattr__(self, "g", g)
 
     @property
     def n(self) -> int:
@@ -139,6 +147,16 @@ class PlanarSpring:
     b: float
     alpha: float
     beta: float
+
+    def __post_init__(self):
+        for name in ("i", "j"):
+            object.__setattr__(self, name, _checks.count(
+                f"spring link index {name}", getattr(self, name), least=1, why=" (S(i,j) needs 1 <= i < j)"))
+        if not self.i < self.j:
+            raise SpringlabError(f"a spring S(i,j) needs 1 <= i < j, got i={self.i}, j={self.j}")
+        object.__setattr__(self, "k", _checks.positive(f"k of {self.label}", self.k, unit="N/m"))
+        for name, unit in (("a", "m"), ("b", "m"), ("alpha", "deg"), ("beta", "deg")):
+            object.__setattr__(self, name, _checks.finite(f"{name} of {self.label}", getattr(self, name), unit))
 
     @property
     def label(self) -> str:
@@ -195,11 +213,13 @@ def role_pattern(sp: PlanarSpring) -> str:
 
 def relative_angles(theta, n: int) -> np.ndarray:
     """Joint angles theta_2..theta_n (rad) as an (N, n-1) array, validated."""
-    theta = np.asarray(theta, dtype=float)
+    theta = _checks.real_array("theta (joint angles)", theta, finite_only=False)
     if theta.ndim == 1:
         theta = theta[None]
     if theta.ndim != 2 or theta.shape[1] != n - 1 or not np.all(np.isfinite(theta)):
-        raise SpringlabError(f"joint angles must be finite with shape (N, {n - 1}) in rad, got {theta.shape}")
+        raise SpringlabError(f"theta (joint angles) must be finite with shape (N, {n - 1}) in rad, got {theta.shape}")
+    if theta.shape[0] == 0:
+        raise SpringlabError("theta (joint angles) holds no pose: give at least one")
     return theta
 
 
@@ -244,7 +264,8 @@ class Workspace:
     high: tuple
 
     def __post_init__(self):
-        lo, hi = np.atleast_1d(np.asarray(self.low, dtype=float)), np.atleast_1d(np.asarray(self.high, dtype=float))
+        lo, hi = (np.atleast_1d(_checks.real_array(name, value, finite_only=False))
+                  for name, value in (("low", self.low), ("high", self.high)))
         if lo.shape != hi.shape or lo.ndim != 1 or lo.size == 0:
             raise SpringlabError(f"low and high need one entry per joint, got {lo.shape} and {hi.shape}")
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
@@ -262,8 +283,9 @@ class Workspace:
     def grid(self, step: float) -> list[np.ndarray]:
         """Each joint's grid (rad): low, low + step, ... up to high, both ends included
         when (high - low) is a multiple of the step; a zero-width range gives one value."""
-        if not (np.isfinite(step) and step > 0):
-            raise SpringlabError(f"grid step must be > 0 deg, got {step}")
+        step = _checks.positive("step", step, unit="deg")
+        counts = [int(np.floor((b - a) / step + 1e-9)) + 1 for a, b in zip(self.low, self.high, strict=True)]
+        _checks.memory(f"a grid with step = {step:g} deg", sum(counts), hint="use a larger step")
         axes = []
         for a, b in zip(self.low, self.high, strict=True):
             count = int(np.floor((b - a) / step + 1e-9)) + 1
@@ -271,7 +293,9 @@ class Workspace:
         return axes
 
     def grid_size(self, step: float) -> int:
-        return int(np.prod([len(x) for x in self.grid(step)]))
+        """Points of :meth:`grid`, counted without building it (exact, a Python int)."""
+        step = _checks.positive("step", step, unit="deg")
+        return math.prod(int(np.floor((b - a) / step + 1e-9)) + 1 for a, b in zip(self.low, self.high, strict=True))
 
     def sample(self, count: int, seed) -> np.ndarray:
         """``count`` poses uniform in the box (rad), (count, joints)."""

@@ -16,6 +16,7 @@ import itertools
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.mechanisms.planar.efficiency import efficiency_index
 from springlab.mechanisms.planar.model import (
@@ -206,7 +207,8 @@ def com_distances(r, m, G, g: float) -> np.ndarray:
 
     :param r: r_1..r_n (m); m: m_2..m_n (kg); G: |G_12|..|G_1n| (N/m)
     """
-    r, m, G = (np.asarray(x, dtype=float) for x in (r, m, G))
+    r, m, G = (_checks.real_array(name, x) for name, x in (("r", r), ("m", m), ("G", G)))
+    g = _checks.positive("g", g, unit="m/s^2")
     if not (r.size == m.size + 1 == G.size + 1):
         raise SpringlabError(f"need r_1..r_n, m_2..m_n, |G_12|..|G_1n|; got {r.size}, {m.size}, {G.size} values")
     beyond = np.r_[np.cumsum(m[::-1])[::-1][1:], 0.0]

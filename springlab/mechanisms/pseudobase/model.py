@@ -80,7 +80,8 @@ class DH:
     alpha: np.ndarray
 
     def __post_init__(self):
-        arrays = [np.atleast_1d(np.asarray(getattr(self, k), dtype=float)) for k in ("d", "a", "alpha")]
+        arrays = [np.atleast_1d(_checks.real_array(f"DH parameter {k}", getattr(self, k), finite_only=False))
+                  for k in ("d", "a", "alpha")]
         if len({x.shape for x in arrays}) != 1 or arrays[0].ndim != 1 or arrays[0].size == 0:
             raise SpringlabError(f"d, a, alpha must be 1-d arrays of one length, got shapes {[x.shape for x in arrays]}")
         for k, x in zip(("d", "a", "alpha"), arrays, strict=True):
@@ -94,11 +95,13 @@ class DH:
 
     def check_angles(self, q) -> np.ndarray:
         """Joint angles as an (N, n) array (rad); one pose (n,) becomes (1, n)."""
-        q = np.asarray(q, dtype=float)
+        q = _checks.real_array("joint angles q (poses)", q, finite_only=False)
         if q.ndim == 1:
             q = q[None]
         if q.ndim != 2 or q.shape[1] != self.n or not np.all(np.isfinite(q)):
             raise SpringlabError(f"joint angles must be finite with shape (N, {self.n}) in rad, got shape {q.shape}")
+        if q.shape[0] == 0:
+            raise SpringlabError("joint angles q (poses) hold no pose: give at least one")
         return q
 
     def frames(self, q):
