@@ -16,6 +16,7 @@ springlab.errors.SpringlabError: restarts must be an integer >= 0, got 2.5
 
 from __future__ import annotations
 
+import math
 import numbers
 
 import numpy as np
@@ -155,8 +156,9 @@ def duration(value, name: str = "duration") -> float:
 
 def count(name: str, value, *, least: int = 0, why: str = "") -> int:
     """An integer (not a bool, a float with a fraction or a string) >= ``least``."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not np.isfinite(value) \
-            or int(value) != value or value < least:
+    integral = isinstance(value, numbers.Integral) or (isinstance(value, numbers.Real) and math.isfinite(value)
+                                                        and float(value).is_integer())
+    if isinstance(value, bool) or not integral or value < least:
         raise SpringlabError(f"{name} must be an integer >= {least}{why}, got {value!r}")
     return int(value)
 

@@ -143,7 +143,7 @@ def verify(chain: Chain, springs, X) -> float:
     spread, gravity = float(np.ptp(E["total"])), float(np.ptp(E["gravity"]))
     scale = chain.g * sum(chain.m) * sum(chain.r)
     if gravity <= 1e-12 * scale:
-        if any(G > 0 for G in _gravity_moments(chain)):
+        if chain.g * max(_gravity_moments(chain)) > 1e-12 * scale:
             raise SpringlabError(f"the {len(E['total'])} workspace pose(s) do not move the arm's gravity energy, "
                                  "so they cannot judge balance: use two or more distinct poses (samples >= 2)")
         gravity = scale

@@ -647,7 +647,7 @@ def balanced_core(chain: Chain, *, rel: float = 1e-13) -> Chain | None:
 
     G_{1,j} (000 Eq. 18) is positive for every link j < n (masses are positive), but
     G_{1,n} = g m_n d_n vanishes when the end link's centre of mass is on its proximal
-    joint (d_n = 0, or below ``rel`` times the largest entry). Gravity then does not
+    joint (d_n = 0, or G_{1,n} below ``rel`` times the arm's energy scale g (sum m) (sum r)). Gravity then does not
     depend on x_n, and link n needs no spring: the core is the chain of links 2..n-1 with
     link n's mass moved to link n-1's distal joint, which has the same G_{1,j}, j < n. A
     design for the core, with no spring on link n, balances the whole arm (000 Eq. 39 has
@@ -656,7 +656,7 @@ def balanced_core(chain: Chain, *, rel: float = 1e-13) -> Chain | None:
     without springs).
     """
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)  # 000 Eq. (18)
-    if abs(G[(1, chain.n)]) > rel * max(abs(v) for v in G.values()):
+    if abs(G[(1, chain.n)]) > rel * chain.g * sum(chain.m) * sum(chain.r):  # vs the arm's energy scale (J)
         return chain
     if chain.n == 2:
         return None
