@@ -5,6 +5,7 @@ inside numpy, sympy or exudyn with a message that names nothing."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -14,7 +15,7 @@ from springlab.design import efficiency as deff
 from springlab.design import rank, rules, solve, tolerance
 from springlab.design.rules import SpringSlot
 from springlab.design.solve import SpringSpec
-from springlab.energy import geometry, quadratic
+from springlab.energy import geometry, quadratic, simulation
 from springlab.energy.multibody import SimSettings
 from springlab.errors import (
     AttachmentError,
@@ -26,13 +27,15 @@ from springlab.errors import (
 from springlab.mechanisms import two_spring_arm as lenzo
 from springlab.mechanisms.dyad import algebra as dyad_algebra
 from springlab.mechanisms.dyad import geometry as dyad_geometry
+from springlab.mechanisms.dyad import simulation as dyad_simulation
 from springlab.mechanisms.dyad import synthesis as dyad_synthesis
 from springlab.mechanisms.dyad.model import Compensator, Dyad
 from springlab.mechanisms.planar import efficiency as planar_eff
 from springlab.mechanisms.planar import geometry as planar_geometry
 from springlab.mechanisms.planar.model import PlanarArm, PlanarSpring, Workspace
 from springlab.mechanisms.pseudobase import geometry as pb_geometry
-from springlab.mechanisms.pseudobase.model import DH
+from springlab.mechanisms.pseudobase.model import DH, Equilibrator
+from springlab.mechanisms.pseudobase.subsystems import design_equilibrators
 from springlab.model import trajectories
 from springlab.model.armfile import ArmSpec, arm_from_dict, parse_quantity
 from springlab.papers import juang2022, lin2010
@@ -225,6 +228,35 @@ CASES = {
                         SpringlabError, "t"),
     "cubic times reversed": (lambda: trajectories.rest_to_rest_cubic(2.0, 1.0, 0.0, 1.0), SpringlabError, "t_F"),
     "cubic angle nan": (lambda: trajectories.rest_to_rest_cubic(0.0, 1.0, math.nan, 1.0), SpringlabError, "theta_I"),
+    "pseudobase dh not a DH": (lambda: replace(PB, dh="DH"), SpringlabError, "dh must be"),
+    "pseudobase modules strings": (lambda: replace(PB, modules=("a", "b")), SpringlabError, "modules"),
+    "pseudobase g string": (lambda: replace(PB, g="9.81"), SpringlabError, "g must be"),
+    "pseudobase up strings": (lambda: replace(PB, up=["z"]), SpringlabError, "up"),
+    "pseudobase star height nan": (lambda: replace(PB, star_height=math.nan), SpringlabError, "star_height"),
+    "equilibrator K zero": (lambda: Equilibrator(2, 0.0, 0.1, 0.1, np.zeros(3), np.zeros(3)), SpringlabError, "K of spring 2"),
+    "equilibrator b shape": (lambda: Equilibrator(2, 10.0, 0.1, 0.1, np.zeros(2), np.zeros(3)), SpringlabError,
+                             "b of spring 2"),
+    "equilibrators K strings": (lambda: design_equilibrators(PB, ["a"] * 5, [0.1] * 5), SpringlabError, "K must be"),
+    "equilibrators l_CA short": (lambda: design_equilibrators(PB, [100.0] * 5, [0.1] * 4), SpringlabError, "l_CA"),
+    "equilibrators max l_CB zero": (lambda: design_equilibrators(PB, [100.0] * 5, [0.1] * 5, max_l_CB=0.0),
+                                    SpringlabError, "max_l_CB"),
+    "pseudobase torques delta": (lambda: pb_geometry.holding_torques(PB, [], np.zeros((1, PB.n)), delta=-1.0),
+                                 SpringlabError, "delta"),
+    "pseudobase torques scale": (lambda: pb_geometry.holding_torques(PB, [], np.zeros((1, PB.n)), spring_scale=math.nan),
+                                 SpringlabError, "spring_scale"),
+    "tolerance study tol": (lambda: tolerance.tolerance_study(ARM, SPRINGS, X, {"stiffness": 0.1}, progress=False),
+                            SpringlabError, "tol must be"),
+    "tolerance study samples": (lambda: tolerance.tolerance_study(ARM, SPRINGS, X, tolerance.Tolerances(stiffness=0.1),
+                                                                  samples=0, progress=False), SpringlabError, "samples"),
+    "hold test control": (lambda: simulation.hold_test(ARM, SPRINGS, X[:1], control_scale=1.0), SpringlabError,
+                          "control_scale"),
+    "hold test duration": (lambda: simulation.hold_test(ARM, SPRINGS, X[:1], duration=0.0), SpringlabError, "duration"),
+    "hold test settings": (lambda: simulation.hold_test(ARM, SPRINGS, X[:1], settings={"step": 1e-3}), SpringlabError,
+                           "settings"),
+    "hold test poses empty": (lambda: simulation.hold_test(ARM, SPRINGS, np.zeros((0, 4, 3))), SpringlabError, "poses"),
+    "dyad follow phi nan": (lambda: dyad_simulation.follow(COMP, DYAD, math.nan, 1.0), SpringlabError, "phi_start"),
+    "dyad follow step": (lambda: dyad_simulation.follow(COMP, DYAD, 0.5, 1.0, duration=1.0, step=2.0), SpringlabError,
+                         "step"),
     # --- simulation settings ---
     "settings step zero": (lambda: SimSettings(step=0.0), SpringlabError, "step"),
     "settings damping negative": (lambda: SimSettings(damping=-1.0), SpringlabError, "damping"),

@@ -102,7 +102,9 @@ def tolerance_study(chain: Chain, springs, X, tol: Tolerances, *, samples: int =
 
     springs = check_springs(chain, springs)
     X = chain.check_directions(X)
+    _checks.instance("tol", tol, Tolerances)
     samples = _checks.sample_count(samples, least=1)
+    seed = _checks.count("seed", seed)
     active = [f for f in FACTORS if getattr(tol, f)]
     if not active:
         raise SpringlabError("every tolerance is 0: nothing to study")

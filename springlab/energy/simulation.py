@@ -225,6 +225,10 @@ def hold_test(chain: Chain, springs, poses, duration: float = 2.0, *, control_sc
     frames = chain.pose_frames(poses)
     duration = _checks.duration(duration)
     springs = check_springs(chain, springs)
+    control_scale = _checks.positive("control_scale", control_scale, allow_zero=True)
+    if control_scale == 1.0:
+        raise SpringlabError("control_scale = 1 makes the negative control the design itself: use e.g. 0.9")
+    _checks.instance("settings", settings, SimSettings)
     return HoldResult(_hold_run(chain, springs, frames, duration, settings, 1.0),
                       _hold_run(chain, springs, frames, duration, settings, control_scale))
 
@@ -254,6 +258,7 @@ def holding_torques(chain: Chain, springs, poses, *, settings: SimSettings = Sim
     """
     frames = chain.pose_frames(poses)
     springs = check_springs(chain, springs)
+    _checks.instance("settings", settings, SimSettings)
     out = np.zeros((len(frames), chain.n - 1, 3))
     for p in range(len(frames)):
         model = build_model(chain, springs, frames[p], joints="locked", settings=settings)

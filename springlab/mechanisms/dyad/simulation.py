@@ -56,6 +56,8 @@ def follow(comp: Compensator, dyad: Dyad, phi_start: float, phi_end: float, *,
 
     duration = _checks.duration(duration)
     samples = _checks.sample_count(samples, least=2)
+    phi_start, phi_end = _checks.finite("phi_start", phi_start, "rad"), _checks.finite("phi_end", phi_end, "rad")
+    step = _checks.at_most("step", step, duration / 2, "s", why=" (half the duration)")
     span = float(phi_end - phi_start)
     closing(dyad, np.linspace(phi_start, phi_end, 64))  # raises if the dyad cannot close
 

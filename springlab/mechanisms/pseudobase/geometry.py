@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.mechanisms.pseudobase.model import PseudobaseArm, world_point
 
@@ -73,6 +74,8 @@ def holding_torques(arm: PseudobaseArm, springs, poses, *, spring_scale: float =
     """Holding torques dV/dq (N m), (N, n), route 2: the total energy of :func:`energies`
     differentiated by central differences (step ``delta`` rad); springs scaled by ``spring_scale``."""
     poses = arm.dh.check_angles(poses)
+    spring_scale = _checks.positive("spring_scale", spring_scale, allow_zero=True)
+    delta = _checks.positive("delta", delta, unit="rad")
     scaled = [sp.scaled(spring_scale) for sp in springs]
     out = np.zeros(poses.shape)
     for j in range(arm.n):

@@ -163,24 +163,25 @@ class PseudobaseArm:
     up: np.ndarray = field(default_factory=lambda: np.array([0.0, 0.0, 1.0]))
 
     def __post_init__(self):
-        n = self.dh.n
+        n = _checks.instance("dh", self.dh, DH, "DH (the primary chain's Denavit-Hartenberg parameters)").n
         set_ = lambda k, v: object.__setattr__(self, k, v)  # noqa: E731
         set_("m", masses("m", self.m, n))
         set_("m_hat", masses("m_hat", self.m_hat, n))
         set_("m_star", masses("m_star", self.m_star, n))
         for k in ("s", "s_hat", "c"):
             set_(k, vector_rows(k, getattr(self, k), n))
-        modules = tuple(int(i) for i in self.modules)
+        if isinstance(self.modules, str) or not hasattr(self.modules, "__iter__"):
+            raise SpringlabError(f"modules must be the links k..{n} with k = 1 or 2, got {self.modules!r}")
+        modules = tuple(_checks.count("each of modules", i, least=1) for i in self.modules)
         if not modules or modules != tuple(range(modules[0], n + 1)) or modules[0] not in (1, 2):
             raise SpringlabError(f"modules must be the links k..{n} with k = 1 or 2, got {self.modules!r}")
         set_("modules", modules)
-        if not (np.isfinite(self.g) and self.g > 0):
-            raise SpringlabError(f"g must be > 0 m/s^2, got {self.g}")
-        up = np.asarray(self.up, dtype=float)
+        set_("g", _checks.positive("g", self.g, unit="m/s^2"))
+        up = _checks.real_array("up", self.up, finite_only=False)
         if up.shape != (3,) or not np.isclose(np.linalg.norm(up), 1.0, atol=1e-12):
             raise SpringlabError(f"up must be a unit 3-vector, got {self.up!r}")
         set_("up", up)
-        offset = np.asarray(self.aux_offset, dtype=float)
+        offset = _checks.real_array("aux_offset", self.aux_offset, finite_only=False)
         if offset.shape != (3,) or not np.all(np.isfinite(offset)) or np.linalg.norm(offset) == 0:
             raise SpringlabError(f"aux_offset must be a non-zero finite 3-vector (m), got {self.aux_offset!r}")
         tilt = np.degrees(np.arccos(np.clip(abs(offset @ up) / np.linalg.norm(offset), -1.0, 1.0)))
@@ -203,8 +204,8 @@ class PseudobaseArm:
             raise SpringlabError(f"links {free} have no module but auxiliary or pseudobase masses")
         if self.star_height is None:
             set_("star_height", float(np.linalg.norm(offset)) / 2)
-        elif not np.isfinite(self.star_height):
-            raise SpringlabError(f"star_height must be finite (m), got {self.star_height}")
+        else:
+            set_("star_height", _checks.finite("star_height", self.star_height, "m"))
 
     @property
     def n(self) -> int:
@@ -234,6 +235,16 @@ class Equilibrator:
     l_CB: float
     b: np.ndarray
     c: np.ndarray
+
+    def __post_init__(self):
+        object.__setattr__(self, "link", _checks.count("link of an equilibrator", self.link, least=1))
+        object.__setattr__(self, "K", _checks.positive(f"K of spring {self.link}", self.K, unit="N/m"))
+        for name in ("l_CA", "l_CB"):
+            object.__setattr__(self, name, _checks.positive(f"{name} of spring {self.link}", getattr(self, name),
+                                                            allow_zero=True, unit="m"))
+        for name in ("b", "c"):
+            object.__setattr__(self, name, _checks.real_array(f"{name} of spring {self.link}", getattr(self, name),
+                                                              shape=(3,)))
 
     def scaled(self, factor: float) -> Equilibrator:
         return Equilibrator(self.link, self.K * factor, self.l_CA, self.l_CB, self.b, self.c)

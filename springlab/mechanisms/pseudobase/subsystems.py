@@ -110,7 +110,8 @@ def design_equilibrators(arm: PseudobaseArm, K, l_CA, *, max_l_CB: float | None 
         for measuring what they leave unbalanced
     """
     k = len(arm.modules)
-    K, l_CA = np.asarray(K, dtype=float), np.asarray(l_CA, dtype=float)
+    K, l_CA = _checks.real_array("K", K, finite_only=False), _checks.real_array("l_CA", l_CA, finite_only=False)
+    max_l_CB = _checks.optional_positive("max_l_CB", max_l_CB, "m")
     for name, v in (("K", K), ("l_CA", l_CA)):
         if v.shape != (k,) or not np.all(np.isfinite(v)):
             raise SpringlabError(f"{name} must have {k} finite values (one per module), got {v!r}")
