@@ -200,13 +200,14 @@ TIME_LIMIT = 3600.0
 """s: the longest single evaluation a request may ask for, estimated up front (:func:`poses`)."""
 
 
-def poses(what: str, count: float, *, rate: float, limit: float | None = None, hint: str = "") -> None:
-    """Refuse up front a request of ``count`` poses that would run longer than ``limit`` seconds
-    (default :data:`TIME_LIMIT`) at ``rate`` poses per second."""
+def poses(what: str, count: float, *, rate: float, unit: str = "poses", limit: float | None = None,
+          hint: str = "") -> None:
+    """Refuse up front a request of ``count`` poses (or other ``unit``) that would run longer
+    than ``limit`` seconds (default :data:`TIME_LIMIT`) at ``rate`` of them per second."""
     limit = TIME_LIMIT if limit is None else limit
     seconds = float(count) / rate
     if seconds > limit:
-        raise SpringlabError(f"{what} is {float(count):.3g} poses, about {seconds / 3600:.3g} h at {rate:.0e} poses/s, "
+        raise SpringlabError(f"{what} is {float(count):.3g} {unit}, about {seconds / 3600:.3g} h at {rate:.0e} {unit}/s, "
                              f"over the limit of {limit / 3600:g} h{'; ' + hint if hint else ''}")
 
 

@@ -107,3 +107,12 @@ def test_the_core_keeps_the_gravity_entries():
     assert all(np.isclose(reduced[key], full[key], rtol=1e-14) for key in reduced)
     other = ARMS["d = r on the end link"].chain()
     assert balanced_core(other) is other
+
+
+def test_the_relaxation_search_does_not_ask_for_a_spring_on_an_idle_end_link():
+    from springlab.design.feasibility import minimal_relaxed_multisets
+
+    chain = ARMS["d = 0 on the end link"].chain()
+    found = [" ".join(map(str, cfg)) for cfg in minimal_relaxed_multisets(chain)]
+    assert "S(1,3)(+,+) S(2,3)(+,+)" in found  # G_1,4 = 0 needs no S(1,4)
+    assert not any("S(1,4)" in cfg for cfg in found[:2])

@@ -12,7 +12,7 @@ import pytest
 
 from springlab import Spring, random_directions, serial_chain
 from springlab.design import efficiency as deff
-from springlab.design import rank, rules, solve, tolerance
+from springlab.design import feasibility, ground, rank, rules, solve, tolerance
 from springlab.design.rules import SpringSlot
 from springlab.design.solve import SpringSpec
 from springlab.energy import geometry, quadratic, simulation
@@ -257,6 +257,14 @@ CASES = {
     "dyad follow phi nan": (lambda: dyad_simulation.follow(COMP, DYAD, math.nan, 1.0), SpringlabError, "phi_start"),
     "dyad follow step": (lambda: dyad_simulation.follow(COMP, DYAD, 0.5, 1.0, duration=1.0, step=2.0), SpringlabError,
                          "step"),
+    "screen too many candidates": (lambda: ground.relaxation_screen(serial_chain([0.3] * 9, [0.1] * 9, [1.0] * 9), 8),
+                                   SpringlabError, "8 springs on 10 links is 1.99e\\+12 candidate configurations"),
+    "screen count zero": (lambda: ground.relaxation_screen(ARM, 0), SpringlabError, "count must be"),
+    "fewer springs count float": (lambda: ground.fewer_springs(ARM, 2.5), SpringlabError, "count must be"),
+    "minimal multisets max nodes": (lambda: feasibility.minimal_relaxed_multisets(ARM, max_nodes=0), SpringlabError,
+                                    "max_nodes"),
+    "minimal multisets exhausted": (lambda: feasibility.minimal_relaxed_multisets(ARM, max_nodes=3),
+                                    SearchExhaustedError, "max_nodes = 3"),
     # --- simulation settings ---
     "settings step zero": (lambda: SimSettings(step=0.0), SpringlabError, "step"),
     "settings damping negative": (lambda: SimSettings(damping=-1.0), SpringlabError, "damping"),

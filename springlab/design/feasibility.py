@@ -46,7 +46,7 @@ import numpy as np
 
 from springlab import _checks
 from springlab.design.rules import SpringSlot, rule_violations
-from springlab.errors import SolverError, SpringlabError
+from springlab.errors import SearchExhaustedError, SolverError, SpringlabError
 from springlab.model.chain import Chain
 from springlab.tables import Table
 
@@ -252,9 +252,11 @@ def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list
     minimal feasible multiset; a node containing a feasible multiset already found is
     not minimal and is dropped.
 
-    :raises SpringlabError: after ``max_nodes`` programmes (the search says so rather
+    :raises SearchExhaustedError: after ``max_nodes`` programmes (the search says so rather
         than returning a partial list)
     """
+    _checks.instance("chain", chain, Chain)
+    max_nodes = _checks.count("max_nodes", max_nodes, least=1)
     items = alphabet(chain.n)
     kinds = sorted(set(items))
     most = np.array([items.count(k) for k in kinds])
@@ -267,7 +269,10 @@ def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list
         for key, signs in _entry_signs(chain, k).items():
             pos[idx, keys.index(key)] |= 1 in signs
             neg[idx, keys.index(key)] |= -1 in signs
-    gravity = np.array([key[0] == 1 for key in keys])  # G_1,j > 0 (000 Eq. 18, d_j > 0)
+    from springlab.energy.quadratic import gravity_entries
+
+    G = gravity_entries(chain.r, chain.d, chain.m, chain.g)  # 000 Eq. (18): G_1,n = 0 when d_n = 0
+    gravity = np.array([key[0] == 1 and G.get(key, 0.0) > 0 for key in keys])
     level: set[tuple[int, ...]] = {tuple([0] * len(kinds))}
     found: list[np.ndarray] = []
     nodes = 0
@@ -280,7 +285,7 @@ def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list
                 continue  # contains a feasible multiset: not minimal
             nodes += 1
             if nodes > max_nodes:
-                raise SpringlabError(f"the search visited max_nodes = {max_nodes} multisets without finishing; "
+                raise SearchExhaustedError(f"the search visited max_nodes = {max_nodes} multisets without finishing; "
                                      "raise max_nodes")
             present = c > 0
             has_pos = gravity | pos[present].any(axis=0)

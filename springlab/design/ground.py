@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab import _checks
 from springlab.design.rank import (
     RankedDesign,
     design_arm,
@@ -36,6 +37,9 @@ from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.model.armfile import ArmSpec
 from springlab.tables import Table
 
+CANDIDATE_RATE = 1e3
+"""Candidate configurations screened per second (one linear programme each), about."""
+
 
 def all_pattern_slots(n: int) -> list[SpringSlot]:
     """Every spring S(i,j) of an n-link arm with every sign pattern, the paper's
@@ -48,12 +52,16 @@ def _any_sign_candidates(n: int, count: int) -> list[tuple[SpringSlot, ...]]:
     """Every set of ``count`` slots, any sign pattern, that includes a same-sign S(1,n) (the
     only spring with an entry (1, n), which gravity's G_1n > 0 needs: -k a b < 0)."""
     import itertools
+    import math
 
-    if int(count) != count or count < 1:
-        raise SpringlabError(f"count must be an integer >= 1, got {count}")
+    count = _checks.count("count", count, least=1)
     slots = all_pattern_slots(n)
     end = [s for s in slots if (s.i, s.j) == (1, n) and s.pattern in ("(+,+)", "(-,-)")]
     rest = [s for s in slots if s not in end]
+    total = len(end) * math.comb(len(rest), count - 1)
+    _checks.poses(f"{count} springs on {n} links", total, rate=CANDIDATE_RATE, unit="candidate configurations",
+                  hint="each is a linear programme: ask for fewer springs")
+    _checks.memory(f"{total} candidate configurations of {count} springs", total * count, hint="ask for fewer springs")
     return [(e, *others) for e in end for others in itertools.combinations(rest, count - 1)]
 
 
