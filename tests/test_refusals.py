@@ -283,6 +283,16 @@ def test_there_are_at_least_eighty_cases():
     assert len(CASES) >= 80
 
 
+def test_bad_numbers_are_not_verdicts():
+    # a NaN is bad input, never a proof that a design cannot exist
+    for call in (lambda: lenzo.solve(lenzo.Arm(2.0, 1.0, 0.3, 0.1, 0.1), a2=math.nan, a12=0.1, b12=0.1),
+                 lambda: solve.find_design(ARM, ["S(1,2)"], max_extension=math.nan),
+                 lambda: rank.design_arm(spec(), restarts=-1)):
+        with pytest.raises(SpringlabError) as caught:
+            call()
+        assert not isinstance(caught.value, UnbalanceableError | SearchExhaustedError), caught.value
+
+
 def test_the_error_classes_are_not_confused():
     # an exhausted search is not a proof; an attachment off a link is both a geometry and a design refusal
     assert not issubclass(SearchExhaustedError, UnbalanceableError)

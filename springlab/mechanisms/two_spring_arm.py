@@ -92,6 +92,12 @@ class TwoSpringDesign:
     b12: float
     layout: str
 
+    def __post_init__(self):
+        for name in ("k2", "k12"):
+            object.__setattr__(self, name, _checks.positive(name, getattr(self, name), unit="N/m"))
+        for name in ("a2", "b2", "a12", "b12"):
+            object.__setattr__(self, name, _checks.finite(name, getattr(self, name), "m"))
+
 
 def layout_of(a12: float, b12: float, l1: float, b2: float) -> str:
     """The letter of Fig. 5 for the signs of a12, b12 - l1 and b2."""
@@ -142,9 +148,11 @@ def solve(arm: Arm, *, a2: float, a12: float, b12: float, layout: str | None = N
         a layout the arm cannot have (c and d need h2 < 0, a and b need h2 > 0),
         free choices of another layout, or b12 = l1 or a12 = 0 (spring k12 cannot act)
     """
+    _checks.instance("arm", arm, Arm)
+    a2, a12, b12 = (_checks.finite(name, v, "m") for name, v in (("a2", a2), ("a12", a12), ("b12", b12)))
     if layout is not None and layout not in LAYOUTS:
         raise SpringlabError(f"layout must be one of {tuple(LAYOUTS)}, got {layout!r}")
-    if not (np.isfinite(a2) and a2 > 0):
+    if not a2 > 0:
         raise UnbalanceableError(
             f"a2 = {a2} m: the frame attachment of k2 must lie above the shoulder (a2 > 0), or k2 pulls the arm down")
     if layout is not None and np.sign(arm.h2) != LAYOUTS[layout][2]:

@@ -64,6 +64,12 @@ class Inertias:
     placeholder_mass: float = 1.0
     axial_fraction: float = 1e-2
 
+    def __post_init__(self):
+        object.__setattr__(self, "gyration", _checks.positive("gyration", self.gyration, unit="m"))
+        object.__setattr__(self, "placeholder_mass", _checks.positive("placeholder_mass", self.placeholder_mass,
+                                                                      unit="kg"))
+        object.__setattr__(self, "axial_fraction", _checks.positive("axial_fraction", self.axial_fraction))
+
 
 class PseudobaseModel:
     def __init__(self, SC, mbs, kind, arm, springs, links, aux, stars, drives, spring_items):
