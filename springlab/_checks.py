@@ -24,7 +24,7 @@ import numpy as np
 from springlab.errors import SpringlabError
 
 __all__ = ["number", "finite", "positive", "optional_positive", "instance", "at_most", "positive_vector", "vector_rows", "masses", "duration",
-           "sample_count", "count", "choice", "real_array", "angles", "memory", "MEMORY_LIMIT", "poses",
+           "sample_count", "count", "choice", "real_array", "angles", "links", "rng", "memory", "MEMORY_LIMIT", "poses",
            "TIME_LIMIT"]
 
 MEMORY_LIMIT = 2 * 2**30
@@ -166,6 +166,25 @@ def count(name: str, value, *, least: int = 0, why: str = "") -> int:
 def sample_count(value, *, least: int = 2, name: str = "samples", why: str = "") -> int:
     """An integer count >= ``least``; ``why`` is added to the message."""
     return count(name, value, least=least, why=why)
+
+
+MAX_LINKS = 10_000
+"""The most links (ground included) any function accepts: structures grow as n^2 and searches faster."""
+
+
+def links(value, name: str = "n (links with the ground)", *, least: int = 2) -> int:
+    """A number of links: an integer in ``least``..:data:`MAX_LINKS`."""
+    value = count(name, value, least=least)
+    if value > MAX_LINKS:
+        raise SpringlabError(f"{name} = {value} is above {MAX_LINKS}: no arm has that many links")
+    return value
+
+
+def rng(name: str, seed):
+    """A numpy Generator from ``seed``: None, a non-negative integer, a SeedSequence or a Generator."""
+    if seed is None or isinstance(seed, np.random.Generator | np.random.SeedSequence):
+        return np.random.default_rng(seed)
+    return np.random.default_rng(count(name, seed))
 
 
 def choice(name: str, value, options) -> str:

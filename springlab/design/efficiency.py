@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from springlab import _checks
 from springlab.energy.quadratic import gravity_entries, spring_entries
 from springlab.model.chain import Chain
 from springlab.model.springs import check_springs
@@ -43,6 +44,7 @@ def spatial_system_efficiency(chain: Chain, springs, X) -> np.ndarray:
     Where no spring term is balanced (Y = 0) e_sys is 1, its limit as Y -> 0, also at a
     pose where X = 0 too (every link horizontal and no spring working): there 003 Eq. (25)
     reads 0/0, and no spring energy is wasted."""
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     X = chain.check_directions(X)
     springs = check_springs(chain, springs)
     r = {1: 1.0} | {t: chain.r[t - 2] for t in range(2, chain.n + 1)}

@@ -45,7 +45,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.design.rules import SpringSlot, rule_violations
+from springlab.design.rules import SpringSlot, as_slots, rule_violations
 from springlab.errors import SearchExhaustedError, SolverError, SpringlabError
 from springlab.model.chain import Chain
 from springlab.tables import Table
@@ -63,6 +63,12 @@ EPS; every multiset the programme returns is re-checked by a plain linear progra
 (:func:`relaxation_feasible`) before it is counted."""
 
 
+def _nonempty(slots: list) -> list:
+    if not slots:
+        raise SpringlabError("slots is empty: give the multiset's springs, e.g. ['S(1,2)(+,+)']")
+    return slots
+
+
 def alphabet(n: int) -> list[SpringSlot]:
     """The springs a multiset may contain on an n-link arm, one entry per copy.
 
@@ -71,7 +77,7 @@ def alphabet(n: int) -> list[SpringSlot]:
     or more joints appears twice (its k enters entries of its own, so a second copy
     of one pattern is not the same as a stiffer first one).
     """
-    n = _checks.count("n", n, least=2)
+    n = _checks.links(n, "n")
     out = [SpringSlot(1, 2, "(+,+)"), SpringSlot(1, 2, "(-,-)")]
     for j in range(3, n + 1):
         out += [SpringSlot(1, j)] * (2 if j - 1 >= 3 else 1)
@@ -132,6 +138,8 @@ def relaxation_feasible(chain: Chain, slots) -> bool:
     """True when the linear relaxation of 000 Eqs. (39) has a solution in which every
     spring's quantities carry their signs by at least :data:`EPS` (a necessary
     condition for balance; False is a proof that the multiset cannot balance)."""
+    _checks.instance("chain", chain, Chain)
+    slots = _nonempty(as_slots(slots))
     slots = list(slots)
     return bool(slots) and _phase_one(_programme(chain, slots))[0] <= 1e-9
 
@@ -162,6 +170,8 @@ def tightened_infeasible(chain: Chain, slots) -> bool:
     linear programme with strict signs decides: infeasible is a proof (the added rows hold at
     every solution). False proves nothing.
     """
+    _checks.instance("chain", chain, Chain)
+    slots = _nonempty(as_slots(slots))
     from scipy.linalg import null_space
 
     slots = list(slots)
@@ -329,6 +339,8 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
     The springs are rebuilt (k = K, a = A / K, b = B / K; a shorter spring's k from its P)
     and their balance residual (000 Eqs. 39, route 1) checked to 1e-9 of the largest G_1,j.
     """
+    _checks.instance("chain", chain, Chain)
+    slots = _nonempty(as_slots(slots))
     from scipy.optimize import least_squares, linprog, minimize
 
     from springlab.energy.quadratic import balance_residual, gravity_entries
@@ -430,6 +442,8 @@ def is_balanceable(chain: Chain, slots) -> str:
     """'yes' (a design was found and checked), 'no' (proved: the linear relaxation, or the
     relaxation tightened by the coupling's exact consequences, has no solution) or
     'undecided' (neither)."""
+    _checks.instance("chain", chain, Chain)
+    slots = _nonempty(as_slots(slots))
     slots = list(slots)
     if not relaxation_feasible(chain, slots) or tightened_infeasible(chain, slots):
         return "no"
@@ -439,6 +453,8 @@ def is_balanceable(chain: Chain, slots) -> str:
 def random_arm(n: int, rng) -> Chain:
     """A generic n-link arm: lengths 0.15-0.45 m, centres of mass 0.2-0.8 of the length,
     masses 0.5-5 kg, g = 9.81 m/s^2."""
+    n = _checks.links(n, "n")
+    rng = _checks.rng("rng", rng)
     from springlab.model.chain import serial_chain
 
     rng = np.random.default_rng(rng)
@@ -498,6 +514,9 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
     A balanceable multiset that contains a refuted one is not relaxation-minimal and is not
     enumerated: with refutations the minimal count is a lower bound (:attr:`exact`).
     """
+    n = _checks.links(n, "n")
+    arms = _checks.count("arms", arms, least=1)
+    seed = _checks.count("seed", seed)
     from tqdm import tqdm
 
     from springlab.design.rules import enumerate_configurations

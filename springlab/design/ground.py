@@ -35,15 +35,22 @@ from springlab.design.solve import (
 )
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.model.armfile import ArmSpec
+from springlab.model.chain import Chain
 from springlab.tables import Table
 
 CANDIDATE_RATE = 1e3
 """Candidate configurations screened per second (one linear programme each), about."""
 
 
+def _chain_of(spec_or_chain) -> Chain:
+    _checks.instance("spec_or_chain", spec_or_chain, ArmSpec | Chain, "ArmSpec or Chain")
+    return spec_or_chain.chain() if isinstance(spec_or_chain, ArmSpec) else spec_or_chain
+
+
 def all_pattern_slots(n: int) -> list[SpringSlot]:
     """Every spring S(i,j) of an n-link arm with every sign pattern, the paper's
     criteria (000 Eq. 41, Fig. 10) ignored."""
+    n = _checks.links(n, "n")
 
     return [SpringSlot(i, j, p) for i in range(1, n) for j in range(i + 1, n + 1) for p in PATTERNS]
 
@@ -58,6 +65,8 @@ def _any_sign_candidates(n: int, count: int) -> list[tuple[SpringSlot, ...]]:
     slots = all_pattern_slots(n)
     end = [s for s in slots if (s.i, s.j) == (1, n) and s.pattern in ("(+,+)", "(-,-)")]
     rest = [s for s in slots if s not in end]
+    if count > len(rest) + 1:
+        raise SpringlabError(f"count = {count} springs is more than the {len(rest) + 1} distinct slots of {n} links hold")
     total = len(end) * math.comb(len(rest), count - 1)
     _checks.poses(f"{count} springs on {n} links", total, rate=CANDIDATE_RATE, unit="candidate configurations",
                   hint="each is a linear programme: ask for fewer springs")
@@ -80,7 +89,7 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
     """
     from tqdm import tqdm
 
-    chain = spec_or_chain.chain() if isinstance(spec_or_chain, ArmSpec) else spec_or_chain
+    chain = _chain_of(spec_or_chain)
     X = random_poses(chain, samples, seed)
     out = []
     candidates = _any_sign_candidates(chain.n, count)
@@ -104,7 +113,7 @@ def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False) -> t
     relaxation only drops constraints (P k = A B per spring)."""
     from tqdm import tqdm
 
-    chain = spec_or_chain.chain() if isinstance(spec_or_chain, ArmSpec) else spec_or_chain
+    chain = _chain_of(spec_or_chain)
     candidates = _any_sign_candidates(chain.n, count)
     survivors = sum(1 for cfg in tqdm(candidates, disable=not progress, desc=f"{count} springs, screen", mininterval=1.0)
                     if relaxation_margin(chain, cfg) > 1e-9)
@@ -131,7 +140,7 @@ def ground_spring_design(spec_or_chain, *, max_extension: float | None = None, m
         the extensions behind the joints (default the longest link)
     :param max_stiffness: largest k (N/m), or None
     """
-    chain = spec_or_chain.chain() if isinstance(spec_or_chain, ArmSpec) else spec_or_chain
+    chain = _chain_of(spec_or_chain)
     if isinstance(spec_or_chain, ArmSpec):
         max_extension = spec_or_chain.max_attachment if max_extension is None else max_extension
         max_stiffness = spec_or_chain.max_stiffness if max_stiffness is None else max_stiffness

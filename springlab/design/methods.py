@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab import _checks
 from springlab.design.ground import ground_spring_design
 from springlab.design.rank import VERIFY_TOLERANCE, DesignReport, design_arm, workspace_poses
 from springlab.errors import SpringlabError, UnbalanceableError
@@ -53,6 +54,7 @@ def pseudobase_summary(spec: ArmSpec, *, aux_mass_ratio: float = 0.09, pseudobas
     energy is folded into the combined subsystems (001 Eqs. 24-25). Verified by route 2: every
     body and spring end placed for each workspace pose.
     """
+    _checks.instance("spec", spec, ArmSpec, "ArmSpec (load_arm(path))")
     from springlab.model.chain import UP
 
     chain = spec.chain()

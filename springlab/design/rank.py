@@ -39,7 +39,7 @@ from springlab.energy.geometry import attachment_points, energies
 from springlab.errors import SearchExhaustedError, SpringlabError, UnbalanceableError
 from springlab.model.armfile import ArmSpec, load_arm
 from springlab.model.chain import Chain
-from springlab.model.springs import Spring
+from springlab.model.springs import Spring, check_springs
 from springlab.tables import Table
 
 METHODS = ("no auxiliary links", "ground springs")
@@ -54,10 +54,11 @@ that ran out of starts or limits, not a proof."""
 def random_poses(chain: Chain, samples: int, seed) -> np.ndarray:
     """``samples`` seeded link-direction sets (N, n, 3): uniform directions for a spherical
     chain, uniform joint angles for one with revolute joints."""
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     samples = _checks.count("samples", samples, least=1)
     _checks.memory(f"{samples} workspace samples of a {chain.n}-link arm", 6.0 * samples * chain.n * 3,
                    hint="use fewer samples")
-    rng = np.random.default_rng(seed)
+    rng = _checks.rng("seed", seed)
     if chain.all_spherical:
         from springlab.model.chain import random_directions
 
@@ -67,6 +68,8 @@ def random_poses(chain: Chain, samples: int, seed) -> np.ndarray:
 
 def workspace_poses(spec: ArmSpec, chain: Chain) -> np.ndarray:
     """The poses that judge a design: the arm file's ``samples`` and ``seed``."""
+    _checks.instance("spec", spec, ArmSpec, "ArmSpec (load_arm(path))")
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     return random_poses(chain, spec.samples, spec.seed)
 
 
@@ -296,6 +299,9 @@ def least_force(chain, cfg, springs, finder, seed, restarts, starts, *, max_exte
 
 def configuration_of(springs) -> tuple[SpringSlot, ...]:
     """The configuration (slots with patterns) of a list of springs."""
+    if isinstance(springs, str) or not hasattr(springs, "__iter__"):
+        raise SpringlabError(f"springs must be a sequence of Spring objects, got {springs!r}")
+    springs = [_checks.instance("each of springs", s, Spring) for s in springs]
     return tuple(sorted(as_slots([f"{s.label}{s.pattern}" for s in springs])))
 
 
@@ -308,12 +314,14 @@ def ground_springs(n: int) -> tuple[SpringSlot, ...]:
     """n - 1 springs, all anchored on the base column (x_1, above the base joint):
     S(1,n) (+,+) and S(1,j) (+,-) for j = 3..n. Balances an arm of any n (see
     :func:`springlab.design.ground.ground_spring_design`). 000 Eq. (41) allows only (+,+) on the ground."""
-    n = _checks.count("n (links with the ground)", n, least=2)
+    n = _checks.links(n)
     return tuple(sorted([SpringSlot(1, n, "(+,+)")] + [SpringSlot(1, j, "(+,-)") for j in range(3, n + 1)]))
 
 
 def springs_table(chain: Chain, springs, X) -> Table:
     """A design's springs: pattern, a, b (m), k (N/m) and the largest force (N) over the poses X."""
+    springs = check_springs(chain, springs)
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     rows = []
     for s in springs:
         A, B = attachment_points(chain, s, X)

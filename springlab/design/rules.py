@@ -91,7 +91,15 @@ def slot(text: str) -> SpringSlot:
 
 def as_slots(slots) -> list[SpringSlot]:
     """A configuration as a list of :class:`SpringSlot`; strings are parsed by :func:`slot`."""
-    return [slot(s) if isinstance(s, str) else s for s in slots]
+    if isinstance(slots, str | SpringSlot) or not hasattr(slots, "__iter__"):
+        raise SpringlabError(f"a configuration must be a list of springs such as ['S(1,3)(+,+)'], got {slots!r}")
+    out = []
+    for s in slots:
+        if not isinstance(s, str | SpringSlot):
+            raise SpringlabError(f"each spring of a configuration must be a SpringSlot or a label like "
+                                 f"'S(1,3)(+,+)', got {s!r}")
+        out.append(slot(s) if isinstance(s, str) else s)
+    return out
 
 
 def contributions(s: SpringSlot) -> dict[tuple[int, int], int]:
@@ -107,6 +115,7 @@ def contributions(s: SpringSlot) -> dict[tuple[int, int], int]:
 
 def entry_signs(slots) -> dict[tuple[int, int], set[int]]:
     """For each entry (u, v) of rows >= 2, the set of signs the springs put there."""
+    slots = as_slots(slots)
     out: dict[tuple[int, int], set[int]] = {}
     for s in slots:
         for key, sign in contributions(s).items():
@@ -154,8 +163,7 @@ def rule_violations(n: int, slots) -> list[Violation]:
     """
     slots = as_slots(slots)
     out: list[Violation] = []
-    if n < 2:
-        raise SpringlabError(f"n must be >= 2, got {n}")
+    n = _count_links(n)
     seen = set()
     for s in slots:
         if s.j > n:
@@ -197,7 +205,7 @@ def is_admissible(n: int, slots) -> bool:
 
 
 def _count_links(n) -> int:
-    return _checks.count("n (links with the ground)", n, least=2)
+    return _checks.links(n)
 
 
 def _ground_sets(n: int):
@@ -316,6 +324,7 @@ def format_group(group, n: int) -> str:
 
 def spans(slots) -> int:
     """Joints spanned, summed over the springs: sum (j - i)."""
+    slots = as_slots(slots)
     return sum(s.j - s.i for s in slots)
 
 
@@ -380,6 +389,9 @@ def _enumerated_labels(n: int) -> frozenset:
 def verdict(n: int, springs) -> Verdict:
     """000's verdict on the configuration of ``springs`` (springs with ``i``, ``j`` and
     ``pattern``, or :class:`SpringSlot` objects, or strings for :func:`slot`) on n links."""
+    n = _count_links(n)
+    if isinstance(springs, str) or not hasattr(springs, "__iter__"):
+        raise SpringlabError(f"springs must be a list of springs or labels, got {springs!r}")
     slots = [s if isinstance(s, (str, SpringSlot)) else SpringSlot(s.i, s.j, s.pattern) for s in springs]
     slots = as_slots(slots)
     labels = tuple(str(s) for s in slots)

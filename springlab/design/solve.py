@@ -37,7 +37,7 @@ from springlab.errors import (
     UnbalanceableError,
 )
 from springlab.model.chain import Chain
-from springlab.model.springs import Spring, check_attachments, sign_char
+from springlab.model.springs import Spring, check_attachments, check_springs, sign_char
 
 
 @dataclass(frozen=True)
@@ -194,6 +194,8 @@ def _residual_entries(chain: Chain, slots) -> list[tuple[int, int]]:
 def linear_columns(chain: Chain, slots) -> list[dict[str, dict[tuple[int, int], float]]]:
     """Per spring, the entries of 000 Eqs. (39) that P = k a b, A = k a, B = k b and k
     carry (000 Eqs. 23a-d, written linearly): {'P': {(i, j): -1}, 'A': ..., 'B': ..., 'K': ...}."""
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
+    slots = _slots_on(chain, slots)
     rr = {t: chain.r[t - 2] for t in range(2, chain.n + 1)}
     out = []
     for s in as_slots(slots):
@@ -321,8 +323,9 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
     for idx in range(restarts + len(starts)):
         z0 = starts[idx] if idx < len(starts) else np.minimum(rng.uniform(-1.5, 0.5, size=3 * len(slots)), upper - 0.05)
         try:
-            sol = least_squares(residual, z0, jac=jacobian, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                                bounds=(lower, upper), max_nfev=2000)
+            with np.errstate(over="ignore", invalid="ignore"):  # a wild trial step: the method backs off
+                sol = least_squares(residual, z0, jac=jacobian, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                                    bounds=(lower, upper), max_nfev=2000)
         except (ValueError, FloatingPointError):
             continue
         worst = float(np.max(np.abs(sol.fun)))
@@ -365,11 +368,17 @@ def longest_stretch(chain: Chain, spring: Spring) -> float:
     """The longest a spring can get over every pose of an arm whose links turn freely:
     |a| + sum_{i<t<j} r_t + |b| (m), all its segments in line (the ground link's x_1
     is fixed, the others can line up with it). ``k`` times this bounds its force."""
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
+    (spring,) = check_springs(chain, [spring])
     return abs(spring.a) + sum(chain.length(t) for t in range(spring.i + 1, spring.j)) + abs(spring.b)
 
 
 def largest_force_bound(chain: Chain, springs) -> float:
     """The largest of the springs' force bounds k * :func:`longest_stretch` (N)."""
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
+    springs = check_springs(chain, springs)
+    if not springs:
+        return 0.0
     return max(s.k * longest_stretch(chain, s) for s in springs)
 
 
@@ -378,6 +387,9 @@ def minimise_largest_force(chain: Chain, slots, springs, *, max_extension: float
     """Spend a configuration's free choices on the smallest largest spring force: up to
     ``rounds`` rounds of :func:`_force_round`, each from the last one's polished design,
     while a round gains more than 1 %. See :func:`_force_round` for the formulation."""
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
+    slots = _slots_on(chain, slots)
+    springs = check_springs(chain, springs)
     springs = tuple(springs)
     best = largest_force_bound(chain, springs)
     for _ in range(max(1, int(rounds))):
@@ -608,6 +620,7 @@ def feasibility(chain: Chain, slots, *, seed=0, restarts: int = 30) -> Feasibili
 def candidate_slots(n: int) -> list[SpringSlot]:
     """Every spring slot the attachment criteria allow on an n-link arm: ground
     springs (+,+) (and S(1,2) (-,-)), non-ground springs (+,+), (-,-), (+,-)."""
+    n = _checks.links(n, "n")
     out = [SpringSlot(1, 2, "(+,+)"), SpringSlot(1, 2, "(-,-)")]
     out += [SpringSlot(1, j) for j in range(3, n + 1)]
     out += [SpringSlot(i, j, p) for i in range(2, n) for j in range(i + 1, n + 1)
@@ -655,6 +668,7 @@ def balanced_core(chain: Chain, *, rel: float = 1e-13) -> Chain | None:
     a one-link arm with d_2 = 0 (its centre of mass is on the base joint: balanced
     without springs).
     """
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)  # 000 Eq. (18)
     if abs(G[(1, chain.n)]) > rel * chain.g * sum(chain.m) * sum(chain.r):  # vs the arm's energy scale (J)
         return chain
@@ -679,6 +693,7 @@ def design_for(chain: Chain, *, seed=0, restarts: int = 30):
     :raises SearchExhaustedError: when some configuration was not refuted but its search
         found no design within ``restarts`` starts
     """
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     from springlab.design.rules import iter_configurations
 
     restarts = _checks.count("restarts", restarts, least=0)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import GeometryError
 from springlab.model.chain import UP, Chain
 from springlab.model.springs import Spring, check_springs
@@ -116,6 +117,8 @@ def rotation_order_spread(chain: Chain, springs, angles) -> dict[str, float]:
     |E_order - E_xyz| (J) over the six orders (:data:`springlab.model.rotations.ORDERS`) and
     the poses, for 'gravity', 'springs' and 'total'. ``angles`` (N, n-1, 3) in rad,
     spherical joints."""
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
+    angles = chain.check_angles(angles)
     from springlab.model.rotations import ORDERS, directions_in_order
 
     ref = energies(chain, springs, directions_in_order(angles, "xyz"))
@@ -143,6 +146,7 @@ def holding_torques(chain: Chain, springs, X) -> np.ndarray:
 
     :returns: ndarray(N, n-1, 3) in the world frame; row j-2 is joint j's torque
     """
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     X = chain.check_directions(X)
     springs = check_springs(chain, springs)
     joints = chain.joint_positions(X)

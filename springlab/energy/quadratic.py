@@ -38,6 +38,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.model.chain import Chain
 from springlab.model.springs import Spring, check_springs
@@ -192,6 +193,7 @@ def quadratic_gravity_energy(chain: Chain, X) -> np.ndarray:
 # --- symbolic ------------------------------------------------------------------
 def chain_symbols(n: int):
     """sympy symbols (r, d, m, g) for an n-link chain; r, d, m list links 2..n."""
+    n = _checks.links(n, "n")
     r = sp.symbols(f"r_2:{n + 1}", positive=True)
     d = sp.symbols(f"d_2:{n + 1}", nonnegative=True)
     m = sp.symbols(f"m_2:{n + 1}", positive=True)
@@ -256,6 +258,7 @@ def expand_gravity_energy(n: int):
     h_j = (d_j x_j + sum_{w=2}^{j-1} r_w x_w) . x_1, U_g = sum_j m_j g h_j.
     Uses no entry of G; compare with ``quadratic_form(symbolic_matrix(n, gravity_entries(...)))``.
     """
+    n = _checks.links(n, "n")
     r, d, m, g = chain_symbols(n)
     total = 0
     for j in range(2, n + 1):
@@ -285,6 +288,7 @@ def expand_spring_energy(i: int, j: int, n: int, *, on_joint_lines: bool = True)
 
 def symbolic_gravity_matrix(n: int) -> sp.Matrix:
     """G (000 Eq. 16-18) with symbols r_j, d_j, m_j, g."""
+    n = _checks.links(n, "n")
     r, d, m, g = chain_symbols(n)
     return symbolic_matrix(n, gravity_entries(r, d, m, g))
 

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import SpringlabError
 
 
@@ -129,7 +130,13 @@ def frames_from_directions(X) -> np.ndarray:
     the spin about the link's own axis is a free choice for links on
     spherical joints.
     """
-    X = np.asarray(X, dtype=float)
+    X = _checks.real_array("X (link directions)", X)
+    if X.ndim < 1 or X.shape[-1] != 3:
+        raise SpringlabError(f"X (link directions) must have a last axis of 3, got shape {X.shape}")
+    norms = np.linalg.norm(X, axis=-1)
+    if np.any(np.abs(norms - 1.0) > 1e-6):
+        raise SpringlabError("X (link directions) must hold unit vectors; |x| reaches "
+                             f"{float(norms.flat[np.argmax(np.abs(norms - 1.0))]):.6g}")
     helper = np.zeros(X.shape)
     along_z = np.abs(X[..., 2]) > 0.9
     helper[..., 2] = np.where(along_z, 0.0, 1.0)

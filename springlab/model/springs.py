@@ -157,6 +157,11 @@ def check_attachments(chain, springs, *, max_extension: float | None = None) -> 
     (a > 0 past link i's distal joint, b < 0 behind link j's proximal joint) sits
     on a bracket that extends the link; ``max_extension`` (m) bounds it if given.
     """
+    from springlab.model.chain import Chain
+
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
+    springs = check_springs(chain, springs)
+    max_extension = _checks.optional_positive("max_extension", max_extension, "m")
     for s in springs:
         if s.i >= 2 and s.a < 0 and -s.a > chain.length(s.i) * (1 + 1e-12):
             raise AttachmentError(

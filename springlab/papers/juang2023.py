@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab.design.rules import SpringSlot
+from springlab.errors import SpringlabError
 from springlab.model.chain import serial_chain
 from springlab.model.springs import Spring
 
@@ -132,6 +133,8 @@ configurations (Section 3.3 and 000 Eq. 46)."""
 
 def table1_configurations(n: int) -> list[tuple[SpringSlot, ...]]:
     """Table 1's rows for n links expanded into concrete configurations."""
+    if isinstance(n, bool) or not isinstance(n, int) or n not in TABLE_1:
+        raise SpringlabError(f"Table 1 of 000 lists n = {sorted(TABLE_1)} links, got n = {n!r}")
     import itertools
 
     out = set()

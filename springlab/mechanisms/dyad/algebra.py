@@ -14,8 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import SpringlabError
-from springlab.mechanisms.dyad.model import Compensator, Dyad, slider_height
+from springlab.mechanisms.dyad.model import Compensator, Dyad, check_pair, check_phi, slider_height
 
 
 def slider_positions(comp: Compensator, C: float, phi, *, branch: int = -1) -> np.ndarray:
@@ -26,6 +27,8 @@ def slider_positions(comp: Compensator, C: float, phi, *, branch: int = -1) -> n
 
     :raises SpringlabError: where 2C < 2 G s (1 + cos phi): the root is imaginary
     """
+    _checks.instance("comp", comp, Compensator, "Compensator(G, s, k, l0)")
+    C = _checks.number("C", C)
     if branch not in (-1, 1):
         raise SpringlabError(f"branch must be -1 or +1, got {branch}")
     phi = np.asarray(phi, dtype=float)
@@ -85,7 +88,8 @@ def unbalanced_moment_paper(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
     (26), theta = arccos((y^2 + l^2 - r^2) / (2 y l)) (27); M_sp = F_ab r sin psi
     (28), psi = arcsin(y sin(phi - beta) / l) (29); M_ub = -(M_sp + M_G) (30).
     """
-    phi = np.asarray(phi, dtype=float)
+    check_pair(comp, dyad)
+    phi = check_phi(phi)
     y = slider_height(dyad, phi)
     M_G = -comp.G * comp.s * np.sin(phi)  # 002 Eq. (20)
     F_sp = comp.k * (y - comp.l0)  # 002 Eq. (25)
@@ -100,4 +104,5 @@ def unbalanced_moment_paper_sign_corrected(comp: Compensator, dyad: Dyad, phi) -
     """002 Eqs. (20)-(30) with the spring's moment taken with the sign of a moment towards
     larger phi (as M_G's gravity is): G s sin(phi) + M_sp. As printed, 002 Eq. (30)
     subtracts a spring moment of the same sign as gravity's and so adds the two."""
+    check_pair(comp, dyad)
     return 2.0 * comp.gravity_moment(phi) - unbalanced_moment_paper(comp, dyad, phi)

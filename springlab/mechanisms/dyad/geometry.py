@@ -12,12 +12,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from springlab.mechanisms.dyad.model import Compensator, Dyad, closing, slider_height
+from springlab.mechanisms.dyad.model import Compensator, Dyad, check_pair, closing, slider_height
 
 
 def potential_energy(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
     """Total potential energy P = G s (1 + cos phi) + k (y - l0)^2 / 2 (002 Eqs. 1-3), J,
     with y from the linkage's geometry (002 Eq. 24)."""
+    check_pair(comp, dyad)
     y = slider_height(dyad, phi)
     return comp.gravity_energy(phi) + 0.5 * comp.k * (y - comp.l0) ** 2
 
@@ -26,6 +27,7 @@ def energies(comp: Compensator, dyad: Dyad, phi) -> dict:
     """Route 2 energies (J) at link angles phi (rad): {'gravity': G s (1 + cos phi) (002 Eq. 1),
     'springs': k (y - l0)^2 / 2 with y from the linkage (002 Eqs. 2, 24), 'total':
     :func:`potential_energy`}, each shaped like phi."""
+    check_pair(comp, dyad)
     gravity = comp.gravity_energy(phi)
     springs = 0.5 * comp.k * (slider_height(dyad, phi) - comp.l0) ** 2
     return {"gravity": gravity, "springs": springs, "total": gravity + springs}  # as potential_energy adds them
@@ -34,6 +36,7 @@ def energies(comp: Compensator, dyad: Dyad, phi) -> dict:
 def holding_torques(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
     """The torque (N m) an actuator at O applies to hold the link at each angle phi (rad),
     positive towards larger phi: dP/dphi = -:func:`unbalanced_moment`."""
+    check_pair(comp, dyad)
     return -unbalanced_moment(comp, dyad, phi)
 
 
@@ -45,6 +48,7 @@ def unbalanced_moment(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
     dy/dphi = -r sin(phi - beta) y / (l cos theta), so
     M_ub = G s sin(phi) + k (y - l0) r sin(phi - beta) y / (l cos theta).
     """
+    check_pair(comp, dyad)
     u, l_cos_theta = closing(dyad, phi)
     y = dyad.r * np.cos(u) + l_cos_theta
     spring_force = comp.k * (y - comp.l0)
@@ -53,4 +57,5 @@ def unbalanced_moment(comp: Compensator, dyad: Dyad, phi) -> np.ndarray:
 
 def max_unbalanced(comp: Compensator, dyad: Dyad, phi) -> float:
     """The largest |M_ub| (virtual work) over the angles phi, N m."""
+    check_pair(comp, dyad)
     return float(np.max(np.abs(unbalanced_moment(comp, dyad, phi))))

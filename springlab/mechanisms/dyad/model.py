@@ -89,6 +89,12 @@ class Dyad:
         _checks.finite("beta", self.beta, "rad")
 
 
+def check_pair(comp, dyad) -> None:
+    """Raise unless ``comp`` is a :class:`Compensator` and ``dyad`` a :class:`Dyad`."""
+    _checks.instance("comp", comp, Compensator, "Compensator(G, s, k, l0)")
+    _checks.instance("dyad", dyad, Dyad, "Dyad(r, l, beta)")
+
+
 def check_phi(phi) -> np.ndarray:
     """Link angles phi (rad): finite, at least one, in any array shape."""
     out = _checks.real_array("phi", phi, finite_only=False)
@@ -100,6 +106,7 @@ def check_phi(phi) -> np.ndarray:
 
 
 def closing(dyad: Dyad, phi) -> tuple[np.ndarray, np.ndarray]:
+    _checks.instance("dyad", dyad, Dyad, "Dyad(r, l, beta)")
     phi = check_phi(phi)
     u = phi - dyad.beta
     horizontal = dyad.r * np.sin(u)

@@ -21,7 +21,7 @@ from springlab.mechanisms.dyad.algebra import (
     unbalanced_moment_paper_sign_corrected,
 )
 from springlab.mechanisms.dyad.geometry import max_unbalanced, unbalanced_moment
-from springlab.mechanisms.dyad.model import Compensator, Dyad, slider_height
+from springlab.mechanisms.dyad.model import Compensator, Dyad, check_pair, check_phi, slider_height
 from springlab.optimum import Optimum
 from springlab.tables import Table
 
@@ -353,6 +353,8 @@ def residual_readings(comp: Compensator, dyad: Dyad, phi) -> dict[str, float]:
     its sign flipped, beta read in degrees where radians were meant, and the spring's moment
     F_sp r sin(psi) with 002 Eq. (26)'s cos(theta) left out. Used to look for the computation
     behind the printed maxima."""
+    check_pair(comp, dyad)
+    phi = check_phi(phi)
     out = {}
     for name, f in MOMENTS.items():
         out[name] = float(np.max(np.abs(f(comp, dyad, phi))))

@@ -213,6 +213,7 @@ def role_pattern(sp: PlanarSpring) -> str:
 
 def relative_angles(theta, n: int) -> np.ndarray:
     """Joint angles theta_2..theta_n (rad) as an (N, n-1) array, validated."""
+    n = _checks.links(n, "n")
     theta = _checks.real_array("theta (joint angles)", theta, finite_only=False)
     if theta.ndim == 1:
         theta = theta[None]
@@ -248,7 +249,9 @@ def to_spatial(arm: PlanarArm, springs):
 def spatial_angles(theta) -> np.ndarray:
     """003 joint angles (N, n-1) as the revolute angles of :func:`to_spatial`'s chain,
     (N, n-1, 3): link 2 turns from the vertical x_1, so its angle is theta_2 - 90 deg."""
-    theta = np.atleast_2d(np.asarray(theta, dtype=float))
+    theta = np.atleast_2d(_checks.real_array("theta (joint angles)", theta))
+    if theta.ndim != 2 or theta.size == 0:
+        raise SpringlabError(f"theta (joint angles) must have shape (N, n-1) with N >= 1, got {theta.shape}")
     out = np.zeros(theta.shape + (3,))
     out[..., 0] = theta
     out[:, 0, 0] -= np.pi / 2

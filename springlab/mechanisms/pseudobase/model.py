@@ -238,7 +238,9 @@ class Equilibrator:
 
     def __post_init__(self):
         object.__setattr__(self, "link", _checks.count("link of an equilibrator", self.link, least=1))
-        object.__setattr__(self, "K", _checks.positive(f"K of spring {self.link}", self.K, unit="N/m"))
+        # K = 0 is the spring removed (a control), not an error
+        object.__setattr__(self, "K", _checks.positive(f"K of spring {self.link}", self.K, allow_zero=True,
+                                                       unit="N/m"))
         for name in ("l_CA", "l_CB"):
             object.__setattr__(self, name, _checks.positive(f"{name} of spring {self.link}", getattr(self, name),
                                                             allow_zero=True, unit="m"))
@@ -313,7 +315,7 @@ def mobility(links: int, joint_freedoms, lam: int = 6) -> int:
 def module_chain_mobility(n: int) -> int:
     """Mobility of n RSSR modules along n primary links (001 Eq. 20): 3n moving links
     plus the ground, 2n revolute and 2n spherical joints: F = 2n (n active, n idle spins)."""
-    n = _checks.count("n", n, least=1)
+    n = _checks.links(n, "n", least=1)
     return mobility(3 * n + 1, [1] * (2 * n) + [3] * (2 * n))
 
 

@@ -154,7 +154,7 @@ def symbolic_subsystems(n: int) -> dict:
     """
     import sympy as sp
 
-    n = _checks.count("n", n, least=1)
+    n = _checks.links(n, "n", least=1)
     m = sp.symbols(f"m1:{n + 1}", positive=True)
     gs = sp.symbols(f"gs1:{n + 1}", real=True)  # g . s_i
     gr = sp.symbols(f"gr1:{n + 1}", real=True)  # g . r_i
