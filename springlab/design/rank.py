@@ -20,7 +20,9 @@ spatial articulated manipulators without auxiliary links. Mechanism and Machine 
 
 from __future__ import annotations
 
+import re
 import time
+from collections import Counter
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -114,17 +116,13 @@ class DesignReport:
     notes: list = field(default_factory=list)  # what the designer assumed of this arm
 
     def reasons(self, top: int = 5) -> list[tuple[int, str]]:
-        """The rejections' reasons, grouped (numbers and configurations stripped), most frequent
-        first: (count, reason)."""
-        import re
-        from collections import Counter
-
-        kinds = Counter(re.sub(r"S\(\d+,\d+\)(\([+-],[+-]\))?|[-+]?\d[\d.e+-]*", "#", why)
-                        for _, why in self.rejected)
-        examples = {}
+        """The rejections' reasons grouped by kind (springs and numbers blanked), most frequent
+        first: (count, the first reason of that kind)."""
+        kinds = Counter(_reason_kind(why) for _, why in self.rejected)
+        first = {}
         for _, why in self.rejected:
-            examples.setdefault(re.sub(r"S\(\d+,\d+\)(\([+-],[+-]\))?|[-+]?\d[\d.e+-]*", "#", why), why)
-        return [(count, examples[kind]) for kind, count in kinds.most_common(top)]
+            first.setdefault(_reason_kind(why), why)
+        return [(count, first[kind]) for kind, count in kinds.most_common(top)]
 
     def table(self) -> Table:
         """The ranked designs as a table (shown as Markdown in a notebook)."""
@@ -133,6 +131,10 @@ class DesignReport:
                      [(rank, d.spring_count, d.label(), f"{d.max_force:.1f}", f"{d.stiffness_sum:.0f}",
                        f"{d.efficiency:.4f}", f"{d.energy_variation:.1e}")
                       for rank, d in enumerate(self.designs, start=1)])
+
+
+def _reason_kind(why: str) -> str:
+    return re.sub(r"S\(\d+,\d+\)(\([+-],[+-]\))?|[-+]?\d[\d.e+-]*", "#", why)
 
 
 def verify(chain: Chain, springs, X) -> float:

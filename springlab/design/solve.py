@@ -262,7 +262,7 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
     tol = _checks.positive("tol", tol)
     max_extension = _checks.optional_positive("max_extension", max_extension, "m")
     max_stiffness = _checks.optional_positive("max_stiffness", max_stiffness, "N/m", allow_inf=True)
-    rng = _rng("seed", seed)
+    rng = _checks.rng("seed", seed)
     scale_u, length, scale_k = _scales(chain)
     signs = np.array([(s.sa, s.sb) for s in slots], dtype=float)
     keys = _residual_entries(chain, slots)
@@ -355,13 +355,6 @@ def _slots_on(chain: Chain, slots) -> list[SpringSlot]:
         if s.j > chain.n:
             raise SpringlabError(f"{s} attaches to link {s.j}, but the chain has {chain.n} links")
     return slots
-
-
-def _rng(name: str, seed):
-    """A numpy Generator from ``seed`` (None, a non-negative integer or a Generator)."""
-    if seed is None or isinstance(seed, np.random.Generator):
-        return np.random.default_rng(seed)
-    return np.random.default_rng(_checks.count(name, seed))
 
 
 def longest_stretch(chain: Chain, spring: Spring) -> float:
