@@ -163,3 +163,19 @@ def test_no_design_within_the_limits_names_the_reasons(tmp_path, capsys):
     assert main(["design", str(arm), "--quiet", "--json", str(tmp_path / "out.json")]) == 1
     err = capsys.readouterr().err
     assert "no design found" in err and "max_stiffness = 1 N/m" in err, err
+
+
+def test_a_ten_link_arm_stops_at_the_time_limit_and_says_so(tmp_path, capsys):
+    arm = tmp_path / "arm.json"
+    arm.write_text(json.dumps({"link": [VALID_LINK] * 9}))
+    assert main(["design", str(arm), "--quiet"]) == 2  # more than 8 links needs --allow-large
+    assert "--allow-large" in capsys.readouterr().err
+    t0 = time.perf_counter()
+    code = main(["design", str(arm), "--quiet", "--allow-large", "--time-limit", "1", "--json", str(tmp_path / "o.json")])
+    err = capsys.readouterr().err
+    assert code == 1 and time.perf_counter() - t0 < 30
+    assert "the time limit of 1 s was reached" in err and "--method 'ground springs'" in err, err
+    # the advised method designs it
+    code = main(["design", str(arm), "--quiet", "--allow-large", "--method", "ground springs",
+                 "--json", str(tmp_path / "o.json")])
+    assert code == 0 and json.loads((tmp_path / "o.json").read_text())["energy_variation"] < VERIFY_TOLERANCE
