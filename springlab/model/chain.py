@@ -81,7 +81,7 @@ class Chain:
         with np.errstate(over="ignore"):
             scale = max(m) * max(max(r), float(np.max(np.abs(d)))) * len(r) * g * max(r)
         if not np.isfinite(scale):
-            raise SpringlabError(f"masses, lengths and g this large overflow the energies (m g r ~ {scale:.3g} J): "
+            raise SpringlabError("masses, lengths and g this large overflow the energies (m g r^2 beyond 1e308): "
                                  "give them in SI units (kg, m, m/s^2)")
         object.__setattr__(self, "r", r)
         object.__setattr__(self, "m", m)
