@@ -6,11 +6,14 @@ the workbench and by the papers' own reproduction helpers (which sit below the w
 
 from __future__ import annotations
 
+from springlab import _checks
+
 __all__ = ["half_unit", "propagated_rounding"]
 
 
 def half_unit(decimals: int) -> float:
     """Half a unit of the last printed digit, with a hair for binary floats."""
+    decimals = _checks.count("decimals", decimals, least=-300)
     return 0.5 * 10.0 ** (-decimals) * (1 + 1e-9)
 
 

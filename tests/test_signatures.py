@@ -10,23 +10,60 @@ import importlib
 import inspect
 import math
 import pkgutil
+from pathlib import Path
 
 import numpy as np
 import pytest
-from test_refusals import ARM, COMP, DYAD, PB, SPRINGS, WORKSPACE, X, spec
+from test_refusals import ARM, COMP, DYAD, PB, PLANAR, SPRINGS, WORKSPACE, X, spec
 
 import springlab
+from springlab.design.tolerance import Tolerances
 from springlab.errors import SpringlabError
+from springlab.mechanisms import two_spring_arm
+from springlab.mechanisms.pseudobase.subsystems import design_equilibrators
+from springlab.papers import juang2022, lenzo2017
+
+ARM_FILE = str(Path(__file__).resolve().parents[1] / "notebooks" / "arms" / "paper000_arm.toml")
+PLANAR_SPRINGS = juang2022.SPRINGS_PRINTED
+PB_SPRINGS = design_equilibrators(PB, [20e3, 2e3, 15e3, 2e3, 1e3], [0.1, 0.08, 0.08, 0.08, 0.08])
+LENZO = lenzo2017.ARM
+LENZO_DESIGN = two_spring_arm.solve(LENZO, a2=0.1, a12=0.05, b12=0.4)
 
 FIXTURES = {"chain": ARM, "springs": SPRINGS, "X": X, "comp": COMP, "dyad": DYAD, "workspace": WORKSPACE,
             "slots": ["S(1,2)", "S(1,4)", "S(2,4)", "S(3,4)(-,-)"], "n": 3, "seed": 0, "samples": 5,
             "phi": [0.5, 1.0], "theta": [[0.1, 0.2, 0.3]], "q": np.zeros((1, PB.n)), "spring": SPRINGS[0],
             "configuration": ["S(1,2)"], "count": 2, "spec": spec(), "spec_or_chain": ARM,
-            "rng": 0, "step": 30.0, "angles": np.zeros((1, 3, 3)), "duration": 1.0}
+            "rng": 0, "step": 30.0, "angles": np.zeros((1, 3, 3)), "duration": 1.0, "poses": X[:2],
+            "tol": Tolerances(stiffness=0.1), "C": 200.0, "y": [0.4, 0.45, 0.5], "angle": 0.3, "axis": (0.0, 0.0, 1.0),
+            "tau": [0.2, 0.5], "t_I": 0.0, "t_F": 1.0, "theta_I": 0.0, "theta_F": 1.0, "initial": np.zeros((3, 3)),
+            "rotation": np.full((3, 3), 0.1), "psi": 0.2, "order": "zyx", "value": 1.5, "text": "S(1,3)(+,-)",
+            "r": [0.3, 0.2], "d": [0.1, 0.1], "m": [2.0, 1.0], "size": 4, "path": ARM_FILE,
+            "data": {"link": [{"length": 0.3, "com": 0.1, "mass": 1.0}]}, "kind": "length", "where": "here",
+            "reading": "magnitudes", "u": 2, "v": 3, "decimals": 2, "Cs": [180.0, 200.0], "config": "Λ3-1",
+            "sp": PLANAR_SPRINGS[0], "payload": 1.0, "K": [1e3] * 5, "l_CA": [0.1] * 5, "link": 3,
+            "a2": 0.1, "a12": 0.1, "b12": 0.1, "enumerate_ns": [3], "first_ns": [3],
+            "rel": np.broadcast_to(np.eye(3), (1, 2, 3, 3)), "start": DYAD, "G": [500.0, 300.0, 90.0],
+            "moments": np.ones((2, 3)), "method": "no auxiliary links"}
+BY_MODULE = {  # the same names meaning other objects in a mechanism's modules
+    "springlab.mechanisms.planar": {"arm": PLANAR, "springs": PLANAR_SPRINGS, "r": PLANAR.r,
+                                    "m": PLANAR.m[1:], "choices": juang2022.FREE_CHOICES, "config": "Λ3-1"},
+    "springlab.mechanisms.pseudobase": {"arm": PB, "springs": PB_SPRINGS, "poses": np.zeros((1, PB.n)),
+                                        "m": PB.m, "s": PB.s, "r": PB.link_vectors()},
+    "springlab.mechanisms.two_spring_arm": {"arm": LENZO, "design": LENZO_DESIGN},
+    "springlab.design.rank": {"arm": spec()},
+}
 JUNK = ("junk", math.nan, None)
 SKIP = ("springlab.workbench", "springlab.energy.simulation", "springlab.energy.multibody",
-        "springlab.mechanisms.pseudobase.simulation", "springlab.mechanisms.dyad.simulation")
+        "springlab.mechanisms.pseudobase.simulation", "springlab.mechanisms.dyad.simulation", "springlab._checks")
 RETURNS_NOTHING = {"check_attachments"}  # returns None: nothing to test for finiteness
+
+
+def fixtures_for(module: str) -> dict:
+    out = dict(FIXTURES)
+    for prefix, extra in BY_MODULE.items():
+        if module.startswith(prefix):
+            out |= extra
+    return out
 
 
 def public_functions():
@@ -39,26 +76,26 @@ def public_functions():
                 continue
             required = [p.name for p in inspect.signature(f).parameters.values()
                         if p.default is p.empty and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
-            if required and all(p in FIXTURES for p in required):
-                yield f"{info.name}.{name}", f, required
+            fixtures = fixtures_for(info.name)
+            if required and all(p in fixtures for p in required):
+                yield f"{info.name}.{name}", f, {p: fixtures[p] for p in required}
 
 
-FUNCTIONS = {key: (f, required) for key, f, required in public_functions()}
+FUNCTIONS = {key: (f, valid) for key, f, valid in public_functions()}
 
 
 def test_the_sweep_covers_the_library():
-    assert len(FUNCTIONS) >= 60, sorted(FUNCTIONS)
+    assert len(FUNCTIONS) >= 150, sorted(FUNCTIONS)
 
 
-def probe(key, f, required):
+def probe(key, f, valid):
     """Call ``f`` validly, then with each junk argument; raise on anything but a refusal by name
     or a finite result."""
-    valid = {p: FIXTURES[p] for p in required}
     try:
         f(**valid)
     except SpringlabError:
         pass  # e.g. a configuration the fixture arm cannot balance: refused, by name
-    for name in required:
+    for name in valid:
         for junk in JUNK:
             try:
                 out = f(**(valid | {name: junk}))
@@ -83,10 +120,10 @@ def test_the_probe_catches_a_function_that_checks_nothing():
         return np.cos(np.asarray(phi, dtype=float)) * chain.n
 
     with pytest.raises((AttributeError, ValueError, TypeError, AssertionError)):
-        probe("naive", naive, ["chain", "phi"])
+        probe("naive", naive, {"chain": ARM, "phi": [0.5]})
 
     def nan_through(phi):
         return np.asarray(phi, dtype=float) if not isinstance(phi, str) else 0.0
 
     with pytest.raises((AssertionError, TypeError)):
-        probe("nan_through", nan_through, ["phi"])
+        probe("nan_through", nan_through, {"phi": [0.5]})

@@ -178,6 +178,7 @@ def evaluate(method: str, chain: Chain, configuration, springs, X) -> RankedDesi
 
 def rank_key(d: RankedDesign):
     """The ranking order: fewest springs, then the smallest largest force, then the highest efficiency."""
+    _checks.instance("d", d, RankedDesign)
     return (d.spring_count, d.max_force, -d.efficiency)
 
 

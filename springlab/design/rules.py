@@ -143,6 +143,10 @@ def rule_candidates(u: int, v: int, n: int) -> tuple[str, list[SpringSlot]]:
     R3 (2, n); R4 (2, j), 2 < j < n; R5 (i, n), i > 2; R6 (i, j), i > 2, j < n,
     each as the paper words it.
     """
+    n = _count_links(n)
+    u, v = _checks.count("u", u, least=2), _checks.count("v", v, least=2)
+    if not u < v <= n:
+        raise SpringlabError(f"need 2 <= u < v <= n = {n}, got u = {u}, v = {v}")
     same = [SpringSlot(u, v, "(+,+)"), SpringSlot(u, v, "(-,-)")]
     longer = [SpringSlot(u, v + 1, "(+,+)"), SpringSlot(u, v + 1, "(+,-)")] if v < n else []
     lower = [SpringSlot(t, v, p) for t in range(2, u) for p in ("(-,-)", "(+,-)")]
@@ -445,6 +449,15 @@ class ConfigurationCounts:
 def configuration_counts(enumerate_ns, first_ns, *, first: int = 10) -> ConfigurationCounts:
     """Count the configurations for each n of ``enumerate_ns`` (timed) and time the first
     ``first`` of the best-first search for each n of ``first_ns``."""
+    for name, ns in (("enumerate_ns", enumerate_ns), ("first_ns", first_ns)):
+        if isinstance(ns, str) or not hasattr(ns, "__iter__"):
+            raise SpringlabError(f"{name} must be a list of link counts n, got {ns!r}")
+    enumerate_ns = [_count_links(n) for n in enumerate_ns]
+    first_ns = [_count_links(n) for n in first_ns]
+    first = _checks.count("first", first, least=1)
+    if len(enumerate_ns) < 2 or enumerate_ns != list(range(enumerate_ns[0], enumerate_ns[-1] + 1)):
+        raise SpringlabError(f"enumerate_ns must be two or more consecutive n (the growth ratio needs them), "
+                             f"got {enumerate_ns}")
     counts, seconds, best = {}, {}, {}
     for n in enumerate_ns:
         t0 = time.perf_counter()

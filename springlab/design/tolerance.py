@@ -57,6 +57,9 @@ class Tolerances:
 
 def perturbed(chain: Chain, springs, tol: Tolerances, rng) -> tuple[Chain, list[Spring]]:
     """One built arm: the chain (payload changed) and the springs with their errors."""
+    springs = check_springs(chain, springs)
+    _checks.instance("tol", tol, Tolerances)
+    rng = _checks.rng("rng", rng)
     out = []
     for s in springs:
         a = s.a + rng.normal(0.0, tol.attachment) if tol.attachment else s.a

@@ -223,6 +223,9 @@ def dot_symbol(u, v) -> sp.Symbol:
     ``u`` and ``v`` are link numbers or the strings 'a', 'b' (the paper's
     \\hat a_S and \\hat b_S before P1 identifies them with link vectors).
     """
+    for w in (u, v):
+        if not (isinstance(w, str) and w) and (isinstance(w, bool) or not isinstance(w, int) or w < 0):
+            raise SpringlabError(f"u and v must be link numbers (integers >= 0) or names such as 'a', got {w!r}")
     def name(w):
         return {"a": r"\hat{a}", "b": r"\hat{b}"}.get(w, rf"\hat{{x}}_{{{w}}}")
 

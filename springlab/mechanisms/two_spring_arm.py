@@ -176,5 +176,7 @@ def solve(arm: Arm, *, a2: float, a12: float, b12: float, layout: str | None = N
 
 def to_chain_springs(arm: Arm, design: TwoSpringDesign) -> tuple[Spring, Spring]:
     """The design as springlab springs in 000's numbering: S(1,3) and S(2,3)."""
+    _checks.instance("arm", arm, Arm)
+    _checks.instance("design", design, TwoSpringDesign)
     return (Spring(1, 3, a=design.a2, b=design.b2, k=design.k2),
             Spring(2, 3, a=design.b12 - arm.l1, b=design.a12, k=design.k12))

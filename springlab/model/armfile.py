@@ -56,6 +56,8 @@ def parse_quantity(value, kind: str, where: str) -> float:
     >>> parse_quantity("20 kN/m", "stiffness", "limits: max_stiffness")
     20000.0
     """
+    if kind not in UNITS:
+        raise SpringlabError(f"kind must be one of {tuple(UNITS)}, got {kind!r}")
     units = UNITS[kind]
     if isinstance(value, bool):
         raise SpringlabError(f"{where} = {value!r}: expected a number or a string like '1.5 {next(iter(units))}'")

@@ -23,8 +23,8 @@ from springlab import _checks
 from springlab.errors import SpringlabError
 
 
-def _basic(angle, axis: int) -> np.ndarray:
-    angle = np.asarray(angle, dtype=float)
+def _basic(angle, axis: int, name: str = "angle") -> np.ndarray:
+    angle = _checks.real_array(name, angle)
     c, s = np.cos(angle), np.sin(angle)
     out = np.zeros(angle.shape + (3, 3))
     i, j = [(1, 2), (2, 0), (0, 1)][axis]
@@ -64,8 +64,10 @@ def rot_z(angle) -> np.ndarray:
 def rot_axis(axis, angle) -> np.ndarray:
     """Rotations by ``angle`` (rad, any shape) about a fixed unit ``axis`` (Rodrigues),
     shape ``angle.shape + (3, 3)``."""
-    u = np.asarray(axis, dtype=float)
-    angle = np.asarray(angle, dtype=float)
+    u = _checks.real_array("axis", axis, shape=(3,))
+    if not np.isclose(np.linalg.norm(u), 1.0, atol=1e-9):
+        raise SpringlabError(f"axis must be a unit 3-vector, got {u.tolist()} (length {np.linalg.norm(u):.6g})")
+    angle = _checks.real_array("angle", angle)
     K = np.array([[0.0, -u[2], u[1]], [u[2], 0.0, -u[0]], [-u[1], u[0], 0.0]])
     s, c = np.sin(angle)[..., None, None], np.cos(angle)[..., None, None]
     return np.eye(3) + s * K + (1.0 - c) * (K @ K)
@@ -76,7 +78,19 @@ def rot_xyz(theta, phi, psi) -> np.ndarray:
 
     Broadcasts over the angle arrays; returns shape ``broadcast.shape + (3, 3)``.
     """
+    theta, phi, psi = _angle_triple(theta, phi, psi)
     return rot_x(theta) @ rot_y(phi) @ rot_z(psi)
+
+
+def _angle_triple(theta, phi, psi):
+    """theta, phi, psi as finite float arrays that broadcast together (rad)."""
+    out = [_checks.real_array(name, v) for name, v in (("theta", theta), ("phi", phi), ("psi", psi))]
+    try:
+        np.broadcast_shapes(*(v.shape for v in out))
+    except ValueError:
+        raise SpringlabError(f"theta, phi and psi must broadcast together, got shapes "
+                             f"{[v.shape for v in out]}") from None
+    return out
 
 
 ORDERS = ("xyz", "xzy", "yxz", "yzx", "zxy", "zyx")
@@ -93,6 +107,7 @@ def rot_ordered(theta, phi, psi, order: str = "xyz") -> np.ndarray:
     """
     if order not in ORDERS:
         raise SpringlabError(f"order must be one of {ORDERS}, got {order!r}")
+    theta, phi, psi = _angle_triple(theta, phi, psi)
     turn = {"x": rot_x(theta), "y": rot_y(phi), "z": rot_z(psi)}
     return turn[order[0]] @ turn[order[1]] @ turn[order[2]]
 
@@ -100,7 +115,9 @@ def rot_ordered(theta, phi, psi, order: str = "xyz") -> np.ndarray:
 def directions_in_order(angles, order: str) -> np.ndarray:
     """Link directions (N, n, 3) of a spherical chain from joint angles (N, n-1, 3) (rad),
     each joint's turns composed in ``order`` (see :func:`rot_ordered`)."""
-    angles = np.asarray(angles, dtype=float)
+    angles = _checks.real_array("angles", angles)
+    if angles.ndim != 3 or angles.shape[-1] != 3:
+        raise SpringlabError(f"angles must have shape (N, n-1, 3) (rad), got {angles.shape}")
     rel = rot_ordered(angles[..., 0], angles[..., 1], angles[..., 2], order)
     return directions_from_relative(rel)
 
@@ -108,7 +125,9 @@ def directions_in_order(angles, order: str) -> np.ndarray:
 def frames_from_relative(rel) -> np.ndarray:
     """Link frames (N, n, 3, 3) from each joint's relative rotation (N, n-1, 3, 3):
     R_1 = I (the ground), R_i = R_{i-1} rel_i."""
-    rel = np.asarray(rel, dtype=float)
+    rel = _checks.real_array("rel (relative rotations)", rel)
+    if rel.ndim != 4 or rel.shape[2:] != (3, 3):
+        raise SpringlabError(f"rel (relative rotations) must have shape (N, n-1, 3, 3), got {rel.shape}")
     n_pose, n_moving = rel.shape[:2]
     out = np.empty((n_pose, n_moving + 1, 3, 3))
     out[:, 0] = np.eye(3)

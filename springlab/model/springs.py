@@ -44,6 +44,9 @@ from springlab.errors import AttachmentError, SpringlabError
 
 def sign_char(value: float) -> str:
     """'+' for a positive number, '-' for a negative one, '0' for zero."""
+    value = _checks.number("value", value)
+    if np.isnan(value):
+        raise SpringlabError("value is NaN: it has no sign")
     return "+" if value > 0 else "-" if value < 0 else "0"
 
 

@@ -47,7 +47,7 @@ _LAWS = ("linear", "quintic")
 def quintic(tau):
     """The rest-to-rest law s = 10 tau^3 - 15 tau^4 + 6 tau^5 on tau in [0, 1] (clipped):
     s(0) = 0, s(1) = 1, zero first and second derivatives at both ends."""
-    tau = np.clip(np.asarray(tau, dtype=float), 0.0, 1.0)
+    tau = np.clip(_checks.real_array("tau", tau), 0.0, 1.0)
     return 10 * tau**3 - 15 * tau**4 + 6 * tau**5
 
 

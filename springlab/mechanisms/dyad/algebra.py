@@ -31,7 +31,7 @@ def slider_positions(comp: Compensator, C: float, phi, *, branch: int = -1) -> n
     C = _checks.number("C", C)
     if branch not in (-1, 1):
         raise SpringlabError(f"branch must be -1 or +1, got {branch}")
-    phi = np.asarray(phi, dtype=float)
+    phi = check_phi(phi)
     radicand = (2.0 * C - 2.0 * comp.gravity_energy(phi)) / comp.k  # 002 Eq. (6)
     if np.any(radicand < 0) or not np.isfinite(C):
         worst = np.degrees(np.atleast_1d(phi)[np.argmin(np.atleast_1d(radicand))])
@@ -59,8 +59,8 @@ def synthesise(phi, y) -> Synthesis:
     :raises SpringlabError: fewer than 3 positions, a singular system, or
         z3 + r^2 < 0 (no real rod length)
     """
-    phi = np.atleast_1d(np.asarray(phi, dtype=float))
-    y = np.atleast_1d(np.asarray(y, dtype=float))
+    phi = np.atleast_1d(check_phi(phi))
+    y = np.atleast_1d(_checks.real_array("y (slider heights, m)", y))
     if phi.shape != y.shape or phi.ndim != 1:
         raise SpringlabError(f"phi and y must be 1-D of one length, got {phi.shape} and {y.shape}")
     if len(phi) < 3:

@@ -32,7 +32,9 @@ EQ32_READINGS = ("signed sum", "sum of magnitudes", "sum of squares", "maximum m
 def eq32_objective(moments: np.ndarray, reading: str):
     """002 Eq. (31)'s total unbalanced moment under one reading of what is summed, over the last
     axis: a float for one set of moments (P,), an array for a batch (D, P)."""
-    moments = np.asarray(moments, dtype=float)
+    moments = _checks.real_array("moments (N m)", moments)
+    if moments.size == 0:
+        raise SpringlabError("moments is empty: give at least one unbalanced moment (N m)")
     totals = {"signed sum": lambda: np.sum(moments, axis=-1),
               "sum of magnitudes": lambda: np.sum(np.abs(moments), axis=-1),
               "sum of squares": lambda: np.sum(moments**2, axis=-1),
@@ -60,6 +62,7 @@ the sum of |M|, of M^2, or the largest |M| over the prescribed positions."""
 
 def design_for_C(comp: Compensator, C: float, phi, *, branch: int = -1) -> Dyad:
     """The dyad that 002 Eqs. (6)-(19) give for an energy constant C and positions phi."""
+    _checks.instance("comp", comp, Compensator, "Compensator(G, s, k, l0)")
     return synthesise(phi, slider_positions(comp, C, phi, branch=branch)).dyad
 
 
@@ -132,7 +135,8 @@ def optimise(comp: Compensator, phi, start: Dyad, *, free_l0: bool = False,
     """
     from scipy.optimize import minimize
 
-    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    check_pair(comp, start)
+    phi = np.atleast_1d(check_phi(phi))
     b = {"r": (0.01, 1.0), "l": (0.05, 2.0), "beta": (-np.pi / 2, np.pi / 2), "l0": (0.0, 3.0)}
     b.update(bounds or {})
 
@@ -168,8 +172,13 @@ def synthesis_path(comp: Compensator, phi, Cs, *, branch: int = -1) -> dict[str,
     positions ``phi`` (rad), in one batch: {'C', 'r', 'l', 'beta', 'ok'}. ``ok`` is False
     where a slider position is imaginary (002 Eq. 6), the system is singular or l^2 <= 0
     (002 Eq. 19); the other entries there are 0, never NaN."""
-    phi = np.atleast_1d(np.asarray(phi, dtype=float))
-    Cs = np.atleast_1d(np.asarray(Cs, dtype=float))
+    _checks.instance("comp", comp, Compensator, "Compensator(G, s, k, l0)")
+    phi = np.atleast_1d(check_phi(phi))
+    Cs = np.atleast_1d(_checks.real_array("Cs (energy constants, J)", Cs))
+    if Cs.size == 0:
+        raise SpringlabError("Cs is empty: give at least one energy constant C (J)")
+    _checks.memory(f"{Cs.size} energy constants at {phi.size} positions", Cs.size * phi.size * 12,
+                   hint="use fewer constants or positions")
     radicand = (2.0 * Cs[:, None] - 2.0 * comp.gravity_energy(phi)[None, :]) / comp.k  # 002 Eq. (6)
     ok = np.all(radicand >= 0, axis=1)
     y = comp.l0 + branch * np.sqrt(np.where(ok[:, None], radicand, 0.0))  # 002 Eq. (7)

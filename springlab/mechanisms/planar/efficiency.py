@@ -17,7 +17,15 @@ import numpy as np
 
 from springlab import _checks
 from springlab.errors import SpringlabError
-from springlab.mechanisms.planar.model import PlanarArm, PlanarSpring, Workspace, relative_angles
+from springlab.mechanisms.planar.model import (
+    PlanarArm,
+    PlanarSpring,
+    Workspace,
+    check_arm,
+    check_spring,
+    check_springs,
+    relative_angles,
+)
 from springlab.mechanisms.planar.quadratic import term_values, terms
 
 READINGS = ("magnitudes", "literal", "direct")
@@ -63,6 +71,8 @@ def system_efficiency(arm: PlanarArm, springs, theta, *, reading: str = "magnitu
     * 'literal': 003 Eqs. (30a-b) as printed, the magnitude of each group's sum;
     * 'direct': 003 Eq. (24) itself, balancing over all elastic pseudo-stiffnesses.
     """
+    check_arm(arm)
+    springs = check_springs(arm, springs)
     theta = relative_angles(theta, arm.n)
     tl = terms(arm, springs)
     return _e_sys(term_values(tl, theta), tl, reading)
@@ -71,6 +81,8 @@ def system_efficiency(arm: PlanarArm, springs, theta, *, reading: str = "magnitu
 def spring_efficiency(arm: PlanarArm, spring: PlanarSpring, theta) -> np.ndarray:
     """e = x / (x + y) (003 Eq. 18) at each pose, (N,): x, y the magnitudes of the spring's
     balancing and balanced pseudo-stiffnesses. 1 for a spring over one joint (003 Eq. 22)."""
+    check_arm(arm)
+    check_spring(arm, spring, criteria=False)
     theta = relative_angles(theta, arm.n)
     tl = [t for t in terms(arm, [spring]) if t.role != "gravity"]
     v = np.abs(term_values(tl, theta))
@@ -94,8 +106,11 @@ def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: flo
     uniformly with ``seed``. Memory stays bounded: the grid is walked a slice at a
     time over all but the last two joints, the samples ``chunk`` at a time.
     """
+    check_arm(arm)
+    springs = check_springs(arm, springs)
     if reading not in READINGS:
         raise SpringlabError(f"reading must be one of {READINGS}, got {reading!r}")
+    _checks.instance("workspace", workspace, Workspace, "Workspace(low, high) in deg")
     if workspace.joints != arm.n - 1:
         raise SpringlabError(f"the workspace has {workspace.joints} joints, the arm {arm.n - 1}")
     if (step is None) == (samples is None):

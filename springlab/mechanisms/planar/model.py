@@ -128,8 +128,7 @@ class PlanarArm:
 
     def with_payload(self, mass: float) -> PlanarArm:
         """The arm with ``mass`` (kg) added at the end link's COM (003 Eq. 32)."""
-        if not (np.isfinite(mass) and mass >= 0):
-            raise SpringlabError(f"payload must be >= 0 kg, got {mass}")
+        mass = _checks.positive("payload mass", mass, allow_zero=True, unit="kg")
         m = self.m.copy()
         m[-1] += mass
         return PlanarArm(self.r, self.s, m, self.g)
@@ -169,9 +168,27 @@ class PlanarSpring:
         return self.b / arm.r[self.j - 1]  # 003 Eq. (12b)
 
 
+def check_arm(arm) -> PlanarArm:
+    """``arm`` if it is a :class:`PlanarArm`."""
+    return _checks.instance("arm", arm, PlanarArm, "PlanarArm(r, s, m, g)")
+
+
+def check_springs(arm, springs, *, criteria: bool = False) -> tuple:
+    """``springs`` as a tuple of :class:`PlanarSpring`, each fitting ``arm`` (:func:`check_spring`)."""
+    check_arm(arm)
+    if isinstance(springs, str | PlanarSpring) or not hasattr(springs, "__iter__"):
+        raise SpringlabError(f"springs must be a sequence of PlanarSpring, got {springs!r}")
+    springs = tuple(springs)
+    for sp in springs:
+        check_spring(arm, sp, criteria=criteria)
+    return springs
+
+
 def check_spring(arm: PlanarArm, sp: PlanarSpring, *, criteria: bool = True) -> None:
     """Raise unless S(i,j) fits the arm, k > 0, 0 < A, B <= 1 and (with ``criteria``)
     its angles obey C1 (ground springs) or C2 (the others)."""
+    check_arm(arm)
+    _checks.instance("spring", sp, PlanarSpring, "PlanarSpring(i, j, k, a, b, alpha, beta)")
     if not (1 <= sp.i < sp.j <= arm.n) or int(sp.i) != sp.i or int(sp.j) != sp.j:
         raise SpringlabError(f"{sp.label}: need integers 1 <= i < j <= {arm.n}")
     if not (np.isfinite(sp.k) and sp.k > 0):
@@ -185,13 +202,15 @@ def check_spring(arm: PlanarArm, sp: PlanarSpring, *, criteria: bool = True) -> 
 
 
 def wrap_degrees(x: float) -> float:
-    return float(np.mod(x, 360.0))
+    """``x`` (deg) in [0, 360)."""
+    return float(np.mod(_checks.finite("x", x, "deg"), 360.0))
 
 
 def role_pattern(sp: PlanarSpring) -> str:
     """Which of S(i,j)'s pseudo-stiffnesses balance, by criteria C1 and C2 (Section 3.2):
     'mono' (one joint spanned: its single term), 'ground' ((90, 0): the K_{1,v}),
     'proximal' ((0, 0): the K_{i,v}) or 'distal' ((180, 180): the K_{u,j})."""
+    _checks.instance("spring", sp, PlanarSpring, "PlanarSpring(i, j, k, a, b, alpha, beta)")
     a, b = wrap_degrees(sp.alpha), wrap_degrees(sp.beta)
     if sp.j == sp.i + 1:
         want = 90.0 if sp.i == 1 else 0.0
@@ -228,6 +247,8 @@ def to_spatial(arm: PlanarArm, springs):
     """The same arm as a springlab :class:`~springlab.model.chain.Chain` (revolute joints about
     z, x_1 vertical) and its springs as 000 :class:`~springlab.model.springs.Spring` objects on
     the joint lines (signed a, b): possible when every spring obeys C1/C2."""
+    check_arm(arm)
+    springs = check_springs(arm, springs)
     from springlab.model.chain import serial_chain
     from springlab.model.springs import Spring
 

@@ -19,7 +19,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from springlab.mechanisms.planar.model import PlanarArm, check_spring, relative_angles, role_pattern
+from springlab import _checks
+from springlab.errors import SpringlabError
+from springlab.mechanisms.planar.model import (
+    PlanarArm,
+    check_arm,
+    check_spring,
+    check_springs,
+    relative_angles,
+    role_pattern,
+)
 
 
 # --- pseudo-stiffness terms (003 Eqs. 6-7, 11a-d) ----------------------------------------------
@@ -38,7 +47,10 @@ class Term:
 
 
 def gravity_terms(G) -> list[Term]:
-    """G_{1,u} = |G_{1,u}| cos(90 - Theta_{1,u}) (003 Eq. 6), u = 2..n."""
+    """G_{1,u} = |G_{1,u}| cos(90 - Theta_{1,u}) (003 Eq. 6), u = 2..n; G: |G_12|..|G_1n| (N/m),
+    numbers or sympy expressions."""
+    if isinstance(G, str) or not hasattr(G, "__len__") or len(G) == 0:
+        raise SpringlabError(f"G must be the non-empty sequence |G_12|..|G_1n| (N/m), got {G!r}")
     return [Term("G", 1, u, G[u - 2], 90.0, "gravity") for u in range(2, len(G) + 2)]
 
 
@@ -64,6 +76,8 @@ def spring_terms(i, j, k, A, B, alpha, beta, *, label=None, pattern=None) -> lis
 
 def terms(arm: PlanarArm, springs, *, criteria: bool = True) -> list[Term]:
     """Gravity's and every spring's pseudo-stiffness terms, with their roles (C1, C2)."""
+    check_arm(arm)
+    springs = check_springs(arm, springs)
     out = gravity_terms(arm.G)
     for sp in springs:
         check_spring(arm, sp, criteria=criteria)
@@ -74,13 +88,23 @@ def terms(arm: PlanarArm, springs, *, criteria: bool = True) -> list[Term]:
 
 def Theta(theta, u, v):
     """Theta_{u,v} = theta_{u+1} + ... + theta_v (003 Eq. 3); theta[:, 0] is theta_2."""
-    return theta[:, u - 1:v - 1].sum(axis=1)
+    theta = np.atleast_2d(_checks.real_array("theta (joint angles)", theta))
+    u, v = _checks.count("u", u, least=1), _checks.count("v", v, least=1)
+    if not u < v <= theta.shape[1] + 1:
+        raise SpringlabError(f"need 1 <= u < v <= {theta.shape[1] + 1} (the links of theta), got u = {u}, v = {v}")
+    return _theta(theta, u, v)
+
+
+def _theta(theta, u, v):
+    return theta[:, u - 1:v - 1].sum(axis=1)  # 003 Eq. (3), unchecked: the callers validated theta
 
 
 def term_values(term_list, theta) -> np.ndarray:
-    """Each term's value (N/m) at each pose, (N, T)."""
-    theta = np.asarray(theta, dtype=float)
-    return np.stack([float(t.amplitude) * np.cos(np.radians(t.phase) - Theta(theta, t.u, t.v))
+    """Each term's value (N/m) at each pose, (N, T); theta (N, n-1) in rad."""
+    theta = np.atleast_2d(_checks.real_array("theta (joint angles)", theta))
+    if isinstance(term_list, str) or not hasattr(term_list, "__iter__"):
+        raise SpringlabError(f"term_list must be a list of Term (see terms()), got {term_list!r}")
+    return np.stack([float(t.amplitude) * np.cos(np.radians(t.phase) - _theta(theta, t.u, t.v))
                      for t in term_list], axis=1)
 
 
@@ -98,6 +122,8 @@ def _terms_at(arm: PlanarArm, springs, theta):
 def quadratic_energy(arm: PlanarArm, springs, theta) -> np.ndarray:
     """Route 1: U = sum r_u r_v (pseudo-stiffness) + sum_S k (a^2 + b^2 + sum r_t^2) / 2
     (003 Eqs. 5, 10), in J, (N,). Heights from the base joint."""
+    check_arm(arm)
+    springs = check_springs(arm, springs)
     _, values, scale, const = _terms_at(arm, springs, theta)
     return values @ scale + const
 
@@ -106,6 +132,8 @@ def energies(arm: PlanarArm, springs, theta) -> dict:
     """Route 1 energies (J): {'gravity', 'springs', 'total'}, each (N,): gravity's terms
     (003 Eqs. 5-7), the springs' pseudo-stiffness terms and constants (003 Eqs. 10-12),
     and their sum, :func:`quadratic_energy`. Heights from the base joint."""
+    check_arm(arm)
+    springs = check_springs(arm, springs)
     tl, values, scale, const = _terms_at(arm, springs, theta)
     grav = np.array([t.source == "G" for t in tl])
     return {"gravity": values[:, grav] @ scale[grav], "springs": values[:, ~grav] @ scale[~grav] + const,
@@ -120,6 +148,8 @@ def spatial_coefficients(arm: PlanarArm, springs) -> tuple[np.ndarray, np.ndarra
     cos(phase - ref) and S = amplitude r_u r_v sin(phase - ref), ref = 90 deg on the
     ground row (000's x_1 is 003's ground link turned by 90 deg), 0 elsewhere. With C1/C2
     angles S = 0 and C equals 000's G + sum K_S off the diagonal (000 Eqs. 18, 23a-d)."""
+    check_arm(arm)
+    springs = check_springs(arm, springs)
     C, S = np.zeros((arm.n, arm.n)), np.zeros((arm.n, arm.n))
     for t in terms(arm, springs, criteria=False):
         ref = 90.0 if t.u == 1 else 0.0

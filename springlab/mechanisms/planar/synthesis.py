@@ -23,7 +23,9 @@ from springlab.mechanisms.planar.model import (
     PlanarArm,
     PlanarSpring,
     Workspace,
+    check_arm,
     check_spring,
+    check_springs,
     wrap_degrees,
 )
 from springlab.mechanisms.planar.quadratic import gravity_terms, spring_terms
@@ -46,7 +48,16 @@ def _configuration(config) -> tuple:
         if config not in CONFIGURATIONS:
             raise SpringlabError(f"unknown configuration {config!r}; Table 1's are {list(CONFIGURATIONS)}")
         return CONFIGURATIONS[config]
-    return tuple(config)
+    if not hasattr(config, "__iter__"):
+        raise SpringlabError(f"config must be a Table 1 name such as 'Λ3-1' or ((i, j), (alpha, beta)) pairs, "
+                             f"got {config!r}")
+    config = tuple(config)
+    for pair in config:
+        try:
+            (i, j), (alpha, beta) = pair
+        except (TypeError, ValueError):
+            raise SpringlabError(f"each spring of config must be ((i, j), (alpha, beta)), got {pair!r}") from None
+    return config
 
 
 def _symbols(config):
@@ -95,6 +106,10 @@ def solve_configuration(config, free, G=None, values=None) -> dict:
     import sympy as sp
 
     eqs = balance_equations(config, G)
+    if values is not None and not isinstance(values, dict):
+        raise SpringlabError(f"values must be a dict {{name: number}}, got {values!r}")
+    if isinstance(free, str) or not hasattr(free, "__iter__"):
+        raise SpringlabError(f"free must be a list of parameter names such as ['A_S14'], got {free!r}")
     names = {f if isinstance(f, str) else f.name for f in free}
     subs = {sp.Symbol(k, positive=True): sp.nsimplify(v) for k, v in (values or {}).items()}
     system = [e.subs(subs) for e in eqs.values()]
@@ -135,9 +150,12 @@ def design(arm: PlanarArm, config, choices: dict) -> list[PlanarSpring]:
     Raises :class:`UnbalanceableError` if the equations have no positive solution or
     leave a parameter undetermined, SpringlabError if an attachment falls off its link.
     """
+    check_arm(arm)
     import sympy as sp
 
     cfg = _configuration(config)
+    if not isinstance(choices, dict):
+        raise SpringlabError(f"choices must be a dict such as {{'A_S14': 0.1, 'k_S12': 4998}}, got {choices!r}")
     names = tuple(sorted(choices))
     fast = _symbolic_designer(cfg, names)
     if fast is not None:
@@ -172,6 +190,8 @@ def payload_adjustment(arm: PlanarArm, springs, config, payload: float, *, keep:
     :param mono: under keep='stiffness', which of A, B moves on a spring over one
         joint, where 003 Eqs. (16) fix only the product A B
     """
+    check_arm(arm)
+    springs = check_springs(arm, springs)
     if keep not in ("stiffness", "attachments"):
         raise SpringlabError(f"keep must be 'stiffness' or 'attachments', got {keep!r}")
     if mono not in ("A", "B"):
@@ -221,6 +241,7 @@ def optimise_index(arm: PlanarArm, config: str, free: dict, fixed: dict, workspa
     parameters in ``free`` ({name: (low, high)}, e.g. {'A_S14': (0.05, 1)}), with the
     others in ``fixed``, every stiffness <= ``k_max`` (N/m) and every A, B in (0, 1]
     (scipy SLSQP from ``start``, default the middle of the bounds)."""
+    check_arm(arm)
     from scipy.optimize import minimize
 
     names = list(free)
@@ -262,6 +283,7 @@ def index_over_attachments(arm: PlanarArm, workspace: Workspace, choices: dict, 
                            config: str = "Λ3-1") -> np.ndarray:
     """The efficiency index (grid ``step`` deg) with A_S14 and A_S24 over ``A_axis`` and the
     other ``choices`` kept (003 Fig. 7a): array [A_S24 index, A_S14 index]."""
+    check_arm(arm)
     return np.array([[efficiency_index(arm, design(arm, config, choices | {"A_S14": a1, "A_S24": a2}), workspace, step=step)
                       for a1 in A_axis] for a2 in A_axis])
 
@@ -271,6 +293,7 @@ def index_over_stiffnesses(arm: PlanarArm, workspace: Workspace, choices: dict, 
     """The efficiency index over k_S14 (columns) and k_S24 (rows), N/m (003 Fig. 7b): with
     |G_13| fixed, A_S14 = |G_13| / k_S14 and A_S24 = k_S14 / k_S24 (003 Eqs. 27b, d);
     NaN where an A would exceed 1 (the spring would leave its link)."""
+    check_arm(arm)
     G13 = arm.G[1]
     out = np.full((len(k24_axis), len(k14_axis)), np.nan)
     for i, k24 in enumerate(k24_axis):

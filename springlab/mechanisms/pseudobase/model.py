@@ -252,11 +252,31 @@ class Equilibrator:
         return Equilibrator(self.link, self.K * factor, self.l_CA, self.l_CB, self.b, self.c)
 
 
+def check_arm(arm) -> PseudobaseArm:
+    """``arm`` if it is a :class:`PseudobaseArm`."""
+    return _checks.instance("arm", arm, PseudobaseArm, "PseudobaseArm (e.g. springlab.papers.lin2010.arm())")
+
+
+def check_springs(arm, springs) -> tuple:
+    """``springs`` as a tuple of :class:`Equilibrator`, each on a link of ``arm`` that has a module."""
+    check_arm(arm)
+    if isinstance(springs, str | Equilibrator) or not hasattr(springs, "__iter__"):
+        raise SpringlabError(f"springs must be a sequence of Equilibrator, got {springs!r}")
+    springs = tuple(springs)
+    for sp in springs:
+        _checks.instance("each of springs", sp, Equilibrator, "Equilibrator (design_equilibrators(arm, K, l_CA))")
+        if sp.link not in arm.modules:
+            raise SpringlabError(f"spring {sp.link} is on a link without a module (modules {arm.modules})")
+    return springs
+
+
 def attachment_a(arm: PseudobaseArm, springs, q) -> np.ndarray:
     """A_i from O_i in frame i at each pose, (N, k, 3) m (001 Eq. 13: a_i - c_i = l_CA up).
 
     A_i is fixed on the pseudobase, not on link i: its coordinates in frame i
     depend on the pose (001 Table 3 prints them at the initial pose)."""
+    check_arm(arm)
+    springs = check_springs(arm, springs)
     R, _ = arm.dh.frames(arm.dh.check_angles(q))
     out = []
     for sp in springs:
@@ -278,6 +298,7 @@ def fold_margin(arm: PseudobaseArm, q) -> np.ndarray:
     joint axis z_{i-1}. Zero when the crank O_{i-1} C_i is vertical (the parallelogram
     collapses onto its vertical side and can switch branch) or the axis is vertical.
     """
+    check_arm(arm)
     R, org = arm.dh.frames(arm.dh.check_angles(q))
     out = []
     for i in arm.modules:
@@ -329,6 +350,7 @@ def joint_space_inertia(arm: PseudobaseArm, q, *, gyration: float = 0.05,
     an auxiliary link moves as link i translated, a pseudobase translates with
     C_i (its idle spin is not driven). M = sum m (J_v^T J_v + rho^2 J_w^T J_w).
     """
+    check_arm(arm)
     unknown = set(parts) - {"primary", "aux", "pseudobase"}
     if unknown:
         raise SpringlabError(f"parts must be among 'primary', 'aux', 'pseudobase', got {sorted(unknown)}")
@@ -404,6 +426,9 @@ def rotate_crank(arm: PseudobaseArm, link: int, angle: float) -> PseudobaseArm:
     its distance from the axis): 001 Section 4.1 leaves C_i free on link i, and where it
     sits decides the poses at which module ``link`` folds. The pseudobase's mass moves
     with it, so redesign the springs after."""
+    check_arm(arm)
+    link = _checks.count("link", link, least=1)
+    angle = _checks.finite("angle", angle, "rad")
     import dataclasses
 
     if link not in arm.modules:
@@ -422,6 +447,9 @@ def rotate_crank(arm: PseudobaseArm, link: int, angle: float) -> PseudobaseArm:
 def clearest_crank(arm: PseudobaseArm, link: int, q, samples: int = 360) -> tuple[float, float]:
     """The turn of C_link about its joint axis (rad, in [-pi, pi)) that keeps module
     ``link`` furthest from folding over the poses q, and that smallest |fold margin|."""
+    check_arm(arm)
+    link = _checks.count("link", link, least=1)
+    samples = _checks.count("samples", samples, least=1)
     col = arm.modules.index(link) if link in arm.modules else None
     if col is None:
         raise SpringlabError(f"link {link} has no module (modules {arm.modules})")
@@ -435,6 +463,8 @@ def cost_table(arm: PseudobaseArm, springs, q) -> Table:
     """What the modules cost the arm: springs, mass of links 2..n (kg) with and without the
     auxiliary links and pseudobases, each joint's inertia (kg m^2, :func:`joint_space_inertia`)
     at the first pose of ``q`` and its largest increase along ``q``, and the sum of the stiffnesses."""
+    check_arm(arm)
+    springs = check_springs(arm, springs)
     bare_mass = float(arm.m[1:].sum())
     added = float(arm.m_hat.sum() + arm.m_star.sum())
     M_bare = joint_space_inertia(arm, q, parts=("primary",))

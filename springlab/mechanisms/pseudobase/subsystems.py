@@ -36,15 +36,21 @@ import numpy as np
 from springlab import _checks
 from springlab._checks import masses, vector_rows
 from springlab.errors import SpringlabError, UnbalanceableError
-from springlab.mechanisms.pseudobase.model import Equilibrator, PseudobaseArm
+from springlab.mechanisms.pseudobase.model import (
+    Equilibrator,
+    PseudobaseArm,
+    check_arm,
+)
 
 
 # --- subsystems (001 Eqs. 5-8, 21-25) -------------------------------------------------
 def subsystem_moments(m, s, r) -> np.ndarray:
     """mu_i sigma_i = m_i s_i - (sum_{j>=i} m_j) r_i, (n, 3) in kg m (001 Eq. 5): the
     physical content of a subsystem, in frame i."""
-    m = np.asarray(m, dtype=float)
-    s, r = np.asarray(s, dtype=float), np.asarray(r, dtype=float)
+    m = _checks.real_array("m", m)
+    if m.ndim != 1 or m.size == 0:
+        raise SpringlabError(f"m must be n >= 1 masses (kg), got shape {m.shape}")
+    s, r = _checks.real_array("s", s, shape=(m.size, 3)), _checks.real_array("r", r, shape=(m.size, 3))
     beyond = np.cumsum(m[::-1])[::-1]  # sum_{j>=i} m_j
     return m[:, None] * s - beyond[:, None] * r
 
@@ -76,6 +82,7 @@ def combined_subsystems(arm: PseudobaseArm, mu=None):
     acts at -r_i (r^_i = r_i on the parallelogram branch). The constant height
     of the pseudobase's COM above C_i drops out (001 Eq. 23).
     """
+    check_arm(arm)
     total = arm.m + arm.m_hat + arm.m_star
     first = arm.m[:, None] * arm.s + arm.m_hat[:, None] * arm.s_hat + arm.m_star[:, None] * arm.c
     beyond = np.cumsum(total[::-1])[::-1]
@@ -92,6 +99,7 @@ def subsystem_energy(arm: PseudobaseArm, q, mu, sigma) -> np.ndarray:
     """Route 1: sum_i -mu_i g . sigma_i = sum_i mu_i g up . (R_i sigma_i), (N,) J (001 Eq. 6).
 
     Equal to the direct-geometry gravity energy up to a constant."""
+    check_arm(arm)
     R, _ = arm.dh.frames(arm.dh.check_angles(q))
     world = np.einsum("nkij,kj->nki", R[:, 1:], np.asarray(sigma, dtype=float))
     return arm.g * np.einsum("k,nk->n", np.asarray(mu, dtype=float), world @ arm.up)
@@ -109,6 +117,7 @@ def design_equilibrators(arm: PseudobaseArm, K, l_CA, *, max_l_CB: float | None 
     :param l_CB: given lengths instead of 001 Eq. (16) (e.g. a paper's rounded ones),
         for measuring what they leave unbalanced
     """
+    check_arm(arm)
     k = len(arm.modules)
     K, l_CA = _checks.real_array("K", K, finite_only=False), _checks.real_array("l_CA", l_CA, finite_only=False)
     max_l_CB = _checks.optional_positive("max_l_CB", max_l_CB, "m")
