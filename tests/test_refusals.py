@@ -319,3 +319,9 @@ def test_the_efficiency_is_one_where_no_spring_term_and_no_gravity_moment_act():
     horizontal[0, 1:] = [0.0, 1.0, 0.0]  # every link horizontal: x_1 . x_j = 0
     e = deff.spatial_system_efficiency(ARM, [Spring(1, 2, 0.1, 0.1, 10.0)], horizontal)
     assert np.all(np.isfinite(e)) and e[0] == 1.0
+
+
+def test_an_empty_multiset_is_answered_not_refused():
+    # removing the only spring of a configuration leaves none: a valid question with answer "no"
+    assert feasibility.is_balanceable(ARM, []) == "no"
+    assert feasibility.relaxation_feasible(ARM, []) is False and feasibility.confirm(ARM, []) is None

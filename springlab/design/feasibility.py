@@ -63,12 +63,6 @@ EPS; every multiset the programme returns is re-checked by a plain linear progra
 (:func:`relaxation_feasible`) before it is counted."""
 
 
-def _nonempty(slots: list) -> list:
-    if not slots:
-        raise SpringlabError("slots is empty: give the multiset's springs, e.g. ['S(1,2)(+,+)']")
-    return slots
-
-
 def alphabet(n: int) -> list[SpringSlot]:
     """The springs a multiset may contain on an n-link arm, one entry per copy.
 
@@ -139,7 +133,7 @@ def relaxation_feasible(chain: Chain, slots) -> bool:
     spring's quantities carry their signs by at least :data:`EPS` (a necessary
     condition for balance; False is a proof that the multiset cannot balance)."""
     _checks.instance("chain", chain, Chain)
-    slots = _nonempty(as_slots(slots))
+    slots = as_slots(slots)
     slots = list(slots)
     return bool(slots) and _phase_one(_programme(chain, slots))[0] <= 1e-9
 
@@ -171,7 +165,7 @@ def tightened_infeasible(chain: Chain, slots) -> bool:
     every solution). False proves nothing.
     """
     _checks.instance("chain", chain, Chain)
-    slots = _nonempty(as_slots(slots))
+    slots = as_slots(slots)
     from scipy.linalg import null_space
 
     slots = list(slots)
@@ -340,7 +334,9 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
     and their balance residual (000 Eqs. 39, route 1) checked to 1e-9 of the largest G_1,j.
     """
     _checks.instance("chain", chain, Chain)
-    slots = _nonempty(as_slots(slots))
+    slots = as_slots(slots)
+    if not slots:
+        return None  # no spring balances an arm with G_1,j > 0
     from scipy.optimize import least_squares, linprog, minimize
 
     from springlab.energy.quadratic import balance_residual, gravity_entries
@@ -443,7 +439,7 @@ def is_balanceable(chain: Chain, slots) -> str:
     relaxation tightened by the coupling's exact consequences, has no solution) or
     'undecided' (neither)."""
     _checks.instance("chain", chain, Chain)
-    slots = _nonempty(as_slots(slots))
+    slots = as_slots(slots)
     slots = list(slots)
     if not relaxation_feasible(chain, slots) or tightened_infeasible(chain, slots):
         return "no"
