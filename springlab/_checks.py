@@ -113,7 +113,7 @@ def real_array(name: str, value, *, shape=None, finite_only: bool = True) -> np.
         raise SpringlabError(f"{name} must be a rectangular array of numbers: {err}") from None
     if out.dtype == object or out.dtype.kind not in "biuf":
         raise SpringlabError(f"{name} must be an array of real numbers, got dtype {out.dtype} ({_short(value)})")
-    out = out.astype(float)
+    out = out.astype(float, copy=False)
     if shape is not None and (out.ndim != len(shape) or any(s is not None and s != o for s, o in zip(shape, out.shape, strict=True))):
         want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ")"
         raise SpringlabError(f"{name} must have shape {want}, got {out.shape}")
