@@ -115,7 +115,10 @@ def contributions(s: SpringSlot) -> dict[tuple[int, int], int]:
 
 def entry_signs(slots) -> dict[tuple[int, int], set[int]]:
     """For each entry (u, v) of rows >= 2, the set of signs the springs put there."""
-    slots = as_slots(slots)
+    return _entry_signs(as_slots(slots))
+
+
+def _entry_signs(slots) -> dict[tuple[int, int], set[int]]:
     out: dict[tuple[int, int], set[int]] = {}
     for s in slots:
         for key, sign in contributions(s).items():
@@ -147,16 +150,23 @@ def rule_candidates(u: int, v: int, n: int) -> tuple[str, list[SpringSlot]]:
     u, v = _checks.count("u", u, least=2), _checks.count("v", v, least=2)
     if not u < v <= n:
         raise SpringlabError(f"need 2 <= u < v <= n = {n}, got u = {u}, v = {v}")
+    rule, candidates = _rule_candidates(u, v, n)
+    return rule, list(candidates)
+
+
+@functools.lru_cache(maxsize=4096)
+def _rule_candidates(u: int, v: int, n: int) -> tuple[str, tuple[SpringSlot, ...]]:
+    """:func:`rule_candidates` for checked integers, cached (the enumeration asks again and again)."""
     same = [SpringSlot(u, v, "(+,+)"), SpringSlot(u, v, "(-,-)")]
     longer = [SpringSlot(u, v + 1, "(+,+)"), SpringSlot(u, v + 1, "(+,-)")] if v < n else []
     lower = [SpringSlot(t, v, p) for t in range(2, u) for p in ("(-,-)", "(+,-)")]
     if u == 2 and v == n:
-        return "R3", same
+        return "R3", tuple(same)
     if u == 2:
-        return "R4", same + longer
+        return "R4", tuple(same + longer)
     if v == n:
-        return "R5", same + lower
-    return "R6", same + longer + lower
+        return "R5", tuple(same + lower)
+    return "R6", tuple(same + longer + lower)
 
 
 def rule_violations(n: int, slots) -> list[Violation]:
@@ -165,9 +175,12 @@ def rule_violations(n: int, slots) -> list[Violation]:
     :param n: number of links, the ground included
     :param slots: iterable of :class:`SpringSlot` (or strings for :func:`slot`)
     """
-    slots = as_slots(slots)
+    return _violations(_count_links(n), as_slots(slots))
+
+
+def _violations(n: int, slots) -> list[Violation]:
+    """:func:`rule_violations` for a checked n and a list of :class:`SpringSlot`."""
     out: list[Violation] = []
-    n = _count_links(n)
     seen = set()
     for s in slots:
         if s.j > n:
@@ -193,9 +206,9 @@ def rule_violations(n: int, slots) -> list[Violation]:
         if not (_has(slots, 1, j, PATTERNS) or _has(slots, 1, j + 1, PATTERNS)):
             out.append(Violation(
                 "R2", f"neither S(1,{j}) nor S(1,{j + 1}): G_1,{j} cannot be offset"))
-    for (u, v), signs in sorted(entry_signs(slots).items()):
+    for (u, v), signs in sorted(_entry_signs(slots).items()):
         if 1 in signs:
-            rule, candidates = rule_candidates(u, v, n)
+            rule, candidates = _rule_candidates(u, v, n)
             if not any(c in slots for c in candidates):
                 names = ", ".join(str(c) for c in candidates) or "none exists"
                 out.append(Violation(
@@ -233,9 +246,9 @@ def _ground_sets(n: int):
 def _open_branch(n: int, current) -> list[SpringSlot] | None:
     """The springs that may offset the first unbalanced entry of ``current`` (its rule's
     candidates), or None when every positive entry has a partner."""
-    for (u, v), signs in sorted(entry_signs(current).items()):
+    for (u, v), signs in sorted(_entry_signs(current).items()):
         if 1 in signs:
-            _, candidates = rule_candidates(u, v, n)
+            _, candidates = _rule_candidates(u, v, n)
             if not any(c in current for c in candidates):
                 return candidates
     return None
@@ -243,7 +256,7 @@ def _open_branch(n: int, current) -> list[SpringSlot] | None:
 
 def _minimal_admissible(n: int, current) -> bool:
     """Admissible, and no single spring can be removed with the rest still admissible."""
-    return is_admissible(n, current) and not any(is_admissible(n, current - {s}) for s in current)
+    return not _violations(n, current) and all(_violations(n, current - {s}) for s in current)
 
 
 def iter_configurations(n: int, *, max_springs: int | None = None, time_limit: float | None = None):
