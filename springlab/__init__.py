@@ -54,6 +54,10 @@ _LAZY = {
 }
 
 
+LAZY_EXPORTS = _LAZY
+"""Where each lazily loaded export lives: name -> (module, attribute or None for the module)."""
+
+
 def __getattr__(name):
     if name not in _LAZY:
         raise AttributeError(f"module 'springlab' has no attribute {name!r}")

@@ -3,15 +3,25 @@
 Every notebook in ``notebooks/`` is executed in that folder (so its relative
 paths, e.g. ``../figures/<stem>``, resolve) and the executed copy is written to
 ``--out``. Any failing notebook makes the command fail.
+
+The notebooks run in parallel, one kernel per core (``--jobs``). A notebook whose
+inputs have not changed since its last successful run is not run again: its key
+(:mod:`springlab.workbench.cache`: the notebook, its parameters, the springlab modules
+it imports, the arm files, the style and the environment) is kept under
+``build/cache``; ``--no-cache`` runs everything.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 NOTEBOOK_DIR = Path("notebooks")
+FIGURES_DIR = Path("figures")
 
 
 def notebook_paths(directory=NOTEBOOK_DIR) -> list[Path]:
@@ -32,19 +42,51 @@ def run_notebook(path, out_path, parameters: dict | None = None):
     )
 
 
+def _run(nb: Path, out: Path, parameters: dict | None) -> float:
+    t0 = time.perf_counter()
+    run_notebook(nb, out, parameters)
+    return time.perf_counter() - t0
+
+
 def main(argv=None) -> int:
+    from springlab.workbench.cache import Cache, digest, notebook_dependencies
+
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--out", default="build/notebooks", help="folder for the executed notebooks")
     parser.add_argument("--quick", action="store_true", help="run with quick=True (fewer samples)")
+    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="notebooks run at once (default: the cores)")
+    parser.add_argument("--no-cache", action="store_true", help="run every notebook, changed or not")
+    parser.add_argument("--cache", default="build/cache", help="folder for the keys of finished runs")
     args = parser.parse_args(argv)
-    failures = []
+    if args.jobs < 1:
+        parser.error(f"--jobs must be >= 1, got {args.jobs}")
+    parameters = {"quick": True} if args.quick else None
+    cache = Cache(args.cache)
+    todo, keys = [], {}
     for nb in notebook_paths():
-        print(f"running {nb} ...", flush=True)
-        try:
-            run_notebook(nb, Path(args.out) / nb.name, {"quick": True} if args.quick else None)
-        except Exception as err:  # report every notebook, then fail
-            failures.append((nb, err))
-            print(f"FAILED {nb}: {type(err).__name__}: {str(err)[:2000]}", file=sys.stderr)
+        out = Path(args.out) / nb.name
+        keys[nb] = digest(notebook_dependencies(nb), {"parameters": parameters, "out": str(out)})
+        if not args.no_cache and cache.fresh(nb.stem, keys[nb], [out, FIGURES_DIR / nb.stem]):
+            print(f"unchanged {nb}: reusing {out}", flush=True)
+        else:
+            todo.append(nb)
+    failures = []
+    with ProcessPoolExecutor(max_workers=min(args.jobs, max(1, len(todo)))) as pool:
+        running = {}
+        for nb in todo:
+            print(f"running {nb} ...", flush=True)
+            cache.forget(nb.stem)
+            running[pool.submit(_run, nb, Path(args.out) / nb.name, parameters)] = nb
+        for done in as_completed(running):
+            nb = running[done]
+            try:
+                seconds = done.result()
+            except Exception as err:  # report every notebook, then fail
+                failures.append((nb, err))
+                print(f"FAILED {nb}: {type(err).__name__}: {str(err)[:2000]}", file=sys.stderr)
+                continue
+            cache.store(nb.stem, keys[nb])
+            print(f"done {nb} in {seconds:.0f} s", flush=True)
     if failures:
         return 1
     print(f"executed notebooks written to {args.out}/")

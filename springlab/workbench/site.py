@@ -27,6 +27,7 @@ from pathlib import Path
 from springlab import tables
 from springlab.errors import SolverError
 from springlab.papers import PAPERS
+from springlab.workbench.cache import Cache, digest, module_closure
 from springlab.workbench.claims import REPORT_COLUMNS, markdown_table, report_column
 
 MATHJAX_URL = "mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe"
@@ -177,14 +178,33 @@ def main(argv=None) -> int:
     parser.add_argument("--notebooks", default="build/notebooks")
     parser.add_argument("--site", default="build/site")
     parser.add_argument("--figures", default="figures")
+    parser.add_argument("--no-cache", action="store_true", help="rebuild even if nothing changed")
+    parser.add_argument("--cache", default="build/cache", help="folder for the key of the last build")
     args = parser.parse_args(argv)
-    index = build_site(args.notebooks, args.site, args.figures)
     report = Path(args.figures) / "REPRODUCTION.md"
+    key, cache = _site_key(args), Cache(args.cache)
+    if not args.no_cache and cache.fresh("site", key, [report, Path(args.site) / "index.html"]):
+        print(f"unchanged: report {report}; site {Path(args.site) / 'index.html'}")
+        return 0
+    cache.forget("site")
+    index = build_site(args.notebooks, args.site, args.figures)
     problems = [f"{p.name}: {issue}" for p in sorted(Path(args.site).glob("*.html")) for issue in check_links(p)]
     for line in problems:
         print(line, file=sys.stderr)
     print(f"report: {report}; site: {index}")
-    return 1 if problems else 0
+    if problems:
+        return 1
+    cache.store("site", key)
+    return 0
+
+
+def _site_key(args) -> str:
+    """The site's inputs: the executed notebooks, the figures and claims (not the report it
+    writes), the modules that build it, and where it goes."""
+    inputs = [p for p in Path(args.notebooks).glob("*.ipynb")]
+    inputs += [p for p in Path(args.figures).rglob("*") if p.is_file() and p.name != "REPRODUCTION.md"]
+    inputs += module_closure(["springlab.workbench.site"])
+    return digest(inputs, {"site": str(Path(args.site).resolve()), "figures": str(Path(args.figures).resolve())})
 
 
 if __name__ == "__main__":

@@ -1,0 +1,88 @@
+"""The notebook cache: a notebook re-runs when something it depends on changed, and only then."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import pytest
+
+from springlab.workbench import cache, notebooks
+
+ROOT = cache.ROOT
+
+
+def test_a_notebook_depends_on_the_modules_it_imports_and_not_on_others():
+    planar = ROOT / "springlab/mechanisms/planar/efficiency.py"
+    dyad = ROOT / "springlab/mechanisms/dyad/synthesis.py"
+    efficiency = cache.notebook_dependencies(ROOT / "notebooks/juang2022_spring_efficiency.ipynb")
+    dyad_nb = cache.notebook_dependencies(ROOT / "notebooks/zhang2023_dyad.ipynb")
+    assert planar in efficiency and planar not in dyad_nb
+    assert dyad in dyad_nb and dyad not in efficiency
+    for deps in (efficiency, dyad_nb):  # what every notebook shares
+        assert ROOT / "springlab/__init__.py" in deps and ROOT / "constraints.txt" in deps
+        assert ROOT / "springlab/workbench/springlab.mplstyle" in deps
+        assert ROOT / "notebooks/arms/paper000_arm.toml" in deps
+
+
+def test_a_change_to_one_module_changes_the_keys_of_the_notebooks_that_import_it(tmp_path, monkeypatch):
+    copy = tmp_path / "project"
+    for part in ("springlab", "notebooks"):
+        shutil.copytree(ROOT / part, copy / part, ignore=shutil.ignore_patterns("__pycache__", ".ipynb_checkpoints"))
+    for name in ("pyproject.toml", "constraints.txt"):
+        shutil.copy(ROOT / name, copy / name)
+    monkeypatch.setattr(cache, "ROOT", copy)
+    monkeypatch.setattr(cache, "PACKAGE", copy / "springlab")
+    before = {nb.stem: cache.digest(cache.notebook_dependencies(nb)) for nb in sorted((copy / "notebooks").glob("*.ipynb"))}
+    with open(copy / "springlab/mechanisms/planar/efficiency.py", "a") as f:
+        f.write("\n# a change\n")
+    after = {nb.stem: cache.digest(cache.notebook_dependencies(nb)) for nb in sorted((copy / "notebooks").glob("*.ipynb"))}
+    changed = sorted(stem for stem in before if before[stem] != after[stem])
+    importers = sorted(stem for stem in before
+                       if copy / "springlab/mechanisms/planar/efficiency.py" in cache.notebook_dependencies(
+                           copy / "notebooks" / f"{stem}.ipynb"))
+    assert changed == importers and "juang2022_spring_efficiency" in changed and "zhang2023_dyad" not in changed
+    # negative control: a change to a file no notebook reads changes no key
+    (copy / "springlab" / "unused_note.txt").write_text("not a module")
+    assert {nb.stem: cache.digest(cache.notebook_dependencies(nb))
+            for nb in sorted((copy / "notebooks").glob("*.ipynb"))} == after
+
+
+def test_the_cache_reuses_a_run_only_while_its_key_and_outputs_stand(tmp_path):
+    store = cache.Cache(tmp_path / "cache")
+    out = tmp_path / "out.ipynb"
+    assert not store.fresh("nb", "k1", [out])
+    store.store("nb", "k1")
+    assert not store.fresh("nb", "k1", [out])  # the executed copy is missing
+    out.write_text("{}")
+    assert store.fresh("nb", "k1", [out]) and not store.fresh("nb", "k2", [out])
+    store.forget("nb")
+    assert not store.fresh("nb", "k1", [out])
+
+
+TINY = {"cells": [{"cell_type": "code", "execution_count": None, "id": "p", "metadata": {"tags": ["parameters"]},
+                   "outputs": [], "source": ["quick = False"]},
+                  {"cell_type": "code", "execution_count": None, "id": "a", "metadata": {}, "outputs": [],
+                   "source": ["x = 1 + 1"]}],
+        "metadata": {"kernelspec": {"name": "python3", "display_name": "Python 3", "language": "python"}},
+        "nbformat": 4, "nbformat_minor": 5}
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
+def test_the_runner_skips_an_unchanged_notebook_and_reruns_a_changed_one(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "notebooks").mkdir()
+    (tmp_path / "figures" / "tiny").mkdir(parents=True)
+    nb = tmp_path / "notebooks" / "tiny.ipynb"
+    nb.write_text(json.dumps(TINY))
+    argv = ["--out", "build/notebooks", "--jobs", "1"]
+    assert notebooks.main(argv) == 0
+    assert "running notebooks/tiny.ipynb" in capsys.readouterr().out
+    assert notebooks.main(argv) == 0
+    assert "unchanged notebooks/tiny.ipynb" in capsys.readouterr().out
+    TINY["cells"][1]["source"] = ["x = 1 + 2"]
+    nb.write_text(json.dumps(TINY))
+    assert notebooks.main(argv) == 0
+    assert "running notebooks/tiny.ipynb" in capsys.readouterr().out
+    assert notebooks.main([*argv, "--no-cache"]) == 0
+    assert "running notebooks/tiny.ipynb" in capsys.readouterr().out
