@@ -24,7 +24,7 @@ import numpy as np
 from springlab.errors import SpringlabError
 
 __all__ = ["number", "finite", "positive", "optional_positive", "instance", "at_most", "positive_vector", "vector_rows", "masses", "duration",
-           "sample_count", "count", "choice", "real_array", "angles", "links", "rng", "memory", "MEMORY_LIMIT", "poses",
+           "sample_count", "count", "choice", "real_array", "links", "rng", "memory", "MEMORY_LIMIT", "poses",
            "TIME_LIMIT"]
 
 MEMORY_LIMIT = 2 * 2**30
@@ -193,16 +193,6 @@ def choice(name: str, value, options) -> str:
     if not isinstance(value, str) or value not in options:
         raise SpringlabError(f"{name} must be one of {options}, got {value!r}")
     return value
-
-
-def angles(name: str, value, *, unit: str = "rad") -> np.ndarray:
-    """A non-empty array of finite angles (in ``unit``), at least 1-D."""
-    out = np.atleast_1d(real_array(name, value, finite_only=False))
-    if out.size == 0:
-        raise SpringlabError(f"{name} is empty: give at least one angle ({unit})")
-    if not np.all(np.isfinite(out)):
-        raise SpringlabError(f"{name} contains NaN or infinity: every angle must be finite ({unit})")
-    return out
 
 
 def memory(what: str, elements: float, *, bytes_per: int = 8, limit: int | None = None, hint: str = "") -> None:

@@ -21,7 +21,6 @@ from springlab.mechanisms.planar.model import (
     PlanarArm,
     PlanarSpring,
     Workspace,
-    check_arm,
     check_spring,
     check_springs,
     relative_angles,
@@ -71,7 +70,6 @@ def system_efficiency(arm: PlanarArm, springs, theta, *, reading: str = "magnitu
     * 'literal': 003 Eqs. (30a-b) as printed, the magnitude of each group's sum;
     * 'direct': 003 Eq. (24) itself, balancing over all elastic pseudo-stiffnesses.
     """
-    check_arm(arm)
     springs = check_springs(arm, springs)
     theta = relative_angles(theta, arm.n)
     tl = terms(arm, springs)
@@ -81,7 +79,6 @@ def system_efficiency(arm: PlanarArm, springs, theta, *, reading: str = "magnitu
 def spring_efficiency(arm: PlanarArm, spring: PlanarSpring, theta) -> np.ndarray:
     """e = x / (x + y) (003 Eq. 18) at each pose, (N,): x, y the magnitudes of the spring's
     balancing and balanced pseudo-stiffnesses. 1 for a spring over one joint (003 Eq. 22)."""
-    check_arm(arm)
     check_spring(arm, spring, criteria=False)
     theta = relative_angles(theta, arm.n)
     tl = [t for t in terms(arm, [spring]) if t.role != "gravity"]
@@ -106,7 +103,6 @@ def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: flo
     uniformly with ``seed``. Memory stays bounded: the grid is walked a slice at a
     time over all but the last two joints, the samples ``chunk`` at a time.
     """
-    check_arm(arm)
     springs = check_springs(arm, springs)
     if reading not in READINGS:
         raise SpringlabError(f"reading must be one of {READINGS}, got {reading!r}")

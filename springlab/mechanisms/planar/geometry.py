@@ -16,7 +16,6 @@ import numpy as np
 from springlab import _checks
 from springlab.mechanisms.planar.model import (
     PlanarArm,
-    check_arm,
     check_spring,
     check_springs,
     relative_angles,
@@ -30,7 +29,6 @@ def _direction(angle):
 def energies(arm: PlanarArm, springs, theta) -> dict:
     """Route 2: place the joints, COMs and attachment points in the plane and sum
     m g h and k |AB|^2 / 2. Returns {'gravity', 'springs', 'total'}, each (N,) in J."""
-    check_arm(arm)
     springs = check_springs(arm, springs)
     theta = relative_angles(theta, arm.n)
     for sp in springs:
@@ -57,7 +55,6 @@ def holding_torques(arm: PlanarArm, springs, theta, *, delta: float = 1e-6) -> n
     """Joint torques (N m) that hold each pose, (N, n-1): the derivative of route 2's total
     energy (:func:`energies`) with respect to each joint angle theta_2..theta_n (rad), by
     central differences of step ``delta`` rad. Zero everywhere: the arm is balanced."""
-    check_arm(arm)
     springs = check_springs(arm, springs)
     theta = relative_angles(theta, arm.n)
     delta = _checks.positive("delta", delta, unit="rad")

@@ -247,7 +247,6 @@ def to_spatial(arm: PlanarArm, springs):
     """The same arm as a springlab :class:`~springlab.model.chain.Chain` (revolute joints about
     z, x_1 vertical) and its springs as 000 :class:`~springlab.model.springs.Spring` objects on
     the joint lines (signed a, b): possible when every spring obeys C1/C2."""
-    check_arm(arm)
     springs = check_springs(arm, springs)
     from springlab.model.chain import serial_chain
     from springlab.model.springs import Spring

@@ -23,7 +23,6 @@ from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.mechanisms.planar.model import (
     PlanarArm,
-    check_arm,
     check_spring,
     check_springs,
     relative_angles,
@@ -76,7 +75,6 @@ def spring_terms(i, j, k, A, B, alpha, beta, *, label=None, pattern=None) -> lis
 
 def terms(arm: PlanarArm, springs, *, criteria: bool = True) -> list[Term]:
     """Gravity's and every spring's pseudo-stiffness terms, with their roles (C1, C2)."""
-    check_arm(arm)
     springs = check_springs(arm, springs)
     out = gravity_terms(arm.G)
     for sp in springs:
@@ -122,7 +120,6 @@ def _terms_at(arm: PlanarArm, springs, theta):
 def quadratic_energy(arm: PlanarArm, springs, theta) -> np.ndarray:
     """Route 1: U = sum r_u r_v (pseudo-stiffness) + sum_S k (a^2 + b^2 + sum r_t^2) / 2
     (003 Eqs. 5, 10), in J, (N,). Heights from the base joint."""
-    check_arm(arm)
     springs = check_springs(arm, springs)
     _, values, scale, const = _terms_at(arm, springs, theta)
     return values @ scale + const
@@ -132,7 +129,6 @@ def energies(arm: PlanarArm, springs, theta) -> dict:
     """Route 1 energies (J): {'gravity', 'springs', 'total'}, each (N,): gravity's terms
     (003 Eqs. 5-7), the springs' pseudo-stiffness terms and constants (003 Eqs. 10-12),
     and their sum, :func:`quadratic_energy`. Heights from the base joint."""
-    check_arm(arm)
     springs = check_springs(arm, springs)
     tl, values, scale, const = _terms_at(arm, springs, theta)
     grav = np.array([t.source == "G" for t in tl])
@@ -148,7 +144,6 @@ def spatial_coefficients(arm: PlanarArm, springs) -> tuple[np.ndarray, np.ndarra
     cos(phase - ref) and S = amplitude r_u r_v sin(phase - ref), ref = 90 deg on the
     ground row (000's x_1 is 003's ground link turned by 90 deg), 0 elsewhere. With C1/C2
     angles S = 0 and C equals 000's G + sum K_S off the diagonal (000 Eqs. 18, 23a-d)."""
-    check_arm(arm)
     springs = check_springs(arm, springs)
     C, S = np.zeros((arm.n, arm.n)), np.zeros((arm.n, arm.n))
     for t in terms(arm, springs, criteria=False):

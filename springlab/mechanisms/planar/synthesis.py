@@ -190,7 +190,6 @@ def payload_adjustment(arm: PlanarArm, springs, config, payload: float, *, keep:
     :param mono: under keep='stiffness', which of A, B moves on a spring over one
         joint, where 003 Eqs. (16) fix only the product A B
     """
-    check_arm(arm)
     springs = check_springs(arm, springs)
     if keep not in ("stiffness", "attachments"):
         raise SpringlabError(f"keep must be 'stiffness' or 'attachments', got {keep!r}")

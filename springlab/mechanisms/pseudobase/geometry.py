@@ -17,7 +17,6 @@ from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.mechanisms.pseudobase.model import (
     PseudobaseArm,
-    check_arm,
     check_springs,
     world_point,
 )
@@ -33,7 +32,6 @@ def positions(arm: PseudobaseArm, springs, q) -> dict:
     :returns: dict of arrays: 'com' (N, n, 3) primary COMs; 'aux_com', 'star_com',
         'C', 'D' (N, k, 3) per module; 'A', 'B' (N, k, 3) per spring; 'O' (N, n+1, 3) the frame origins
     """
-    check_arm(arm)
     springs = check_springs(arm, springs)
     q = arm.dh.check_angles(q)
     R, org = arm.dh.frames(q)
@@ -62,7 +60,6 @@ def energies(arm: PseudobaseArm, springs, q) -> dict:
     shape every route's ``energies`` has), and gravity's parts 'gravity_primary',
     'gravity_aux', 'gravity_pseudobase', each (N,).
     Heights are measured along ``up`` from O_0."""
-    check_arm(arm)
     springs = check_springs(arm, springs)
     p = positions(arm, springs, q)
     mod = np.asarray(arm.modules) - 1
@@ -82,7 +79,6 @@ def holding_torques(arm: PseudobaseArm, springs, poses, *, spring_scale: float =
                            delta: float = 1e-6) -> np.ndarray:
     """Holding torques dV/dq (N m), (N, n), route 2: the total energy of :func:`energies`
     differentiated by central differences (step ``delta`` rad); springs scaled by ``spring_scale``."""
-    check_arm(arm)
     springs = check_springs(arm, springs)
     poses = arm.dh.check_angles(poses)
     spring_scale = _checks.positive("spring_scale", spring_scale, allow_zero=True)

@@ -275,7 +275,6 @@ def attachment_a(arm: PseudobaseArm, springs, q) -> np.ndarray:
 
     A_i is fixed on the pseudobase, not on link i: its coordinates in frame i
     depend on the pose (001 Table 3 prints them at the initial pose)."""
-    check_arm(arm)
     springs = check_springs(arm, springs)
     R, _ = arm.dh.frames(arm.dh.check_angles(q))
     out = []
@@ -463,7 +462,6 @@ def cost_table(arm: PseudobaseArm, springs, q) -> Table:
     """What the modules cost the arm: springs, mass of links 2..n (kg) with and without the
     auxiliary links and pseudobases, each joint's inertia (kg m^2, :func:`joint_space_inertia`)
     at the first pose of ``q`` and its largest increase along ``q``, and the sum of the stiffnesses."""
-    check_arm(arm)
     springs = check_springs(arm, springs)
     bare_mass = float(arm.m[1:].sum())
     added = float(arm.m_hat.sum() + arm.m_star.sum())
