@@ -80,3 +80,19 @@ def test_grouping_writes_the_papers_alternatives():
     groups = cfgs.group_alternatives(cfgs.enumerate_configurations(3))
     assert groups == [{(1, 3): frozenset({("(+,+)",)}), (2, 3): frozenset({("(+,+)",), ("(-,-)",)})}]
     assert "1(+,+)/1(-,-)" in cfgs.format_group(groups[0], 3)
+
+
+def test_the_sign_refutation_never_refutes_what_the_relaxation_admits():
+    from springlab.design.ground import _any_sign_candidates, example_family
+
+    chain = example_family([4])[4].chain()
+    candidates = _any_sign_candidates(4, 3)  # 462 sets of three springs, any pattern, with S(1,4)
+    signs = design.sign_consistent(chain, candidates)
+    relaxed = [design.relaxation_margin(chain, cfg) > 1e-9 for cfg in candidates]
+    assert all(ok for ok, lp in zip(signs, relaxed) if lp)  # a refutation is a proof
+    assert 0 < sum(relaxed) < sum(signs) < len(candidates)  # it decides some, leaves the rest to the programme
+    # negative controls: an entry with only same-signed terms, and one missing its negative term
+    assert not design.sign_consistent(chain, [["S(1,2)", "S(1,3)", "S(1,4)", "S(2,4)(+,-)"]])[0]
+    assert not design.sign_consistent(chain, [["S(1,2)", "S(1,3)"]])[0]
+    ground = ["S(1,3)(+,-)", "S(1,4)(+,+)", "S(1,4)(+,-)"]  # rank.ground_springs(4): balances every arm
+    assert design.sign_consistent(chain, [ground, []]).tolist() == [True, False]

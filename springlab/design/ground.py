@@ -32,6 +32,7 @@ from springlab.design.solve import (
     find_design,
     minimise_largest_force,
     relaxation_margin,
+    sign_consistent,
 )
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.model.armfile import ArmSpec
@@ -93,6 +94,7 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
     X = random_poses(chain, samples, seed)
     out = []
     candidates = _any_sign_candidates(chain.n, count)
+    candidates = [cfg for cfg, ok in zip(candidates, sign_consistent(chain, candidates), strict=True) if ok]
     for cfg in tqdm(candidates, disable=not progress, desc=f"{count} springs, all patterns", mininterval=1.0):
         if relaxation_margin(chain, cfg) <= 1e-9:
             continue
@@ -110,12 +112,16 @@ def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False) -> t
     """(candidates, survivors): how many sets of ``count`` springs, any sign pattern, any
     attachment (limits ignored), pass the linear relaxation of 000 Eqs. (39). No survivor
     proves that no ``count`` springs without auxiliary links balance this arm: the
-    relaxation only drops constraints (P k = A B per spring)."""
+    relaxation only drops constraints (P k = A B per spring). Candidates the signs alone
+    refute (:func:`springlab.design.solve.sign_consistent`, exact) get no linear programme:
+    at n = 6 that is all 61,712 sets of four springs, screened in 0.2 s (97 s by programmes)."""
     from tqdm import tqdm
 
     chain = _chain_of(spec_or_chain)
     candidates = _any_sign_candidates(chain.n, count)
-    survivors = sum(1 for cfg in tqdm(candidates, disable=not progress, desc=f"{count} springs, screen", mininterval=1.0)
+    signs_allow = sign_consistent(chain, candidates)  # an exact refutation by signs first, no programme
+    rest = [cfg for cfg, ok in zip(candidates, signs_allow, strict=True) if ok]
+    survivors = sum(1 for cfg in tqdm(rest, disable=not progress, desc=f"{count} springs, screen", mininterval=1.0)
                     if relaxation_margin(chain, cfg) > 1e-9)
     return len(candidates), survivors
 

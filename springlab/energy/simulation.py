@@ -110,6 +110,13 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
             initialRotationMatrix=reference_frames[j - 1].T @ initial_frames[j - 1]))  # superimposed on the reference
     if joints == "prescribed" and sweep is None:
         raise SpringlabError("joints='prescribed' needs a sweep")
+    last = [None, None]  # exudyn asks each joint's offset at the same t in turn: evaluate the sweep once per t
+
+    def sweep_angles(t):
+        if last[0] != t:
+            last[0], last[1] = t, sweep.angles(t)
+        return last[1]
+
     joint_items, joint_axes = [], []
     for j in range(2, chain.n + 1):
         items, position = [bodies[j - 2], bodies[j - 1]], list(ref_joints[j - 2])
@@ -129,7 +136,7 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
         offset = 0
         if joints == "prescribed":
             def offset(mbs_, t, item, values, _k=j - 2, _revolute=revolute):
-                a = sweep.angles(t)[_k]  # frame 1 = frame 0 @ RotXYZ(offset)
+                a = sweep_angles(t)[_k]  # frame 1 = frame 0 @ RotXYZ(offset)
                 if _revolute:
                     return [0.0, 0.0, 0.0, 0.0, 0.0, float(a[0])]
                 return [0.0, 0.0, 0.0, float(a[0]), float(a[1]), float(a[2])]

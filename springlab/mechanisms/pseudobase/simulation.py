@@ -129,12 +129,19 @@ def build_model(arm: PseudobaseArm, springs, q0, *, model: str = "rssr", joints:
     def local(b, world_point, rot):  # a point given in the world, in body b's frame
         return rot.T @ (world_point - com[b])
 
+    last = [None, None]  # exudyn asks each joint's offset at the same t in turn: evaluate the trajectory once per t
+
+    def angle_offsets(t):
+        if last[0] != t:
+            last[0], last[1] = t, np.asarray(trajectory(t), dtype=float) - q0[0]
+        return last[1]
+
     drives = []
     for i in range(1, arm.n + 1):
         offset = 0
         if joints == "driven":
             def offset(mbs_, t, item, values, _k=i - 1):
-                return [0.0, 0.0, 0.0, 0.0, 0.0, float(trajectory(t)[_k] - q0[0, _k])]
+                return [0.0, 0.0, 0.0, 0.0, 0.0, float(angle_offsets(t)[_k])]
         drives.append(mbs.CreateGenericJoint(itemNumbers=[links[i - 1], links[i]], position=list(org[i - 1]),
                                              rotationMatrixAxes=R[i - 1], constrainedAxes=[1] * 6,
                                              offsetUserFunction=offset))
