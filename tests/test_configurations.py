@@ -89,7 +89,7 @@ def test_the_sign_refutation_never_refutes_what_the_relaxation_admits():
     candidates = _any_sign_candidates(4, 3)  # 462 sets of three springs, any pattern, with S(1,4)
     signs = design.sign_consistent(chain, candidates)
     relaxed = [design.relaxation_margin(chain, cfg) > 1e-9 for cfg in candidates]
-    assert all(ok for ok, lp in zip(signs, relaxed) if lp)  # a refutation is a proof
+    assert all(ok for ok, lp in zip(signs, relaxed, strict=True) if lp)  # a refutation is a proof
     assert 0 < sum(relaxed) < sum(signs) < len(candidates)  # it decides some, leaves the rest to the programme
     # negative controls: an entry with only same-signed terms, and one missing its negative term
     assert not design.sign_consistent(chain, [["S(1,2)", "S(1,3)", "S(1,4)", "S(2,4)(+,-)"]])[0]
