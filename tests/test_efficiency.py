@@ -126,6 +126,24 @@ def test_index_reproduces_the_paper_on_a_5_degree_grid():
     assert round(ef.efficiency_index(ARM, TABLE4, WS, step=5, reading="literal"), 4) == 0.5351
 
 
+def test_indices_in_one_pass_equal_the_plain_means():
+    """efficiency_indices shares terms across designs; each (design, reading) must still be
+    the plain mean of e_sys over the grid, and a design must not leak into another's."""
+    after = plsyn.design(ARM, "Λ3-1", paper.FREE_CHOICES | {"A_S14": 0.4})
+    step = 15
+    grid = np.stack(np.meshgrid(*WS.grid(step), indexing="ij"), -1).reshape(-1, 3)
+    got = ef.efficiency_indices(ARM, {"table 4": TABLE4, "after": after}, WS, step=step, readings=ef.READINGS)
+    for label, springs in (("table 4", TABLE4), ("after", after)):
+        for reading in ef.READINGS:
+            plain = ef.system_efficiency(ARM, springs, grid, reading=reading).mean()
+            assert abs(got[(label, reading)] - plain) < 1e-14
+    assert abs(got[("after", "magnitudes")] - got[("table 4", "magnitudes")]) > 0.05  # the designs differ
+    with pytest.raises(SpringlabError, match="designs is empty"):
+        ef.efficiency_indices(ARM, {}, WS, step=step)
+    with pytest.raises(SpringlabError, match="reading"):
+        ef.efficiency_indices(ARM, {"a": TABLE4}, WS, step=step, readings=("average",))
+
+
 def test_grid_index_equals_the_plain_mean():
     step = 20
     axes = WS.grid(step)

@@ -222,21 +222,23 @@ def _phase_one(prog: _Programme):
     """
     global _HIGHS
     import highspy
-    from scipy.sparse import csc_matrix
 
     if _HIGHS is None:
         _HIGHS = highspy.Highs()
         _HIGHS.setOptionValue("output_flag", False)
     rows, m = prog.A_eq.shape
-    A = csc_matrix(np.hstack([prog.A_eq, np.eye(rows), -np.eye(rows)]))
+    present = prog.A_eq.T != 0  # column-wise storage of [A_eq, I, -I], built directly
+    per_column = np.concatenate([present.sum(axis=1), np.ones(2 * rows, dtype=int)])
     lp = highspy.HighsLp()
-    lp.num_col_, lp.num_row_ = A.shape[1], rows
+    lp.num_col_, lp.num_row_ = m + 2 * rows, rows
     lp.col_cost_ = np.concatenate([np.zeros(m), np.ones(2 * rows)])
     lp.col_lower_ = np.concatenate([np.where(prog.signs > 0, EPS, -BOUND), np.zeros(2 * rows)])
     lp.col_upper_ = np.concatenate([np.where(prog.signs > 0, BOUND, -EPS), np.full(2 * rows, highspy.kHighsInf)])
     lp.row_lower_ = lp.row_upper_ = prog.b_eq
     lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-    lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = A.indptr, A.indices, A.data
+    lp.a_matrix_.start_ = np.concatenate([[0], np.cumsum(per_column)]).astype(np.int32)
+    lp.a_matrix_.index_ = np.concatenate([np.nonzero(present)[1], np.arange(rows), np.arange(rows)]).astype(np.int32)
+    lp.a_matrix_.value_ = np.concatenate([prog.A_eq.T[present], np.ones(rows), -np.ones(rows)])
     _HIGHS.passModel(lp)
     _HIGHS.run()
     if _HIGHS.getModelStatus() != highspy.HighsModelStatus.kOptimal:
@@ -357,6 +359,15 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
     def residual(v):
         return np.concatenate([prog.A_eq @ v - prog.b_eq, v[P] * v[K] - v[A] * v[B]])
 
+    coupling_rows = prog.A_eq.shape[0] + np.arange(len(P))
+
+    def residual_jacobian(v):  # exact: the equations' rows, then d(P k - A B)
+        J = np.zeros((len(coupling_rows) + prog.A_eq.shape[0], m))
+        J[:prog.A_eq.shape[0]] = prog.A_eq
+        J[coupling_rows, P], J[coupling_rows, K] = v[K], v[P]
+        J[coupling_rows, A], J[coupling_rows, B] = -v[B], -v[A]
+        return J
+
     def with_a(log_a):  # the equations with each long spring's a fixed
         rows = []
         for (Pc, Ac, Bc, Kc), la, sa in zip(longs, log_a, long_signs, strict=True):
@@ -389,8 +400,8 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
         found = springs_of(v0)
         if found is not None:
             return found
-        sol = least_squares(residual, np.clip(v0, lo, hi), bounds=(lo, hi), xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                            max_nfev=500)
+        sol = least_squares(residual, np.clip(v0, lo, hi), jac=residual_jacobian, bounds=(lo, hi), xtol=1e-15,
+                            ftol=1e-15, gtol=1e-15, max_nfev=500)
         return springs_of(sol.x)
 
     def springs_of(v):
@@ -526,22 +537,33 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
         if len(signature) == 1:
             first_relaxed = relaxed
     first = chains[0]
+    decided: dict[tuple[SpringSlot, ...], str] = {}  # one decision per multiset: sub-multisets recur
+
+    def decide(cfg) -> str:
+        key = tuple(sorted(cfg))
+        if key not in decided:
+            decided[key] = is_balanceable(first, cfg)
+        return decided[key]
+
     minimal, refuted, undecided = [], [], []
     for cfg in tqdm(first_relaxed, disable=not progress, desc=f"n = {n}, minimal multisets", mininterval=2.0):
         if tightened_infeasible(first, cfg):
             refuted.append(cfg)
+            decided[tuple(sorted(cfg))] = "no"
         elif confirm(first, cfg) is not None:
             minimal.append(cfg)
+            decided[tuple(sorted(cfg))] = "yes"
         else:
             undecided.append(cfg)
+            decided[tuple(sorted(cfg))] = "undecided"
     admitted = enumerate_configurations(n)
     status, single, inclusion = {}, 0, 0
     for cfg in tqdm(admitted, disable=not progress, desc=f"n = {n}, R1-R6 configurations", mininterval=2.0):
-        st = is_balanceable(first, cfg)
+        st = decide(cfg)
         status[_label(cfg)] = st
         if st != "yes":
             continue
-        if all(is_balanceable(first, cfg[:k] + cfg[k + 1:]) == "no" for k in range(len(cfg))):
+        if all(decide(cfg[:k] + cfg[k + 1:]) == "no" for k in range(len(cfg))):
             single += 1
         if any(sorted(cfg) == sorted(m) for m in minimal):
             inclusion += 1

@@ -601,8 +601,8 @@ def sign_consistent(chain: Chain, configurations) -> np.ndarray:
     linear relaxation of 000 Eqs. (39): some entry (i, j) needs a term of a sign that no
     spring of the configuration brings. True says nothing (:func:`relaxation_margin` decides).
 
-    With every quantity strictly of its pattern's sign (P = k a b, A = k a, B = k b, k; 000
-    Eqs. 23a-d), each term an entry receives has a fixed sign. An entry (1, j) with
+    With every quantity strictly of its pattern's sign (P = k a b, A = k a, B = k b and k,
+    000 Eqs. 23a-d), each term an entry receives has a fixed sign. An entry (1, j) with
     G_1,j > 0 must receive a negative term (G + sum = 0, 000 Eqs. 39a); an entry with
     G = 0 that receives a term must receive terms of both signs (000 Eq. 39b). A False is
     therefore a proof, exact, with no solver tolerance; it costs a few array operations for

