@@ -96,3 +96,18 @@ def test_the_sign_refutation_never_refutes_what_the_relaxation_admits():
     assert not design.sign_consistent(chain, [["S(1,2)", "S(1,3)"]])[0]
     ground = ["S(1,3)(+,-)", "S(1,4)(+,+)", "S(1,4)(+,-)"]  # rank.ground_springs(4): balances every arm
     assert design.sign_consistent(chain, [ground, []]).tolist() == [True, False]
+
+
+def test_the_bitmask_checks_agree_with_the_rules_word_for_word():
+    import random
+
+    from springlab.design.rules import _bits
+
+    rng = random.Random(5)
+    for n in (3, 4, 5):
+        bits = _bits(n)
+        for _ in range(2000):
+            cfg = rng.sample(bits.slots, rng.randint(1, 2 * n))
+            mask = bits.mask(bits.bit[s] for s in cfg)
+            assert bits.admissible(mask) == (not cfgs.rule_violations(n, cfg)), cfg
+        assert any(bits.admissible(m) for m in (bits.mask(bits.bit[s] for s in c) for c in cfgs.enumerate_configurations(n)))
