@@ -100,8 +100,11 @@ def choose_C(comp: Compensator, phi, reading: str, *, moment: str = "virtual wor
         return eq32_objective(m, reading)
 
     Cs = np.linspace(C_min, C_max, grid)[1:]
-    values = np.array([total(C) for C in Cs])
-    ok = np.isfinite(values)
+    path = synthesis_path(comp, phi, Cs, branch=branch)  # the grid in one batch; total(C) refines below
+    m, closes = batch_moments(comp, path["r"], path["l"], path["beta"], phi, moment)
+    ok = path["ok"] & closes
+    signed = reading in ("signed sum stationary", "smallest |signed sum|")
+    values = np.where(ok, np.sum(m, axis=1) if signed else eq32_objective(m, reading), np.nan)
     if not np.any(ok):
         raise SpringlabError("no C in the search range gives a dyad that closes at every position")
     if reading == "signed sum stationary":  # 002 Eq. (32) read literally: d(sum M)/dC = 0
