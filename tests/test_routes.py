@@ -77,3 +77,32 @@ def test_attachment_points_follow_the_sign_convention(arm):
     # joint 3 (distal of link 3) is at r2 + r3 = 0.54 m; A is 0.2 m back on link 3, B 0.1 m behind link 4's base
     np.testing.assert_allclose(A[0], [0.34, 0, 0])
     np.testing.assert_allclose(B[0], [0.44, 0, 0])
+
+
+def _plain_holding_torques(chain, springs, X):
+    """The holding torques as the docstring writes them, term by term in numpy (the compiled
+    kernel of route 2 sums gravity from the end link inwards; this sums it link by link)."""
+    joints = chain.joint_positions(X)
+    com = chain.com_positions(X)
+    weight = chain.g * np.asarray(chain.m)[None, :, None] * np.array([1.0, 0.0, 0.0])
+    out = np.zeros((X.shape[0], chain.n - 1, 3))
+    for j in range(2, chain.n + 1):
+        out[:, j - 2] = np.cross(com[:, j - 2:] - joints[:, j - 2][:, None], weight[:, j - 2:]).sum(axis=1)
+    for s in springs:
+        A = joints[:, s.i - 1] + s.a * X[:, s.i - 1]
+        B = joints[:, s.j - 2] + s.b * X[:, s.j - 1]
+        pull = B - A
+        if s.free_length:
+            pull = pull * (1.0 - s.free_length / np.linalg.norm(pull, axis=1, keepdims=True))
+        for j in range(s.i + 1, s.j + 1):
+            out[:, j - 2] += s.k * np.cross(B - joints[:, j - 2], pull)
+    return out
+
+
+def test_the_holding_torque_kernel_equals_the_plain_sum(arm, exact_springs, rng):
+    springs = list(exact_springs) + [Spring(1, 3, 0.05, 0.1, 200.0, free_length=0.03), Spring(2, 4, -0.1, 0.05, 80.0)]
+    X = random_directions(arm.n, 3000, rng)
+    ours, plain = geometry.holding_torques(arm, springs, X), _plain_holding_torques(arm, springs, X)
+    assert np.abs(ours - plain).max() < 1e-12 * np.abs(plain).max()
+    assert np.abs(geometry.holding_torques(arm, exact_springs, X)).max() < 1e-9  # balanced: no torque
+    assert np.abs(geometry.holding_torques(arm, [s.scaled(0.9) for s in exact_springs], X)).max() > 0.1  # control

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from springlab import _checks
-from springlab.errors import GeometryError
+from springlab.errors import GeometryError, SpringlabError
 from springlab.model.chain import UP, Chain
 from springlab.model.springs import Spring, check_springs
 
@@ -146,28 +146,23 @@ def holding_torques(chain: Chain, springs, X) -> np.ndarray:
 
     :returns: ndarray(N, n-1, 3) in the world frame; row j-2 is joint j's torque
     """
+    from springlab.energy import geometry_kernel as kernel
+
     _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
-    X = chain.check_directions(X)
+    X = np.ascontiguousarray(chain.as_poses(X), dtype=float)
     springs = check_springs(chain, springs)
-    joints = chain.joint_positions(X)
-    com = chain.com_positions(X)  # links 2..n
-    weight = chain.g * np.asarray(chain.m)[None, :, None] * UP  # m_t g UP
-    out = np.zeros((X.shape[0], chain.n - 1, 3))
-    for j in range(2, chain.n + 1):
-        pivot = joints[:, j - 2]
-        out[:, j - 2] = np.cross(com[:, j - 2:] - pivot[:, None], weight[:, j - 2:]).sum(axis=1)
-    for s in springs:
-        A = joints[:, s.i - 1] + s.a * X[:, s.i - 1]
-        B = joints[:, s.j - 2] + s.b * X[:, s.j - 1]
-        pull = B - A
-        if s.free_length:
-            length = np.linalg.norm(pull, axis=1, keepdims=True)
-            if np.any(length <= 1e-12 * s.free_length):
-                pose = int(np.argmin(length))
-                raise GeometryError(
-                    f"{s.label}'s ends coincide at pose {pose}: a spring of free_length = {s.free_length:g} m has "
-                    "no line of action there; move its attachments (a, b) or leave that pose out")
-            pull = pull * (1.0 - s.free_length / length)
-        for j in range(s.i + 1, s.j + 1):  # joints crossed by the spring
-            out[:, j - 2] += s.k * np.cross(B - joints[:, j - 2], pull)
+    out = np.empty((X.shape[0], chain.n - 1, 3))
+    ints = lambda name: np.array([getattr(s, name) for s in springs], dtype=np.int64)  # noqa: E731
+    floats = lambda name: np.array([getattr(s, name) for s in springs], dtype=float)  # noqa: E731
+    status, pose, which = kernel.holding_torques(np.asarray(chain.r, dtype=float), np.asarray(chain.d, dtype=float),
+                                          np.asarray(chain.m, dtype=float), float(chain.g), UP, ints("i"), ints("j"),
+                                          floats("a"), floats("b"), floats("k"), floats("free_length"), X, out)
+    if status == kernel.BAD_POSE:
+        chain.check_directions(X[pose:pose + 1])  # raises, naming what is wrong
+        raise SpringlabError(f"pose {pose} of X is not a valid pose (unit link vectors, x_1 = UP)")
+    if status == kernel.ENDS_MEET:
+        s = springs[which]
+        raise GeometryError(
+            f"{s.label}'s ends coincide at pose {pose}: a spring of free_length = {s.free_length:g} m has "
+            "no line of action there; move its attachments (a, b) or leave that pose out")
     return out
