@@ -32,6 +32,7 @@ bench: $(VENV)/.bench-installed
 	$(BIN)/python benchmarks/bench_sim.py
 	$(BIN)/python benchmarks/bench_efficiency.py
 	$(BIN)/python benchmarks/bench_design.py
+	$(BIN)/python benchmarks/bench_figures.py
 
 lab: $(STAMP)
 	$(BIN)/jupyter lab notebooks/

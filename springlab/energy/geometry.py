@@ -149,7 +149,7 @@ def holding_torques(chain: Chain, springs, X) -> np.ndarray:
     from springlab.energy import geometry_kernel as kernel
 
     _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
-    X = np.ascontiguousarray(chain.as_poses(X), dtype=float)
+    X = chain.as_poses(X)  # float64, any strides: the kernel reads it in place
     springs = check_springs(chain, springs)
     out = np.empty((X.shape[0], chain.n - 1, 3))
     ints = lambda name: np.array([getattr(s, name) for s in springs], dtype=np.int64)  # noqa: E731

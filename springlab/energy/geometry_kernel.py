@@ -31,8 +31,6 @@ def holding_torques(r, d, m, g, up, spr_i, spr_j, spr_a, spr_b, spr_k, spr_l0, X
     """
     N, n = X.shape[0], X.shape[1]
     J = np.zeros((n, 3))
-    S = np.zeros(3)
-    v = np.zeros(3)
     for p in range(N):
         for q in range(n):
             sq = X[p, q, 0] * X[p, q, 0] + X[p, q, 1] * X[p, q, 1] + X[p, q, 2] * X[p, q, 2] - 1.0
@@ -44,17 +42,19 @@ def holding_torques(r, d, m, g, up, spr_i, spr_j, spr_a, spr_b, spr_k, spr_l0, X
         for q in range(1, n):
             for c in range(3):
                 J[q, c] = J[q - 1, c] + r[q - 1] * X[p, q, c]
-        S[:] = 0.0
-        M = 0.0
+        sx = sy = sz = M = 0.0
+        ux, uy, uz = up[0], up[1], up[2]
         for q in range(n - 1, 0, -1):  # link q + 1 (q 0-based), pivot J[q - 1] of joint q + 1
-            for c in range(3):
-                S[c] += m[q - 1] * (J[q - 1, c] + d[q - 1] * X[p, q, c])
-            M += m[q - 1]
-            for c in range(3):
-                v[c] = g * (S[c] - M * J[q - 1, c])
-            out[p, q - 1, 0] = v[1] * up[2] - v[2] * up[1]
-            out[p, q - 1, 1] = v[2] * up[0] - v[0] * up[2]
-            out[p, q - 1, 2] = v[0] * up[1] - v[1] * up[0]
+            mq, dq = m[q - 1], d[q - 1]
+            jx, jy, jz = J[q - 1, 0], J[q - 1, 1], J[q - 1, 2]
+            sx += mq * (jx + dq * X[p, q, 0])
+            sy += mq * (jy + dq * X[p, q, 1])
+            sz += mq * (jz + dq * X[p, q, 2])
+            M += mq
+            vx, vy, vz = g * (sx - M * jx), g * (sy - M * jy), g * (sz - M * jz)
+            out[p, q - 1, 0] = vy * uz - vz * uy
+            out[p, q - 1, 1] = vz * ux - vx * uz
+            out[p, q - 1, 2] = vx * uy - vy * ux
         for s in range(spr_i.shape[0]):
             i, j, k = spr_i[s], spr_j[s], spr_k[s]
             ax = J[i - 1, 0] + spr_a[s] * X[p, i - 1, 0]
