@@ -239,6 +239,26 @@ def _end_limits(chain: Chain, slots, max_extension: float | None) -> tuple[np.nd
     return lim_a, lim_b
 
 
+STALL_ITERATIONS = 300
+"""A start of :func:`find_design` whose least-squares cost has not halved over this many
+iterations is abandoned for the next start (it would run to its 2,000 evaluations without
+converging: on the example arms and the family n = 3..8, 273 starts, every start that
+converged did so with no such plateau, and the abandoned ones spend a third of the time)."""
+
+
+def _stop_when_stalled():
+    """A least-squares callback that stops a start whose cost has not halved over
+    :data:`STALL_ITERATIONS` iterations (scipy passes ``intermediate_result`` by that name)."""
+    costs: list[float] = []
+
+    def stalled(intermediate_result):
+        costs.append(intermediate_result.cost)
+        if len(costs) > STALL_ITERATIONS and costs[-1] > 0.5 * costs[-1 - STALL_ITERATIONS]:
+            raise StopIteration
+
+    return stalled
+
+
 def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float = 1e-13,
                 within_links: bool = True, max_extension: float | None = None,
                 max_stiffness: float | None = None, start=None) -> tuple[Spring, ...]:
@@ -325,7 +345,7 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         try:
             with np.errstate(over="ignore", invalid="ignore"):  # a wild trial step: the method backs off
                 sol = least_squares(residual, z0, jac=jacobian, method="trf", xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                                    bounds=(lower, upper), max_nfev=2000)
+                                    bounds=(lower, upper), max_nfev=2000, callback=_stop_when_stalled())
         except (ValueError, FloatingPointError):
             continue
         worst = float(np.max(np.abs(sol.fun)))
