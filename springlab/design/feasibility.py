@@ -105,7 +105,9 @@ class _Programme:
     b_eq: np.ndarray
 
 
-def _programme(chain: Chain, items) -> _Programme:
+def _programme(chain: Chain, items, quantities: dict | None = None) -> _Programme:
+    """The linear relaxation's equations for ``items``; ``quantities``: {slot: _quantities(chain, slot)},
+    computed once by a caller that builds many programmes on one chain."""
     from springlab.energy.quadratic import gravity_entries
 
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
@@ -116,7 +118,7 @@ def _programme(chain: Chain, items) -> _Programme:
     row = {k: idx for idx, k in enumerate(keys)}
     cols, owner, signs = [], [], []
     for idx, s in enumerate(items):
-        for sign, entries in _quantities(chain, s):
+        for sign, entries in (quantities[s] if quantities is not None else _quantities(chain, s)):
             cols.append(entries)
             owner.append(idx)
             signs.append(sign)
@@ -212,20 +214,10 @@ def _entry_signs(chain: Chain, s: SpringSlot) -> dict[tuple[int, int], set[int]]
 _HIGHS = None
 
 
-def _phase_one(prog: _Programme):
-    """Least total violation of 000 Eqs. (39) with every quantity in its sign box: (value, y),
-    y the equations' dual values (a subgradient of the value in the right-hand side).
-
-    Solved by HiGHS through highspy, which scipy's linprog also wraps: called directly it
-    costs about 0.7 ms per programme here against 1.7 ms through linprog, and the
-    rules-against-physics search solves thousands.
-    """
-    global _HIGHS
+def _phase_one_lp(prog: _Programme):
+    """The phase-one programme of :func:`_phase_one` as a HiGHS model (highspy.HighsLp)."""
     import highspy
 
-    if _HIGHS is None:
-        _HIGHS = highspy.Highs()
-        _HIGHS.setOptionValue("output_flag", False)
     rows, m = prog.A_eq.shape
     present = prog.A_eq.T != 0  # column-wise storage of [A_eq, I, -I], built directly
     per_column = np.concatenate([present.sum(axis=1), np.ones(2 * rows, dtype=int)])
@@ -239,11 +231,60 @@ def _phase_one(prog: _Programme):
     lp.a_matrix_.start_ = np.concatenate([[0], np.cumsum(per_column)]).astype(np.int32)
     lp.a_matrix_.index_ = np.concatenate([np.nonzero(present)[1], np.arange(rows), np.arange(rows)]).astype(np.int32)
     lp.a_matrix_.value_ = np.concatenate([prog.A_eq.T[present], np.ones(rows), -np.ones(rows)])
-    _HIGHS.passModel(lp)
+    return lp
+
+
+def _new_highs():
+    import highspy
+
+    h = highspy.Highs()
+    h.setOptionValue("output_flag", False)
+    return h
+
+
+def _solved(h):
+    import highspy
+
+    if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
+        raise SolverError(f"the phase-one programme failed: {h.modelStatusToString(h.getModelStatus())}")
+    return float(h.getInfo().objective_function_value)
+
+
+def _phase_one(prog: _Programme):
+    """Least total violation of 000 Eqs. (39) with every quantity in its sign box: (value, y),
+    y the equations' dual values (a subgradient of the value in the right-hand side).
+
+    Solved by HiGHS through highspy, which scipy's linprog also wraps: called directly it
+    costs about 0.6 ms per programme here against 1.7 ms through linprog, and the
+    rules-against-physics search solves thousands.
+    """
+    global _HIGHS
+    if _HIGHS is None:
+        _HIGHS = _new_highs()
+    _HIGHS.passModel(_phase_one_lp(prog))
     _HIGHS.run()
-    if _HIGHS.getModelStatus() != highspy.HighsModelStatus.kOptimal:
-        raise SolverError(f"the phase-one programme failed: {_HIGHS.modelStatusToString(_HIGHS.getModelStatus())}")
-    return float(_HIGHS.getInfo().objective_function_value), np.array(_HIGHS.getSolution().row_dual)
+    return _solved(_HIGHS), np.array(_HIGHS.getSolution().row_dual)
+
+
+class _WarmPhaseOne:
+    """:func:`_phase_one`'s value for a family of programmes that differ only in a few matrix
+    coefficients, kept in one HiGHS model: each call changes those coefficients and solves again
+    from the previous optimal basis (a warm start), about 5 times faster than a fresh solve.
+
+    :param prog: the programme with every varying coefficient present (non-zero)
+    :param cells: (row, column) of each varying coefficient
+    """
+
+    def __init__(self, prog: _Programme, cells):
+        self.highs = _new_highs()
+        self.highs.passModel(_phase_one_lp(prog))
+        self.cells = list(cells)
+
+    def __call__(self, values) -> float:
+        for (row, col), value in zip(self.cells, values, strict=True):
+            self.highs.changeCoeff(int(row), int(col), float(value))
+        self.highs.run()
+        return _solved(self.highs)
 
 
 def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list[tuple[SpringSlot, ...]]:
@@ -266,7 +307,8 @@ def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list
     items = alphabet(chain.n)
     kinds = sorted(set(items))
     most = np.array([items.count(k) for k in kinds])
-    full = _programme(chain, kinds)
+    quantities = {k: _quantities(chain, k) for k in kinds}  # each spring's columns, computed once
+    full = _programme(chain, kinds, quantities)
     keys = sorted({key for k in kinds for key in _entry_signs(chain, k)} | {(1, j) for j in range(2, chain.n + 1)})
     # per kind and entry: does the spring put a positive (pos) / negative (neg) term there
     pos = np.zeros((len(kinds), len(keys)), dtype=bool)
@@ -302,13 +344,13 @@ def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list
                 wanted = np.flatnonzero(neg[:, e] if has_pos[e] else pos[:, e])
             else:
                 cfg = [kinds[idx] for idx in np.flatnonzero(c) for _ in range(c[idx])]
-                value, y = _phase_one(_programme(chain, cfg))
+                value, y = _phase_one(_programme(chain, cfg, quantities))
                 if value <= 1e-9:
                     found.append(c)
                     F = np.array(found)
                     continue
                 gain = y @ full.A_eq * full.signs  # s y.c per quantity of every kind of spring
-                wanted = [idx for idx in range(len(kinds)) if np.any(gain[full.owner == idx] > 1e-12)]
+                wanted = np.flatnonzero(np.bincount(full.owner, weights=gain > 1e-12, minlength=len(kinds)))
             for idx in wanted:
                 if c[idx] < most[idx]:
                     child = list(counts)
@@ -391,12 +433,19 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
         np.add.at(g, B, -2 * r * v[A])
         return g
 
+    def solved(intermediate_result):  # stop SLSQP once the equations and couplings hold to 1e-13
+        v = intermediate_result.x
+        worst = max(np.abs(prog.A_eq @ v - prog.b_eq).max(), np.abs(v[P] * v[K] - v[A] * v[B]).max())
+        if worst <= 1e-13:  # in units of the largest G_1,j: springs_of's check (1e-9) then passes
+            raise StopIteration
+
     def polish(v0):
         v0 = np.clip(v0, lo, hi)
         if len(P):  # SLSQP on the coupling within the equations: fast when it converges
             v0 = minimize(coupling_squared, v0, jac=coupling_gradient, method="SLSQP", bounds=list(zip(lo, hi, strict=True)),
                           constraints=[{"type": "eq", "fun": lambda x: prog.A_eq @ x - prog.b_eq,
-                                        "jac": lambda x: prog.A_eq}], options={"maxiter": 300, "ftol": 1e-30}).x
+                                        "jac": lambda x: prog.A_eq}], options={"maxiter": 300, "ftol": 1e-30},
+                          callback=solved).x
         found = springs_of(v0)
         if found is not None:
             return found
@@ -432,9 +481,13 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
             return found
     if not longs:
         return None
+    base_rows = prog.A_eq.shape[0]
+    cells = [(base_rows + 2 * q + t, y) for q, (Pc, Ac, Bc, Kc) in enumerate(longs) for t, y in enumerate((Kc, Bc))]
+    warm = _WarmPhaseOne(with_a(np.zeros(len(longs))), cells)  # rows A - a k = 0, P - a B = 0 per long spring
+    signs_a = np.repeat(np.array(long_signs, dtype=float), 2)
     for _ in range(2 * starts):
-        res = minimize(lambda la: _phase_one(with_a(la))[0], rng.uniform(-3.0, 1.0, len(longs)), method="Nelder-Mead",
-                       options={"xatol": 1e-10, "fatol": 1e-14, "maxiter": 400})
+        res = minimize(lambda la: warm(-signs_a * np.exp(np.repeat(la, 2))), rng.uniform(-3.0, 1.0, len(longs)),
+                       method="Nelder-Mead", options={"xatol": 1e-10, "fatol": 1e-14, "maxiter": 400})
         fixed = with_a(res.x)
         rows = fixed.A_eq.shape[0]
         lp = linprog(np.r_[np.zeros(m), np.ones(2 * rows)], A_eq=np.hstack([fixed.A_eq, np.eye(rows), -np.eye(rows)]),
