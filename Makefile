@@ -21,7 +21,7 @@ figures: $(STAMP)
 	$(BIN)/python -m springlab.workbench.site --notebooks build/notebooks --site build/site --figures figures
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n auto
 
 $(VENV)/.bench-installed: $(STAMP)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -c constraints.txt -e '.[dev,bench]'
