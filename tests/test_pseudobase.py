@@ -262,3 +262,16 @@ def test_turning_a_crank_moves_the_fold_and_keeps_the_balance():
     assert np.ptp(E["total"]) < 1e-10 * np.ptp(E["gravity"])
     with pytest.raises(SpringlabError, match="no module"):
         pb.rotate_crank(ARM, 1, 0.1)
+
+
+def test_crank_margins_are_the_turned_arms_fold_margins_to_the_last_bit():
+    q = PiecewiseCubic(paper.TABLE4[:, :4]).angles(np.linspace(0.0, paper.DURATION, 201))
+    turns = np.linspace(-np.pi, np.pi, 24, endpoint=False)
+    for link in (2, 6):
+        together = pb.crank_margins(ARM, link, q, turns)
+        one_by_one = np.stack([pb.fold_margin(pb.rotate_crank(ARM, link, a), q)[:, ARM.modules.index(link)]
+                               for a in turns], axis=1)
+        assert np.array_equal(together, one_by_one)
+        assert np.ptp(together[0]) > 0.1  # the turn moves the margin
+    with pytest.raises(SpringlabError, match="no module"):
+        pb.crank_margins(ARM, 1, q, turns)

@@ -299,16 +299,18 @@ def fold_margin(arm: PseudobaseArm, q) -> np.ndarray:
     """
     check_arm(arm)
     R, org = arm.dh.frames(arm.dh.check_angles(q))
-    out = []
-    for i in arm.modules:
-        z = R[:, i - 1, :, 2]
-        rho = world_point(R, org, i, arm.c[i - 1]) - org[:, i - 1]
-        rho = rho - np.sum(rho * z, axis=-1, keepdims=True) * z
-        norm = np.linalg.norm(rho, axis=-1)
-        if np.any(norm == 0):
-            raise SpringlabError(f"C_{i} lies on joint {i}'s axis: module {i} cannot turn its auxiliary link")
-        out.append(np.cross(z, rho) @ arm.up / norm)
-    return np.stack(out, axis=1)
+    return np.stack([_module_margin(R, org, i, arm.c[i - 1], arm.up) for i in arm.modules], axis=1)
+
+
+def _module_margin(R, org, i, c_i, up) -> np.ndarray:
+    """Module i's fold margin (N,) on the frames R, org, with C_i at c_i (m, frame i)."""
+    z = R[:, i - 1, :, 2]
+    rho = world_point(R, org, i, c_i) - org[:, i - 1]
+    rho = rho - np.sum(rho * z, axis=-1, keepdims=True) * z
+    norm = np.linalg.norm(rho, axis=-1)
+    if np.any(norm == 0):
+        raise SpringlabError(f"C_{i} lies on joint {i}'s axis: module {i} cannot turn its auxiliary link")
+    return np.cross(z, rho) @ up / norm
 
 
 # --- mobility (001 Eqs. 19-20) --------------------------------------------------------------
@@ -432,15 +434,34 @@ def rotate_crank(arm: PseudobaseArm, link: int, angle: float) -> PseudobaseArm:
 
     if link not in arm.modules:
         raise SpringlabError(f"link {link} has no module (modules {arm.modules})")
+    c = arm.c.copy()
+    c[link - 1] = _turned_crank(arm, link, angle)
+    return dataclasses.replace(arm, c=c)
+
+
+def crank_margins(arm: PseudobaseArm, link: int, q, angles) -> np.ndarray:
+    """Module ``link``'s fold margin (:func:`fold_margin`) at each pose of q with C_link turned by
+    each of ``angles`` (rad, :func:`rotate_crank`): (N, A). The frames are computed once for all
+    the turns (the turn moves C_link on its link, not the links); each turn's margins are
+    :func:`fold_margin`'s, to the last bit."""
+    check_arm(arm)
+    link = _checks.count("link", link, least=1)
+    if link not in arm.modules:
+        raise SpringlabError(f"link {link} has no module (modules {arm.modules})")
+    angles = np.atleast_1d(_checks.real_array("angles (rad)", angles))
+    R, org = arm.dh.frames(arm.dh.check_angles(q))
+    return np.stack([_module_margin(R, org, link, _turned_crank(arm, link, a), arm.up) for a in angles], axis=1)
+
+
+def _turned_crank(arm: PseudobaseArm, link: int, angle: float) -> np.ndarray:
+    """C_link (m, frame link) turned by ``angle`` (rad) about joint ``link``'s axis (Rodrigues)."""
     alpha = arm.dh.alpha[link - 1]
     axis = np.array([0.0, np.sin(alpha), np.cos(alpha)])  # z_{i-1} in frame i
     r = arm.link_vectors()[link - 1]  # O_{i-1} in frame i
     v = arm.c[link - 1] - r
     turned = (v * np.cos(angle) + np.cross(axis, v) * np.sin(angle)
               + axis * (axis @ v) * (1 - np.cos(angle)))  # Rodrigues
-    c = arm.c.copy()
-    c[link - 1] = r + turned
-    return dataclasses.replace(arm, c=c)
+    return r + turned
 
 
 def clearest_crank(arm: PseudobaseArm, link: int, q, samples: int = 360) -> tuple[float, float]:
@@ -449,11 +470,10 @@ def clearest_crank(arm: PseudobaseArm, link: int, q, samples: int = 360) -> tupl
     check_arm(arm)
     link = _checks.count("link", link, least=1)
     samples = _checks.count("samples", samples, least=1)
-    col = arm.modules.index(link) if link in arm.modules else None
-    if col is None:
+    if link not in arm.modules:
         raise SpringlabError(f"link {link} has no module (modules {arm.modules})")
     angles = np.linspace(-np.pi, np.pi, int(samples), endpoint=False)
-    worst = [np.min(np.abs(fold_margin(rotate_crank(arm, link, a), q)[:, col])) for a in angles]
+    worst = np.min(np.abs(crank_margins(arm, link, q, angles)), axis=0)
     best = int(np.argmax(worst))
     return float(angles[best]), float(worst[best])
 
