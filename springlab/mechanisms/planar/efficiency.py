@@ -177,8 +177,10 @@ def _grid_means(workspace: Workspace, step: float, jobs, progress: bool) -> list
     Each term is amp cos(phase - Theta_in - Theta_out), Theta_in the sum of the angles of the
     last two joints (the inner grid, held as amp cos and amp sin of phase - Theta_in), Theta_out
     of the others (one outer point at a time): amp cos(...) = C_in cos(Theta_out) + S_in sin(Theta_out).
-    Terms equal across jobs (same amplitude, phase, u, v) are evaluated once. The sums run in
-    a compiled kernel (:func:`_index_sums`), a block of inner points at a time."""
+    Terms equal across jobs (same amplitude, phase, u, v) are evaluated once, and a term with
+    no outer joint in its Theta (and a group of such terms) once per inner point, not once per
+    grid point. The sums run in a compiled kernel (:func:`_index_sums`), a block of inner
+    points at a time."""
     from tqdm import tqdm
 
     axes = workspace.grid(step)
@@ -188,7 +190,8 @@ def _grid_means(workspace: Workspace, step: float, jobs, progress: bool) -> list
         for t in tl:
             unique.setdefault((float(t.amplitude), float(t.phase), t.u, t.v), len(unique))
     _checks.memory(f"the index's inner grid with step = {step:g} deg",
-                   math.prod(len(a) for a in axes[split:]) * (2 * len(unique) + 3), hint="use a larger step")
+                   math.prod(len(a) for a in axes[split:]) * (2 * len(unique) + 2 * len(jobs) + 3),
+                   hint="use a larger step")
     outer, inner = axes[:split], axes[split:]
     mesh = np.meshgrid(*inner, indexing="ij")
     inner_theta = np.stack([m.ravel() for m in mesh], axis=1)  # (M, len(inner))
@@ -215,13 +218,24 @@ def _grid_means(workspace: Workspace, step: float, jobs, progress: bool) -> list
             starts.append(len(members))
     job_of_group = np.repeat(np.arange(len(jobs)), per_job)
     direct = np.array([reading == "direct" for _, reading in jobs])
+    # a term whose Theta has no outer joint is the same at every outer point (its value is cos_in), and so is
+    # a group of such terms: its |sum| is added once per inner point, before the walk over the outer points
+    dynamic = np.array([any(c < split for c in range(u - 1, v - 1)) for _, _, u, v in keys])
+    starts_a, members_a = np.array(starts, dtype=np.int64), np.array(members, dtype=np.int64)
+    static_group = np.array([not dynamic[members_a[starts_a[g]:starts_a[g + 1]]].any() for g in range(len(sides))])
+    base = np.zeros((2, len(jobs), cos_in.shape[1]))  # (X, Y) of the static groups, per job and inner point
+    for g in np.flatnonzero(static_group):
+        acc = np.zeros(cos_in.shape[1])
+        for t in members_a[starts_a[g]:starts_a[g + 1]]:
+            acc += cos_in[t]
+        base[sides[g], job_of_group[g]] += np.abs(acc)
     kernel = _index_sums()
     totals = np.zeros(len(jobs))
     chunk = max(1, int(2e6 // max(1, cos_in.shape[1])))  # outer points per kernel call (the progress bar's steps)
     for lo in tqdm(range(0, len(points), chunk), disable=not progress, desc="index", mininterval=1.0):
         out = theta_out[lo:lo + chunk]
-        totals += kernel(cos_in, sin_in, np.cos(out), np.sin(out), np.array(sides, dtype=np.int64),
-                         np.array(starts, dtype=np.int64), np.array(members, dtype=np.int64), job_of_group, direct)
+        totals += kernel(cos_in, sin_in, np.cos(out), np.sin(out), dynamic, base[0], base[1],
+                         np.array(sides, dtype=np.int64), starts_a, members_a, job_of_group, static_group, direct)
     return list(totals / (len(points) * cos_in.shape[1]))
 
 

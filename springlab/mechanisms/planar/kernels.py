@@ -22,16 +22,18 @@ BLOCK = 512
 
 
 @numba.njit(cache=True, nogil=True)
-def index_sums(cos_in, sin_in, cos_out, sin_out, sides, starts, members, job_of_group, direct):  # pragma: no cover
+def index_sums(cos_in, sin_in, cos_out, sin_out, dynamic, base_x, base_y, sides, starts, members, job_of_group,
+               static_group, direct):  # pragma: no cover
     """Sum of e_sys (003 Eq. 25, or 003 Eq. 24 where ``direct``) over every outer x inner grid point,
     per job: (J,).
 
     cos_in, sin_in (T, M): each distinct term's amp cos and amp sin of (phase - Theta_in) over
     the inner grid; cos_out, sin_out (P, T): cos and sin of each term's Theta_out per outer point,
-    so that a term's value is cos_in cos_out + sin_in sin_out (N/m). Groups g: the terms
-    members[starts[g]:starts[g + 1]], summed, their magnitude added to X (sides[g] = 0) or Y
-    (sides[g] = 1) of job job_of_group[g]; e = (X + Y) / (X + 2 Y) (003 Eq. 25), or X / (X + Y)
-    for a job marked ``direct`` (003 Eq. 24).
+    so that a term's value is cos_in cos_out + sin_in sin_out (N/m); a term not ``dynamic`` (no
+    outer joint in its Theta) is cos_in itself. Groups g: the terms members[starts[g]:starts[g + 1]],
+    summed, their magnitude added to X (sides[g] = 0) or Y (sides[g] = 1) of job job_of_group[g];
+    the groups marked ``static_group`` are already in base_x, base_y (J, M), X and Y's starting
+    values. e = (X + Y) / (X + 2 Y) (003 Eq. 25), or X / (X + Y) for a ``direct`` job (003 Eq. 24).
     """
     T, M = cos_in.shape
     P = cos_out.shape[0]
@@ -47,18 +49,27 @@ def index_sums(cos_in, sin_in, cos_out, sin_out, sides, starts, members, job_of_
         for b0 in range(0, M, BLOCK):
             nb = min(BLOCK, M - b0)
             for t in range(T):
-                c, s = cos_out[p, t], sin_out[p, t]
+                if dynamic[t]:
+                    c, s = cos_out[p, t], sin_out[p, t]
+                    for b in range(nb):
+                        vals[t, b] = cos_in[t, b0 + b] * c + sin_in[t, b0 + b] * s
+            for j in range(J):
                 for b in range(nb):
-                    vals[t, b] = cos_in[t, b0 + b] * c + sin_in[t, b0 + b] * s
-            X[:, :nb] = 0.0
-            Y[:, :nb] = 0.0
+                    X[j, b] = base_x[j, b0 + b]
+                    Y[j, b] = base_y[j, b0 + b]
             for g in range(G):
+                if static_group[g]:
+                    continue
                 j = job_of_group[g]
                 acc[:nb] = 0.0
                 for q in range(starts[g], starts[g + 1]):
                     t = members[q]
-                    for b in range(nb):
-                        acc[b] += vals[t, b]
+                    if dynamic[t]:
+                        for b in range(nb):
+                            acc[b] += vals[t, b]
+                    else:
+                        for b in range(nb):
+                            acc[b] += cos_in[t, b0 + b]
                 if sides[g] == 0:
                     for b in range(nb):
                         X[j, b] += abs(acc[b])
