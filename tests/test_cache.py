@@ -86,3 +86,16 @@ def test_the_runner_skips_an_unchanged_notebook_and_reruns_a_changed_one(tmp_pat
     assert "running notebooks/tiny.ipynb" in capsys.readouterr().out
     assert notebooks.main([*argv, "--no-cache"]) == 0
     assert "running notebooks/tiny.ipynb" in capsys.readouterr().out
+
+
+def test_the_longest_notebook_is_expected_first(tmp_path):
+    from springlab.workbench.notebooks import _record_seconds, expected_seconds, notebook_paths
+
+    paths = {p.stem: p for p in notebook_paths(ROOT / "notebooks")}
+    hinted = sorted(paths.values(), key=lambda p: -expected_seconds(p, tmp_path))
+    assert all(expected_seconds(p, tmp_path) > 0 for p in paths.values())  # every notebook carries a hint
+    assert hinted[-1].stem == "lenzo2017_two_spring_arm"  # the shortest starts last
+    _record_seconds(tmp_path, "lenzo2017_two_spring_arm", 500.0)  # a recorded run beats the hint
+    assert expected_seconds(paths["lenzo2017_two_spring_arm"], tmp_path) == 500.0
+    (tmp_path / "durations.json").write_text("not json")
+    assert expected_seconds(paths["lenzo2017_two_spring_arm"], tmp_path) < 500.0  # a broken record: the hint

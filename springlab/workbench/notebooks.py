@@ -4,7 +4,8 @@ Every notebook in ``notebooks/`` is executed in that folder (so its relative
 paths, e.g. ``../figures/<stem>``, resolve) and the executed copy is written to
 ``--out``. Any failing notebook makes the command fail.
 
-The notebooks run in parallel, one kernel per core (``--jobs``). A notebook whose
+The notebooks run in parallel, one kernel per core (``--jobs``), the longest first
+(:func:`expected_seconds`). A notebook whose
 inputs have not changed since its last successful run is not run again: its key
 (:mod:`springlab.workbench.cache`: the notebook, its parameters, the springlab modules
 it imports, the arm files, the style and the environment) is kept under
@@ -42,6 +43,40 @@ def run_notebook(path, out_path, parameters: dict | None = None):
     )
 
 
+def expected_seconds(nb: Path, cache_folder) -> float:
+    """How long the notebook is expected to run (s): its last full run's time, recorded in
+    ``cache_folder/durations.json``, else the ``springlab.expected_seconds`` of its metadata
+    (measured on 2 cores and kept with the notebook), else 0."""
+    import json
+
+    record = Path(cache_folder) / "durations.json"
+    if record.is_file():
+        try:
+            seconds = json.loads(record.read_text()).get(nb.stem)
+        except (ValueError, AttributeError):
+            seconds = None
+        if isinstance(seconds, int | float):
+            return float(seconds)
+    try:
+        hint = json.loads(nb.read_text()).get("metadata", {}).get("springlab", {}).get("expected_seconds", 0)
+    except (ValueError, AttributeError, OSError):
+        return 0.0
+    return float(hint) if isinstance(hint, int | float) else 0.0
+
+
+def _record_seconds(cache_folder, stem: str, seconds: float) -> None:
+    import json
+
+    record = Path(cache_folder) / "durations.json"
+    try:
+        known = json.loads(record.read_text()) if record.is_file() else {}
+    except ValueError:
+        known = {}
+    known[stem] = round(seconds, 1)
+    record.parent.mkdir(parents=True, exist_ok=True)
+    record.write_text(json.dumps(known, indent=1, sort_keys=True) + "\n")
+
+
 def _run(nb: Path, out: Path, parameters: dict | None) -> float:
     t0 = time.perf_counter()
     run_notebook(nb, out, parameters)
@@ -70,6 +105,9 @@ def main(argv=None) -> int:
             print(f"unchanged {nb}: reusing {out}", flush=True)
         else:
             todo.append(nb)
+    # longest first (the longest-processing-time rule): the last notebook to start is a short one,
+    # so the cores finish together instead of one waiting on a long notebook started last
+    todo.sort(key=lambda nb: -expected_seconds(nb, args.cache))
     failures = []
     with ProcessPoolExecutor(max_workers=min(args.jobs, max(1, len(todo)))) as pool:
         running = {}
@@ -86,6 +124,8 @@ def main(argv=None) -> int:
                 print(f"FAILED {nb}: {type(err).__name__}: {str(err)[:2000]}", file=sys.stderr)
                 continue
             cache.store(nb.stem, keys[nb])
+            if not args.quick:
+                _record_seconds(args.cache, nb.stem, seconds)
             print(f"done {nb} in {seconds:.0f} s", flush=True)
     if failures:
         return 1
