@@ -449,6 +449,8 @@ def crank_margins(arm: PseudobaseArm, link: int, q, angles) -> np.ndarray:
     if link not in arm.modules:
         raise SpringlabError(f"link {link} has no module (modules {arm.modules})")
     angles = np.atleast_1d(_checks.real_array("angles (rad)", angles))
+    if angles.ndim != 1 or angles.size == 0:
+        raise SpringlabError(f"angles must be a non-empty 1-D array of turns of C_{link} (rad), got shape {angles.shape}")
     R, org = arm.dh.frames(arm.dh.check_angles(q))
     return np.stack([_module_margin(R, org, link, _turned_crank(arm, link, a), arm.up) for a in angles], axis=1)
 
