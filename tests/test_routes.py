@@ -106,3 +106,15 @@ def test_the_holding_torque_kernel_equals_the_plain_sum(arm, exact_springs, rng)
     assert np.abs(ours - plain).max() < 1e-12 * np.abs(plain).max()
     assert np.abs(geometry.holding_torques(arm, exact_springs, X)).max() < 1e-9  # balanced: no torque
     assert np.abs(geometry.holding_torques(arm, [s.scaled(0.9) for s in exact_springs], X)).max() > 0.1  # control
+
+
+def test_route_1s_compiled_kernel_and_numpy_expression_agree_to_the_last_bit(arm, exact_springs, rng):
+    X = random_directions(arm.n, quadratic.COMPILED_FROM + 7, rng)
+    XT = np.ascontiguousarray(X.transpose(1, 2, 0))
+    M = quadratic.energy_matrix(arm, [s.scaled(0.9) for s in exact_springs])  # unbalanced: the energy varies
+    compiled = quadratic.quadratic_energy_component_major(M, XT)  # N above the threshold: the kernel
+    small = np.concatenate([quadratic.quadratic_energy_component_major(M, XT[:, :, k:k + 1000])
+                            for k in range(0, XT.shape[2], 1000)])  # below it: numpy
+    assert np.array_equal(compiled, small) and np.ptp(compiled) > 1.0
+    np.testing.assert_allclose(compiled, geometry.total_energy(arm, [s.scaled(0.9) for s in exact_springs], X),
+                               atol=1e-9)
