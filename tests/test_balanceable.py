@@ -48,3 +48,24 @@ def test_the_coupling_refutes_what_the_relaxation_allows():
     assert bal.tightened_infeasible(arm, config)
     assert bal.is_balanceable(arm, config) == "no"
     assert not bal.tightened_infeasible(paper.example_arm(), paper.EXAMPLE_CONFIGURATION)  # it balances
+
+
+def test_the_warm_started_phase_one_gives_the_fresh_solves_value():
+    from springlab.design.feasibility import _phase_one, _Programme, _programme, _WarmPhaseOne
+
+    chain = bal.random_arm(5, np.random.default_rng(3))
+    prog = _programme(chain, [slot(s) for s in ("S(1,2)", "S(1,5)", "S(2,5)(+,-)", "S(2,5)(-,-)", "S(1,4)")])
+    cols = len(prog.signs)
+    row = np.zeros((1, cols))
+    row[0, 0] = 1.0  # one extra row x_0 - c x_3 = 0, c varied
+    row[0, 3] = -1.0
+    base = _Programme(prog.items, prog.owner, prog.signs, np.vstack([prog.A_eq, row]), np.append(prog.b_eq, 0.0))
+    warm = _WarmPhaseOne(base, [(prog.A_eq.shape[0], 3)])
+    values = []
+    for c in np.random.default_rng(0).uniform(-3.0, 3.0, 40):
+        A = base.A_eq.copy()
+        A[-1, 3] = c
+        fresh = _phase_one(_Programme(base.items, base.owner, base.signs, A, base.b_eq))[0]
+        values.append(fresh)
+        assert abs(warm([c]) - fresh) <= 1e-9 * max(1.0, fresh)
+    assert max(values) > 1e-3 and min(values) < max(values)  # the coefficient matters
