@@ -46,6 +46,7 @@ import numpy as np
 
 from springlab import _checks
 from springlab.design.rules import SpringSlot, as_slots, rule_violations
+from springlab.design.solve import term_signs
 from springlab.errors import SearchExhaustedError, SolverError, SpringlabError
 from springlab.model.chain import Chain
 from springlab.tables import Table
@@ -202,15 +203,6 @@ def tightened_infeasible(chain: Chain, slots) -> bool:
     return _phase_one(_Programme(prog.items, prog.owner, prog.signs, A, rhs))[0] > 1e-9
 
 
-def _entry_signs(chain: Chain, s: SpringSlot) -> dict[tuple[int, int], set[int]]:
-    """The signs of the terms a spring puts into each entry of 000 Eqs. (39)."""
-    out: dict[tuple[int, int], set[int]] = {}
-    for sign, entries in _quantities(chain, s):
-        for key, coef in entries.items():
-            out.setdefault(key, set()).add(int(sign * np.sign(coef)))
-    return out
-
-
 _HIGHS = None
 
 
@@ -309,14 +301,7 @@ def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list
     most = np.array([items.count(k) for k in kinds])
     quantities = {k: _quantities(chain, k) for k in kinds}  # each spring's columns, computed once
     full = _programme(chain, kinds, quantities)
-    keys = sorted({key for k in kinds for key in _entry_signs(chain, k)} | {(1, j) for j in range(2, chain.n + 1)})
-    # per kind and entry: does the spring put a positive (pos) / negative (neg) term there
-    pos = np.zeros((len(kinds), len(keys)), dtype=bool)
-    neg = np.zeros_like(pos)
-    for idx, k in enumerate(kinds):
-        for key, signs in _entry_signs(chain, k).items():
-            pos[idx, keys.index(key)] |= 1 in signs
-            neg[idx, keys.index(key)] |= -1 in signs
+    keys, pos, neg = term_signs(chain, kinds)  # per kind and entry: a positive (pos) / negative (neg) term there
     from springlab.energy.quadratic import gravity_entries
 
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)  # 000 Eq. (18): G_1,n = 0 when d_n = 0

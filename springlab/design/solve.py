@@ -616,6 +616,24 @@ def relaxation_margin(chain: Chain, slots) -> float:
     return float(res.x[-1])
 
 
+def term_signs(chain: Chain, slots) -> tuple[list[tuple[int, int]], np.ndarray, np.ndarray]:
+    """The signs of the terms each spring puts into the entries of 000 Eqs. (39), every quantity
+    of its pattern's sign (P = k a b, A = k a, B = k b and k, 000 Eqs. 23a-d): (keys, pos, neg),
+    keys every entry (u, v), u < v, in order, and pos, neg (len(slots), len(keys)) bool: the
+    spring puts a positive (a negative) term there."""
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
+    slots = _slots_on(chain, slots)
+    keys = [(u, v) for u in range(1, chain.n + 1) for v in range(u + 1, chain.n + 1)]
+    column = {key: c for c, key in enumerate(keys)}
+    pos = np.zeros((len(slots), len(keys)), dtype=bool)
+    neg = np.zeros_like(pos)
+    for row, (s, cols) in enumerate(zip(slots, linear_columns(chain, slots), strict=True)):
+        for name, sign in (("P", s.sa * s.sb), ("A", s.sa), ("B", s.sb), ("K", 1)):
+            for key, coef in cols[name].items():
+                (pos if sign * coef > 0 else neg)[row, column[key]] = True
+    return keys, pos, neg
+
+
 def sign_consistent(chain: Chain, configurations) -> np.ndarray:
     """For each configuration (a sequence of slots), False when the signs alone refute the
     linear relaxation of 000 Eqs. (39): some entry (i, j) needs a term of a sign that no
@@ -636,15 +654,13 @@ def sign_consistent(chain: Chain, configurations) -> np.ndarray:
         return np.zeros(0, dtype=bool)
     kinds = sorted({s for cfg in configurations for s in cfg})
     index = {s: k for k, s in enumerate(kinds)}
-    _slots_on(chain, kinds)
-    keys = [(u, v) for u in range(1, chain.n + 1) for v in range(u + 1, chain.n + 1)]
-    column = {key: c for c, key in enumerate(keys)}
-    pos = np.zeros((len(kinds) + 1, len(keys)), dtype=bool)  # the last row: no spring (pads short configurations)
-    neg = np.zeros_like(pos)
-    for s, cols in zip(kinds, linear_columns(chain, kinds), strict=True):
-        for name, sign in (("P", s.sa * s.sb), ("A", s.sa), ("B", s.sb), ("K", 1)):
-            for key, coef in cols[name].items():
-                (pos if sign * coef > 0 else neg)[index[s], column[key]] = True
+    if kinds:
+        keys, pos, neg = term_signs(chain, kinds)
+    else:  # only empty configurations
+        keys = [(u, v) for u in range(1, chain.n + 1) for v in range(u + 1, chain.n + 1)]
+        pos = neg = np.zeros((0, len(keys)), dtype=bool)
+    blank = np.zeros((1, len(keys)), dtype=bool)  # a last row for no spring, padding the shorter configurations
+    pos, neg = np.vstack([pos, blank]), np.vstack([neg, blank])
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
     b = np.array([-G.get(key, 0.0) for key in keys])  # 000 Eqs. (39a-b): the springs' sum must equal -G
     width = max(len(cfg) for cfg in configurations)
