@@ -118,3 +118,15 @@ def test_route_1s_compiled_kernel_and_numpy_expression_agree_to_the_last_bit(arm
     assert np.array_equal(compiled, small) and np.ptp(compiled) > 1.0
     np.testing.assert_allclose(compiled, geometry.total_energy(arm, [s.scaled(0.9) for s in exact_springs], X),
                                atol=1e-9)
+
+
+def test_holding_torques_write_into_a_given_array_or_refuse_it(arm, exact_springs, rng):
+    from springlab.errors import SpringlabError
+
+    X = random_directions(arm.n, 50, rng)
+    out = np.full((50, arm.n - 1, 3), np.nan)
+    got = geometry.holding_torques(arm, [s.scaled(0.9) for s in exact_springs], X, out=out)
+    assert got is out and np.array_equal(out, geometry.holding_torques(arm, [s.scaled(0.9) for s in exact_springs], X))
+    for bad in (np.empty((49, arm.n - 1, 3)), np.empty((50, arm.n - 1, 3), dtype=np.float32), [[0.0]]):
+        with pytest.raises(SpringlabError, match="out must be"):
+            geometry.holding_torques(arm, exact_springs, X, out=bad)

@@ -130,7 +130,7 @@ def rotation_order_spread(chain: Chain, springs, angles) -> dict[str, float]:
     return out
 
 
-def holding_torques(chain: Chain, springs, X) -> np.ndarray:
+def holding_torques(chain: Chain, springs, X, *, out=None) -> np.ndarray:
     """Joint torques (N m) that hold each pose against gravity and the springs.
 
     For the joint between links j-1 and j (at J_{j-1}), the torque the joint
@@ -144,6 +144,8 @@ def holding_torques(chain: Chain, springs, X) -> np.ndarray:
     respect to a small rotation of links j..n about the joint; zero everywhere
     means the arm is balanced.
 
+    :param out: a float64 array of shape (N, n-1, 3) to write the torques into (a batch loop can
+        reuse one, as Pinocchio reuses its ``data``); None allocates a new one
     :returns: ndarray(N, n-1, 3) in the world frame; row j-2 is joint j's torque
     """
     from springlab.energy import geometry_kernel as kernel
@@ -151,7 +153,13 @@ def holding_torques(chain: Chain, springs, X) -> np.ndarray:
     _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     X = chain.as_poses(X)  # float64, any strides: the kernel reads it in place
     springs = check_springs(chain, springs)
-    out = np.empty((X.shape[0], chain.n - 1, 3))
+    shape = (X.shape[0], chain.n - 1, 3)
+    if out is None:
+        out = np.empty(shape)
+    elif not (isinstance(out, np.ndarray) and out.shape == shape and out.dtype == np.float64 and out.flags.writeable):
+        raise SpringlabError(f"out must be a writeable float64 array of shape {shape} (N, n-1, 3), got "
+                             f"{type(out).__name__} {getattr(out, 'shape', '')} {getattr(out, 'dtype', '')}; "
+                             "or leave it None")
     ints = lambda name: np.array([getattr(s, name) for s in springs], dtype=np.int64)  # noqa: E731
     floats = lambda name: np.array([getattr(s, name) for s in springs], dtype=float)  # noqa: E731
     status, pose, which = kernel.holding_torques(np.asarray(chain.r, dtype=float), np.asarray(chain.d, dtype=float),
