@@ -74,6 +74,19 @@ def solver_settings(settings: SimSettings, end_time: float = 0.0, write_period: 
     return ss
 
 
+def once_per_time(f):
+    """``f(t)`` remembered for the last t: exudyn asks each driven joint's offset at the same time
+    in turn, so a trajectory evaluated through this is evaluated once per time, not once per joint."""
+    last = [None, None]
+
+    def at(t):
+        if last[0] != t:
+            last[0], last[1] = t, f(t)
+        return last[1]
+
+    return at
+
+
 def new_system():
     """A fresh exudyn system with its ground at the origin: (SystemContainer, mbs, ground)."""
     import exudyn as exu

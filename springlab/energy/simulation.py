@@ -45,6 +45,7 @@ from springlab.energy.multibody import (
     add_spring,
     frame_with_z,
     new_system,
+    once_per_time,
     solver_settings,
 )
 from springlab.errors import SpringlabError
@@ -110,13 +111,7 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
             initialRotationMatrix=reference_frames[j - 1].T @ initial_frames[j - 1]))  # superimposed on the reference
     if joints == "prescribed" and sweep is None:
         raise SpringlabError("joints='prescribed' needs a sweep")
-    last = [None, None]  # exudyn asks each joint's offset at the same t in turn: evaluate the sweep once per t
-
-    def sweep_angles(t):
-        if last[0] != t:
-            last[0], last[1] = t, sweep.angles(t)
-        return last[1]
-
+    sweep_angles = once_per_time(sweep.angles) if sweep is not None else None
     joint_items, joint_axes = [], []
     for j in range(2, chain.n + 1):
         items, position = [bodies[j - 2], bodies[j - 1]], list(ref_joints[j - 2])

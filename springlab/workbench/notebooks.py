@@ -43,20 +43,26 @@ def run_notebook(path, out_path, parameters: dict | None = None):
     )
 
 
+def _durations(cache_folder) -> dict:
+    """The recorded run times {notebook stem: s} in ``cache_folder/durations.json`` ({} if none or unreadable)."""
+    import json
+
+    try:
+        known = json.loads((Path(cache_folder) / "durations.json").read_text())
+    except (OSError, ValueError):
+        return {}
+    return known if isinstance(known, dict) else {}
+
+
 def expected_seconds(nb: Path, cache_folder) -> float:
     """How long the notebook is expected to run (s): its last full run's time, recorded in
     ``cache_folder/durations.json``, else the ``springlab.expected_seconds`` of its metadata
     (measured on 2 cores and kept with the notebook), else 0."""
     import json
 
-    record = Path(cache_folder) / "durations.json"
-    if record.is_file():
-        try:
-            seconds = json.loads(record.read_text()).get(nb.stem)
-        except (ValueError, AttributeError):
-            seconds = None
-        if isinstance(seconds, int | float):
-            return float(seconds)
+    seconds = _durations(cache_folder).get(nb.stem)
+    if isinstance(seconds, int | float):
+        return float(seconds)
     try:
         hint = json.loads(nb.read_text()).get("metadata", {}).get("springlab", {}).get("expected_seconds", 0)
     except (ValueError, AttributeError, OSError):
@@ -67,12 +73,8 @@ def expected_seconds(nb: Path, cache_folder) -> float:
 def _record_seconds(cache_folder, stem: str, seconds: float) -> None:
     import json
 
+    known = _durations(cache_folder) | {stem: round(seconds, 1)}
     record = Path(cache_folder) / "durations.json"
-    try:
-        known = json.loads(record.read_text()) if record.is_file() else {}
-    except ValueError:
-        known = {}
-    known[stem] = round(seconds, 1)
     record.parent.mkdir(parents=True, exist_ok=True)
     record.write_text(json.dumps(known, indent=1, sort_keys=True) + "\n")
 

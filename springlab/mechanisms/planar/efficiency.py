@@ -10,7 +10,6 @@ joints only. Mechanical Sciences (2022).
 
 from __future__ import annotations
 
-import functools
 import itertools
 import math
 
@@ -97,6 +96,12 @@ GRID_RATE = 5e7
 """The same on a grid (the compiled kernel of :mod:`springlab.mechanisms.planar.kernels`)."""
 
 
+def _check_workspace(arm: PlanarArm, workspace) -> None:
+    _checks.instance("workspace", workspace, Workspace, "Workspace(low, high) in deg")
+    if workspace.joints != arm.n - 1:
+        raise SpringlabError(f"the workspace has {workspace.joints} joints, the arm {arm.n - 1}")
+
+
 def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: float | None = None,
                      samples: int | None = None, seed=None, reading: str = "magnitudes",
                      chunk: int = 1 << 18, progress: bool = False) -> float:
@@ -110,9 +115,7 @@ def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: flo
     springs = check_springs(arm, springs)
     if reading not in READINGS:
         raise SpringlabError(f"reading must be one of {READINGS}, got {reading!r}")
-    _checks.instance("workspace", workspace, Workspace, "Workspace(low, high) in deg")
-    if workspace.joints != arm.n - 1:
-        raise SpringlabError(f"the workspace has {workspace.joints} joints, the arm {arm.n - 1}")
+    _check_workspace(arm, workspace)
     if (step is None) == (samples is None):
         raise SpringlabError("give exactly one of step (a grid, deg) or samples (Monte Carlo, with seed)")
     tl = terms(arm, springs)
@@ -151,9 +154,7 @@ def efficiency_indices(arm: PlanarArm, designs: dict, workspace: Workspace, *, s
     readings = [_checks.choice("reading", r, READINGS) for r in readings]
     if not readings:
         raise SpringlabError("readings is empty: give at least one of " + ", ".join(READINGS))
-    _checks.instance("workspace", workspace, Workspace, "Workspace(low, high) in deg")
-    if workspace.joints != arm.n - 1:
-        raise SpringlabError(f"the workspace has {workspace.joints} joints, the arm {arm.n - 1}")
+    _check_workspace(arm, workspace)
     _checks.poses(f"the index over a grid of step = {step:g} deg", workspace.grid_size(step) * len(designs) * len(readings),
                   rate=GRID_RATE, hint="use a larger step")
     jobs = [(label, reading, terms(arm, check_springs(arm, springs))) for label, springs in designs.items()
@@ -182,16 +183,21 @@ def _grid_means(workspace: Workspace, step: float, jobs, progress: bool) -> list
     of the others (one outer point at a time): amp cos(...) = C_in cos(Theta_out) + S_in sin(Theta_out).
     Terms equal across jobs (same amplitude, phase, u, v) are evaluated once, and a term with
     no outer joint in its Theta (and a group of such terms) once per inner point, not once per
-    grid point. The sums run in a compiled kernel (:func:`_index_sums`), a block of inner
-    points at a time."""
+    grid point. The sums run in a compiled kernel (numba, compiled once and cached on disk:
+    :func:`springlab.mechanisms.planar.kernels.index_sums`), a block of inner points at a time."""
     from tqdm import tqdm
+
+    from springlab.mechanisms.planar.kernels import index_sums
 
     axes = workspace.grid(step)
     split = max(0, len(axes) - 2)  # joints 2..split+1 walked, the last two vectorised
+    def term_key(t):  # terms with these equal are the same function of the pose
+        return float(t.amplitude), float(t.phase), t.u, t.v
+
     unique: dict[tuple, int] = {}
     for tl, _ in jobs:
         for t in tl:
-            unique.setdefault((float(t.amplitude), float(t.phase), t.u, t.v), len(unique))
+            unique.setdefault(term_key(t), len(unique))
     _checks.memory(f"the index's inner grid with step = {step:g} deg",
                    math.prod(len(a) for a in axes[split:]) * (2 * len(unique) + 2 * len(jobs) + 3),
                    hint="use a larger step")
@@ -217,14 +223,14 @@ def _grid_means(workspace: Workspace, step: float, jobs, progress: bool) -> list
         per_job.append(len(groups))
         for side, cols in groups:
             sides.append(side)
-            members += [unique[(float(tl[c].amplitude), float(tl[c].phase), tl[c].u, tl[c].v)] for c in cols]
+            members += [unique[term_key(tl[c])] for c in cols]
             starts.append(len(members))
     job_of_group = np.repeat(np.arange(len(jobs)), per_job)
     direct = np.array([reading == "direct" for _, reading in jobs])
     # a term whose Theta has no outer joint is the same at every outer point (its value is cos_in), and so is
     # a group of such terms: its |sum| is added once per inner point, before the walk over the outer points
     dynamic = np.array([any(c < split for c in range(u - 1, v - 1)) for _, _, u, v in keys])
-    starts_a, members_a = np.array(starts, dtype=np.int64), np.array(members, dtype=np.int64)
+    sides_a, starts_a, members_a = (np.array(v, dtype=np.int64) for v in (sides, starts, members))
     static_group = np.array([not dynamic[members_a[starts_a[g]:starts_a[g + 1]]].any() for g in range(len(sides))])
     base = np.zeros((2, len(jobs), cos_in.shape[1]))  # (X, Y) of the static groups, per job and inner point
     for g in np.flatnonzero(static_group):
@@ -232,21 +238,10 @@ def _grid_means(workspace: Workspace, step: float, jobs, progress: bool) -> list
         for t in members_a[starts_a[g]:starts_a[g + 1]]:
             acc += cos_in[t]
         base[sides[g], job_of_group[g]] += np.abs(acc)
-    kernel = _index_sums()
     totals = np.zeros(len(jobs))
     chunk = max(1, int(2e6 // max(1, cos_in.shape[1])))  # outer points per kernel call (the progress bar's steps)
     for lo in tqdm(range(0, len(points), chunk), disable=not progress, desc="index", mininterval=1.0):
         out = theta_out[lo:lo + chunk]
-        totals += kernel(cos_in, sin_in, np.cos(out), np.sin(out), dynamic, base[0], base[1],
-                         np.array(sides, dtype=np.int64), starts_a, members_a, job_of_group, static_group, direct)
+        totals += index_sums(cos_in, sin_in, np.cos(out), np.sin(out), dynamic, base[0], base[1],
+                             sides_a, starts_a, members_a, job_of_group, static_group, direct)
     return list(totals / (len(points) * cos_in.shape[1]))
-
-
-@functools.cache
-def _index_sums():
-    """The compiled kernel of :func:`_grid_means` (numba: the sum of e_sys over an outer x inner
-    grid for several jobs at once, without the (points x terms) temporaries numpy would need;
-    8x faster than the numpy expression it replaces). Compiled once, cached on disk."""
-    from springlab.mechanisms.planar.kernels import index_sums
-
-    return index_sums

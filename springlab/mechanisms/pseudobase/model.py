@@ -469,12 +469,8 @@ def _turned_crank(arm: PseudobaseArm, link: int, angle: float) -> np.ndarray:
 def clearest_crank(arm: PseudobaseArm, link: int, q, samples: int = 360) -> tuple[float, float]:
     """The turn of C_link about its joint axis (rad, in [-pi, pi)) that keeps module
     ``link`` furthest from folding over the poses q, and that smallest |fold margin|."""
-    check_arm(arm)
-    link = _checks.count("link", link, least=1)
     samples = _checks.count("samples", samples, least=1)
-    if link not in arm.modules:
-        raise SpringlabError(f"link {link} has no module (modules {arm.modules})")
-    angles = np.linspace(-np.pi, np.pi, int(samples), endpoint=False)
+    angles = np.linspace(-np.pi, np.pi, int(samples), endpoint=False)  # crank_margins checks the arm and link
     worst = np.min(np.abs(crank_margins(arm, link, q, angles)), axis=0)
     best = int(np.argmax(worst))
     return float(angles[best]), float(worst[best])

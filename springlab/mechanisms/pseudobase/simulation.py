@@ -42,6 +42,7 @@ from springlab.energy.multibody import (
     add_spring,
     frame_with_z,
     new_system,
+    once_per_time,
     solver_settings,
 )
 from springlab.errors import SpringlabError
@@ -129,13 +130,7 @@ def build_model(arm: PseudobaseArm, springs, q0, *, model: str = "rssr", joints:
     def local(b, world_point, rot):  # a point given in the world, in body b's frame
         return rot.T @ (world_point - com[b])
 
-    last = [None, None]  # exudyn asks each joint's offset at the same t in turn: evaluate the trajectory once per t
-
-    def angle_offsets(t):
-        if last[0] != t:
-            last[0], last[1] = t, np.asarray(trajectory(t), dtype=float) - q0[0]
-        return last[1]
-
+    angle_offsets = once_per_time(lambda t: np.asarray(trajectory(t), dtype=float) - q0[0])
     drives = []
     for i in range(1, arm.n + 1):
         offset = 0
