@@ -65,8 +65,8 @@ def perturbed(chain: Chain, springs, tol: Tolerances, rng) -> tuple[Chain, list[
         a = s.a + rng.normal(0.0, tol.attachment) if tol.attachment else s.a
         b = s.b + rng.normal(0.0, tol.attachment) if tol.attachment else s.b
         k = s.k * max(1e-9, 1.0 + rng.normal(0.0, tol.stiffness)) if tol.stiffness else s.k
-        l0 = rng.uniform(0.0, tol.free_length) if tol.free_length else 0.0
-        out.append(Spring(s.i, s.j, a, b, k, free_length=l0))
+        l0 = s.free_length + (rng.uniform(0.0, tol.free_length) if tol.free_length else 0.0)
+        out.append(Spring(s.i, s.j, a, b, k, free_length=l0, initial_tension=s.initial_tension))
     if tol.payload:
         dm = rng.uniform(-tol.payload, tol.payload)
         m = list(chain.m)

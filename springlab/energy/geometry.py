@@ -2,7 +2,9 @@
 
 Every body and spring end is placed in space for each pose, then the energies
 are summed as ``m g h`` (h = height of the COM above the base joint, along
-x_1 = UP) and ``k (l - l0)**2 / 2`` (l = distance between the spring's ends).
+x_1 = UP) and ``k (l - l0)**2 / 2`` (l = distance between the spring's ends, l0 the
+spring's effective free length L_0 - F_i / k: a real extension spring's initial tension F_i
+shifts its energy only by a constant along its working range l >= L_0).
 Nothing here uses the quadratic form of :mod:`springlab.energy.quadratic`; the two
 routes agreeing is a check.
 
@@ -69,9 +71,10 @@ def _energy_chunk(chain: Chain, springs, xt: np.ndarray, out: np.ndarray,
             diff -= part  # B - A
             np.multiply(diff, diff, out=diff)
             np.sum(diff, axis=0, out=tmp)  # l^2
-            if s.free_length:
+            l0 = s.effective_free_length
+            if l0:
                 np.sqrt(tmp, out=tmp)
-                tmp -= s.free_length
+                tmp -= l0
                 tmp *= tmp
             tmp *= 0.5 * s.k
             out += tmp
@@ -140,7 +143,7 @@ def holding_torques(chain: Chain, springs, X, *, out=None) -> np.ndarray:
 
         tau_j = sum_{t>=j} (c_t - J_{j-1}) x (m_t g UP) + sum_S k_eff (B - J_{j-1}) x (B - A)
 
-    with k_eff = k (1 - l0 / l). It equals the gradient of the total energy with
+    with k_eff = k (1 - l0 / l), l0 the effective free length L_0 - F_i / k. It equals the gradient of the total energy with
     respect to a small rotation of links j..n about the joint; zero everywhere
     means the arm is balanced.
 
@@ -164,13 +167,13 @@ def holding_torques(chain: Chain, springs, X, *, out=None) -> np.ndarray:
     floats = lambda name: np.array([getattr(s, name) for s in springs], dtype=float)  # noqa: E731
     status, pose, which = kernel.holding_torques(np.asarray(chain.r, dtype=float), np.asarray(chain.d, dtype=float),
                                           np.asarray(chain.m, dtype=float), float(chain.g), UP, ints("i"), ints("j"),
-                                          floats("a"), floats("b"), floats("k"), floats("free_length"), X, out)
+                                          floats("a"), floats("b"), floats("k"), floats("effective_free_length"), X, out)
     if status == kernel.BAD_POSE:
         chain.check_directions(X[pose:pose + 1])  # raises, naming what is wrong
         raise SpringlabError(f"pose {pose} of X is not a valid pose (unit link vectors, x_1 = UP)")
     if status == kernel.ENDS_MEET:
         s = springs[which]
         raise GeometryError(
-            f"{s.label}'s ends coincide at pose {pose}: a spring of free_length = {s.free_length:g} m has "
+            f"{s.label}'s ends coincide at pose {pose}: a spring of effective free length {s.effective_free_length:g} m has "
             "no line of action there; move its attachments (a, b) or leave that pose out")
     return out

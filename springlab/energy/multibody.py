@@ -115,16 +115,18 @@ def add_body(mbs, mass: float, inertia, position, rotation=None, *, gravity=None
 
 
 def add_spring(mbs, body_a: int, local_a, body_b: int, local_b, *, k: float, free_length: float = 0.0,
-               damping: float = 0.0) -> int:
+               initial_tension: float = 0.0, damping: float = 0.0) -> int:
     """A spring-damper between a point of ``body_a`` and a point of ``body_b`` (each given in
     its body's frame, m): stiffness ``k`` (N/m), ``free_length`` (m; 0 is a zero-free-length
-    spring, F = k (B - A)), ``damping`` along its line (N s/m)."""
+    spring, F = k (B - A)), ``initial_tension`` (N, a constant pull added to k (l - free_length):
+    exudyn's own ``force`` of the connector, f > 0 tension), ``damping`` along its line (N s/m)."""
     from exudyn.utilities import MarkerBodyPosition, ObjectConnectorSpringDamper
 
     mA = mbs.AddMarker(MarkerBodyPosition(bodyNumber=body_a, localPosition=list(local_a)))
     mB = mbs.AddMarker(MarkerBodyPosition(bodyNumber=body_b, localPosition=list(local_b)))
     return mbs.AddObject(ObjectConnectorSpringDamper(markerNumbers=[mA, mB], referenceLength=float(free_length),
-                                                     stiffness=float(k), damping=float(damping)))
+                                                     stiffness=float(k), damping=float(damping),
+                                                     force=float(initial_tension)))
 
 
 def frame_with_z(axis: np.ndarray) -> np.ndarray:

@@ -86,10 +86,11 @@ def gravity_matrix(chain: Chain) -> np.ndarray:
 def spring_matrix(chain: Chain, spring: Spring) -> np.ndarray:
     """K_S(i,j) (000 Eqs. 22-26) as an (n, n) upper-triangular array in J."""
     (spring,) = check_springs(chain, [spring])
-    if spring.free_length:
+    if not spring.ideal:
         raise SpringlabError(
-            f"{spring.label} has free_length = {spring.free_length} m; the quadratic form holds "
-            "only for zero-free-length springs (use springlab.energy.geometry for others)"
+            f"{spring.label} has free_length = {spring.free_length} m and initial_tension = "
+            f"{spring.initial_tension} N; the quadratic form holds only for zero-free-length springs "
+            "(use springlab.energy.geometry for others)"
         )
     K = np.zeros((chain.n, chain.n))
     for (u, v), val in spring_entries(spring.i, spring.j, spring.a, spring.b, spring.k, chain.r).items():

@@ -144,7 +144,8 @@ def build_model(chain: Chain, springs, reference_frames, *, joints: str = "spher
         local_a = s.a if s.i == 1 else chain.r[s.i - 2] - chain.d[s.i - 2] + s.a  # A = J_i + a x_i
         local_b = s.b - chain.d[s.j - 2]  # B = J_{j-1} + b x_j
         spring_items.append(add_spring(mbs, bodies[s.i - 1], _local_x(local_a), bodies[s.j - 1], _local_x(local_b),
-                                       k=s.k, free_length=s.free_length, damping=settings.damping))
+                                       k=s.k, free_length=s.free_length, initial_tension=s.initial_tension,
+                                       damping=settings.damping))
     return Model(SC, mbs, bodies, joint_items, joint_axes, spring_items, chain, springs, joints)
 
 

@@ -22,8 +22,14 @@ So the spring vector is B - A = -a x_i + b x_j + sum_{t=i+1}^{j-1} r_t x_t
 
 A pattern is written (sign a, sign b): the example arm of 000 uses S(1,4) (+,+)
 and S(3,4) (-,-). Stiffness k is in N/m; a, b in m. Springs are zero-free-length
-unless ``free_length`` (m) is given; the quadratic form of 000 holds only for
-zero-free-length springs.
+unless ``free_length`` (m) or ``initial_tension`` (N) is given; the quadratic form of 000
+holds only for zero-free-length springs.
+
+A real helical extension spring pulls with F = F_i + k (l - L_0) once it is stretched past
+its free length L_0 (F_i, the initial tension it was wound with): along its working range
+that is a spring of stiffness k whose force vanishes at the **effective free length**
+l_0 = L_0 - F_i / k (:attr:`Spring.effective_free_length`), which is zero exactly when
+F_i = k L_0, the classical zero-length spring (:mod:`springlab.design.buildable`).
 
 References
 ----------
@@ -59,7 +65,11 @@ class Spring:
     :ivar a: signed distance of end A from link i's distal joint along x_i (m)
     :ivar b: signed distance of end B from link j's proximal joint along x_j (m)
     :ivar k: stiffness (N/m), > 0
-    :ivar free_length: free length (m), >= 0; 0 is an ideal zero-free-length spring
+    :ivar free_length: free length L_0 (m), >= 0; 0 (with no initial tension) is an ideal
+        zero-free-length spring
+    :ivar initial_tension: the force F_i (N), >= 0, the spring pulls with at its free length
+        (an extension spring wound with its coils pressed together); the force is
+        F_i + k (l - L_0), valid for l >= L_0
 
     >>> Spring(1, 2, a=0.15, b=0.24, k=294.0).pattern
     '(+,+)'
@@ -75,6 +85,7 @@ class Spring:
     b: float
     k: float
     free_length: float = 0.0
+    initial_tension: float = 0.0
 
     def __post_init__(self):
         for name in ("i", "j"):
@@ -98,6 +109,12 @@ class Spring:
                 f"free_length of {self.label} must be >= 0 m, got {self.free_length}"
             )
         object.__setattr__(self, "free_length", free)
+        pull = _checks.number(f"initial_tension of {self.label}", self.initial_tension)
+        if not (np.isfinite(pull) and pull >= 0):
+            raise SpringlabError(
+                f"initial_tension of {self.label} must be a finite force >= 0 N, got {self.initial_tension}"
+            )
+        object.__setattr__(self, "initial_tension", pull)
 
     @property
     def label(self) -> str:
@@ -108,9 +125,21 @@ class Spring:
         """The sign pattern '(sign a, sign b)' of 000 Section 3.2."""
         return f"({sign_char(self.a)},{sign_char(self.b)})"
 
+    @property
+    def effective_free_length(self) -> float:
+        """L_0 - F_i / k (m): the length at which the spring's force F_i + k (l - L_0) would
+        vanish; negative when the initial tension exceeds k L_0."""
+        return self.free_length - self.initial_tension / self.k
+
+    @property
+    def ideal(self) -> bool:
+        """True for a zero-free-length spring (no free length, no initial tension)."""
+        return self.free_length == 0 and self.initial_tension == 0
+
     def scaled(self, factor: float) -> Spring:
-        """The same spring with its stiffness multiplied by ``factor``."""
-        return Spring(self.i, self.j, self.a, self.b, self.k * factor, self.free_length)
+        """The same spring with its force law multiplied by ``factor`` (stiffness and initial
+        tension; the free length kept)."""
+        return Spring(self.i, self.j, self.a, self.b, self.k * factor, self.free_length, self.initial_tension * factor)
 
 
 def check_springs(chain, springs) -> tuple[Spring, ...]:
@@ -148,7 +177,7 @@ def measured_from_other_joints(chain, springs) -> tuple[Spring, ...]:
     out = []
     for s in check_springs(chain, springs):
         a = s.a - chain.length(s.i) if s.i >= 2 else s.a
-        out.append(Spring(s.i, s.j, a, s.b + chain.length(s.j), s.k, s.free_length))
+        out.append(Spring(s.i, s.j, a, s.b + chain.length(s.j), s.k, s.free_length, s.initial_tension))
     return tuple(out)
 
 
