@@ -1,7 +1,10 @@
 """The command line: ``springlab design my_arm.toml``.
 
 Prints the ranked designs of :func:`springlab.design.rank.design_arm` as a table
-and writes the chosen one (rank 1 unless ``--pick``) as JSON.
+and writes the chosen one (rank 1 unless ``--pick``) as JSON. With ``--sheet`` it also
+realises the chosen design's springs (:mod:`springlab.design.buildable`) and writes their
+spec sheet beside the JSON, as CSV (``<name>.sheet.csv``) and Markdown (``<name>.sheet.md``,
+with the balance the built springs leave).
 
 Every argument, the arm file and the output path are checked before the search
 starts. An error prints one line, ``springlab: <what is wrong and what to do>``,
@@ -51,6 +54,7 @@ def _check_arguments(args) -> None:
         _checks.count("--max-configurations", args.max_configurations, least=1)
     _checks.count("--seed", args.seed)
     _checks.positive("--time-limit", args.time_limit, unit="s")
+    _checks.positive("--pulley-radius", args.pulley_radius, allow_zero=True, unit="m")
     if args.pick > args.max_designs:
         raise SpringlabError(f"--pick = {args.pick} is above --max-designs = {args.max_designs}: "
                              "raise --max-designs or pick a lower rank")
@@ -63,6 +67,9 @@ def _design(args) -> int:
     _check_arguments(args)
     spec = load_arm(args.arm_file, allow_large=args.allow_large)
     out = _writable(Path(args.json or Path(args.arm_file).with_suffix(".design.json").name), "--json")
+    if args.sheet:
+        for path in _sheet_paths(out):
+            _writable(path, "--sheet")
     report = design_arm(spec, method=args.method, max_designs=args.max_designs,
                         max_configurations=args.max_configurations, seed=args.seed, progress=not args.quiet,
                         time_limit=args.time_limit)
@@ -92,7 +99,38 @@ def _design(args) -> int:
     except OSError as err:
         raise SpringlabError(f"--json {out} cannot be written ({err.strerror})") from None
     print(f"\ndesign {args.pick} written to {out}")
+    if args.sheet:
+        _write_sheet(args, spec, chosen, out)
     return 0
+
+
+def _sheet_paths(out: Path) -> tuple[Path, Path]:
+    stem = out.name[:-len(".design.json")] if out.name.endswith(".design.json") else out.stem
+    return out.with_name(stem + ".sheet.csv"), out.with_name(stem + ".sheet.md")
+
+
+def _write_sheet(args, spec, chosen, out: Path) -> None:
+    from springlab.design import buildable
+    from springlab.design.rank import workspace_poses
+
+    chain = spec.chain()
+    X = workspace_poses(spec, chain)
+    built = buildable.realise(chain, chosen.springs, X, material=args.material, pulley_radius=args.pulley_radius)
+    loss = buildable.balance_loss(chain, built, X)
+    csv_path, md_path = _sheet_paths(out)
+    notes = [f"- {r.spring.label}: {r.kind}" + (f" (no zero-length spring: {r.note})" if r.note else "") for r in built]
+    md = (f"# Spring spec sheet: {spec.name}, design {args.pick} ({chosen.label()})\n\n"
+          f"Workspace: {spec.samples} poses (seed {spec.seed}). Lengths in mm, forces in N, stresses in MPa; "
+          f"a, b locate each end on its link (springlab.model.springs).\n\n{buildable.spec_sheet(built).markdown()}\n\n"
+          + "\n".join(notes) + "\n\n## Balance the built springs leave (route 2)\n\n"
+          f"Gravity's own largest holding torque (no springs): {loss.gravity:.3g} N m.\n\n{loss.table().markdown()}\n")
+    try:
+        csv_path.write_text(buildable.sheet_csv(built))
+        md_path.write_text(md)
+    except OSError as err:
+        raise SpringlabError(f"--sheet: {csv_path} cannot be written ({err.strerror})") from None
+    print(loss.table())
+    print(f"spec sheet written to {csv_path} and {md_path}")
 
 
 def main(argv=None) -> int:
@@ -109,6 +147,12 @@ def main(argv=None) -> int:
     p.add_argument("--seed", type=int, default=0, help="seed of the random starts (default 0)")
     p.add_argument("--time-limit", type=float, default=TIME_LIMIT,
                    help=f"stop the search after this many seconds (default {TIME_LIMIT:g})")
+    p.add_argument("--sheet", action="store_true",
+                   help="also write the built springs' spec sheet beside the JSON (.sheet.csv, .sheet.md)")
+    p.add_argument("--material", default="music wire", choices=("music wire", "stainless 302"),
+                   help="spring wire for --sheet (default music wire)")
+    p.add_argument("--pulley-radius", type=float, default=0.01,
+                   help="m, the pulley of a spring realised as a cable over a pulley (--sheet; default 0.01)")
     p.add_argument("--allow-large", action="store_true", help="allow arms of more than 8 links")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--debug", action="store_true", help="show the traceback of an unexpected error")

@@ -1,0 +1,518 @@
+"""From ideal to buildable: a helical extension spring a shop can wind for each ideal spring.
+
+A design's springs are zero-free-length: force k l at every length l between the ends.
+No stock spring does that. Two realisations, both from standard wire sizes:
+
+* **zero-length spring**: an extension spring wound with initial tension F_i equal to k
+  times its free length L_0 pulls F_i + k (l - L_0) = k l once stretched past L_0 (the
+  classical zero-length spring). It must never be shorter than L_0 over the workspace,
+  and the initial tension must be one a maker can wind: for a spring index C = D/d the
+  uncorrected stress 8 F_i D / (pi d^3) lies in the preferred range
+  231 exp(-0.105 C) -/+ 6.9 (4 - (C - 3) / 6.5) MPa (Shigley, Section 10-11). Since
+  F_i = k L_0 and L_0 holds at least the body's coils, that stress is at least about
+  G / (pi C^2): 180 MPa for music wire at C = 12, where makers wind at most 84 MPa. So
+  with standard winding this realisation fails for every index from 4 to 12, and
+  :func:`zero_length_spring` says so with the numbers; a maker who winds above the range
+  (as for instruments) can pass a wider one;
+* **cable over a pulley**: the spring is mounted along link i and a cable from its moving
+  end runs over a pulley at end A to end B. Cut so that its length absorbs L_0 - F_i / k,
+  the cable makes the force k times the cable's path from the pulley to B, which is
+  |B - A| for a point pulley; any initial tension in the preferred range will do. A pulley
+  of radius rho adds rho times the wrap angle to the path
+  (:mod:`springlab.energy.pulley`); its effect on the balance is reported.
+
+Either way the spring must carry the largest force over the workspace, k times the longest
+length, with its body's torsional stress, corrected by the Wahl factor
+K_W = (4C - 1)/(4C - 4) + 0.615/C, at most the allowable share of the wire's tensile
+strength S_ut = A / d^m (music wire 45 %, stainless 35 %, static service). The rate is
+k = d^4 G / (8 D^3 N_a), with N_a = N_b + G / E active coils for N_b body coils and two
+machine hooks, and the free length inside the hooks L_0 = (2 C - 1 + N_b) d.
+
+:func:`realise` picks, per spring of a design, the realisation that fits (the smallest
+wire that does); :func:`balance_loss` measures the holding torque the built springs leave
+(route 2, with the pulleys' radii) as built and with the maker's tolerances; the spec
+sheet (:func:`spec_sheet`) is the table to hand to a spring maker. Lengths in m unless a
+column says mm; forces in N; stresses in Pa (MPa in tables).
+
+References
+----------
+Budynas, R. G., Nisbett, J. K. Shigley's Mechanical Engineering Design, 10th ed. McGraw-Hill,
+2015. Chapter 10 (Mechanical Springs): Section 10-2 (stresses, the Wahl factor), 10-3 (the
+rate), 10-4 (spring materials: Table 10-4, the constants A and m of S_ut = A / d^m, and
+Table 10-5, G and E), 10-11 (extension springs: free length, active coils, the preferred
+range of initial tension, Table 10-7, the allowable stresses).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab import _checks
+from springlab.energy.geometry import attachment_points, holding_torques
+from springlab.energy.pulley import cable_path, holding_torques_with_pulleys
+from springlab.errors import SpringlabError
+from springlab.model.chain import Chain
+from springlab.model.springs import Spring, check_springs
+from springlab.tables import Table
+
+INDEX_RANGE = (4.0, 12.0)
+"""Spring indices C = D / d a maker winds without trouble (Shigley, Section 10-2)."""
+
+PULLEY_RADIUS = 0.01
+"""m: the default pulley (a 20 mm sheave, about 15 times a 1.2 mm steel cable)."""
+
+STRETCH_MARGIN = 0.8
+"""A cable spring's initial tension is at most this share of its force at the shortest path, so that
+it stays stretched past its free length there (by 20 % of that force) when built within tolerance."""
+
+MIN_BODY_COILS = 3.0
+"""Fewest body coils of a realised spring (fewer make a ring, not a spring)."""
+
+
+@dataclass(frozen=True)
+class Material:
+    """A spring wire: S_ut = A / d^m per diameter band (d in mm, A in MPa mm^m), moduli per
+    band, the allowable share of S_ut for an extension spring's body in static service, and the
+    wire diameters stocked (mm)."""
+
+    name: str
+    standard: str
+    strength: tuple  # (d_min_mm, d_max_mm, A_MPa_mm^m, m)
+    moduli: tuple  # (d_max_mm, G_Pa, E_Pa): the first band with d <= d_max
+    body_allowable: float
+    diameters_mm: tuple
+
+    def _band(self, d: float):
+        mm = d * 1e3
+        for lo, hi, A, m in self.strength:
+            if lo - 1e-9 <= mm <= hi + 1e-9:
+                return A, m
+        raise SpringlabError(f"wire diameter {mm:g} mm is outside {self.name}'s range "
+                             f"({self.strength[0][0]:g}-{self.strength[-1][1]:g} mm): choose a stocked diameter")
+
+    def tensile_strength(self, d: float) -> float:
+        """S_ut = A / d^m (Pa) of wire of diameter ``d`` (m) (Shigley, Table 10-4)."""
+        A, m = self._band(d)
+        return A / (d * 1e3) ** m * 1e6
+
+    def moduli_at(self, d: float) -> tuple[float, float]:
+        """(G, E) in Pa of wire of diameter ``d`` (m) (Shigley, Table 10-5)."""
+        self._band(d)
+        for d_max, G, E in self.moduli:
+            if d * 1e3 <= d_max + 1e-9:
+                return G, E
+        return self.moduli[-1][1:]
+
+
+_PREFERRED_MM = (0.10, 0.12, 0.16, 0.20, 0.25, 0.30, 0.35, 0.40, 0.45, 0.50, 0.55, 0.60, 0.65, 0.70, 0.80, 0.90,
+                 1.00, 1.10, 1.20, 1.40, 1.60, 1.80, 2.00, 2.20, 2.50, 2.80, 3.00, 3.50, 4.00, 4.50, 5.00, 5.50,
+                 6.00, 6.50, 7.00, 8.00, 9.00, 10.0)
+
+MATERIALS = {
+    "music wire": Material("music wire", "ASTM A228", ((0.10, 6.5, 2211.0, 0.145),),
+                           ((0.8, 82.7e9, 203.4e9), (1.6, 81.7e9, 200.0e9), (3.0, 81.0e9, 196.5e9),
+                            (1e9, 80.0e9, 193.0e9)), 0.45,
+                           tuple(d for d in _PREFERRED_MM if d <= 6.5)),
+    "stainless 302": Material("stainless 302", "ASTM A313", ((0.3, 2.5, 1867.0, 0.146), (2.5, 5.0, 2065.0, 0.263),
+                                                              (5.0, 10.0, 2911.0, 0.478)),
+                              ((1e9, 69.0e9, 193.0e9),), 0.35,
+                              tuple(d for d in _PREFERRED_MM if 0.3 <= d <= 10.0)),
+}
+"""The wires offered: music wire (the strongest common spring wire) and one stainless grade."""
+
+
+def _index(name: str, C) -> np.ndarray:
+    C = _checks.real_array(name, C)
+    if np.any(C <= 1):
+        raise SpringlabError(f"{name} (a spring index D / d) must be above 1, got {np.min(C):g}")
+    return C
+
+
+def wahl_factor(C):
+    """K_W = (4C - 1)/(4C - 4) + 0.615/C: the body's stress concentration at index C (Shigley, Section 10-2)."""
+    C = _index("C", C)
+    return (4 * C - 1) / (4 * C - 4) + 0.615 / C
+
+
+def initial_tension_stress_range(C):
+    """(low, high) uncorrected stress 8 F_i D / (pi d^3) (Pa) of the initial tension a maker
+    winds at index C: 231 exp(-0.105 C) -/+ 6.9 (4 - (C - 3) / 6.5) MPa (Shigley, Section 10-11)."""
+    C = _index("C", C)
+    mid, half = 231.0 * np.exp(-0.105 * C), 6.9 * (4.0 - (C - 3.0) / 6.5)
+    return (mid - half) * 1e6, (mid + half) * 1e6
+
+
+@dataclass(frozen=True)
+class ExtensionSpring:
+    """A helical extension spring with two machine hooks.
+
+    :ivar material: a :data:`MATERIALS` key
+    :ivar wire: wire diameter d (m)
+    :ivar mean_diameter: mean coil diameter D (m)
+    :ivar body_coils: N_b
+    :ivar initial_tension: F_i (N)
+    :ivar max_length: the longest it is stretched in service (m, inside the hooks)
+    """
+
+    material: str
+    wire: float
+    mean_diameter: float
+    body_coils: float
+    initial_tension: float
+    max_length: float
+
+    @property
+    def wire_material(self) -> Material:
+        return MATERIALS[self.material]
+
+    @property
+    def index(self) -> float:
+        """C = D / d."""
+        return self.mean_diameter / self.wire
+
+    @property
+    def active_coils(self) -> float:
+        """N_a = N_b + G / E (the hooks' share, Shigley, Section 10-11)."""
+        G, E = self.wire_material.moduli_at(self.wire)
+        return self.body_coils + G / E
+
+    @property
+    def rate(self) -> float:
+        """k = d^4 G / (8 D^3 N_a) (N/m)."""
+        G, _ = self.wire_material.moduli_at(self.wire)
+        return self.wire**4 * G / (8 * self.mean_diameter**3 * self.active_coils)
+
+    @property
+    def free_length(self) -> float:
+        """L_0 = (2 C - 1 + N_b) d (m), inside the hooks."""
+        return (2 * self.index - 1 + self.body_coils) * self.wire
+
+    @property
+    def outer_diameter(self) -> float:
+        return self.mean_diameter + self.wire
+
+    def force(self, length):
+        """F_i + k (l - L_0) (N) at lengths ``length`` (m) >= L_0."""
+        length = np.asarray(length, dtype=float)
+        if np.any(length < self.free_length * (1 - 1e-12)):
+            raise SpringlabError(f"an extension spring of free length {self.free_length * 1e3:.2f} mm cannot be "
+                                 f"shorter than it (got {np.min(length) * 1e3:.2f} mm): its coils are closed")
+        return self.initial_tension + self.rate * (length - self.free_length)
+
+    @property
+    def max_force(self) -> float:
+        return float(self.force(self.max_length))
+
+    def stress(self, force):
+        """The body's torsional stress K_W 8 F D / (pi d^3) (Pa) under ``force`` (N)."""
+        return wahl_factor(self.index) * 8 * np.asarray(force, dtype=float) * self.mean_diameter / (np.pi * self.wire**3)
+
+    @property
+    def allowable_stress(self) -> float:
+        """The allowable body stress in static service (Pa): the material's share of S_ut."""
+        return self.wire_material.body_allowable * self.wire_material.tensile_strength(self.wire)
+
+    @property
+    def initial_tension_range(self) -> tuple[float, float]:
+        """The preferred initial tension (N) at this index (:func:`initial_tension_stress_range`); more
+        cannot be wound, less is wound with the coils just touching."""
+        lo, hi = initial_tension_stress_range(self.index)
+        per = np.pi * self.wire**3 / (8 * self.mean_diameter)
+        return float(max(lo, 0.0) * per), float(hi * per)
+
+    def problems(self) -> list[str]:
+        """Why a maker could not wind this spring or it would not survive its service (empty: fine)."""
+        out = []
+        lo, hi = INDEX_RANGE
+        if not lo <= self.index <= hi:
+            out.append(f"index C = {self.index:.2f} outside {lo:g}-{hi:g}")
+        if self.body_coils < MIN_BODY_COILS:
+            out.append(f"{self.body_coils:.2f} body coils (fewer than {MIN_BODY_COILS:g})")
+        _, t_hi = self.initial_tension_range
+        if self.initial_tension > t_hi * (1 + 1e-9):
+            out.append(f"initial tension {self.initial_tension:.3g} N above the windable {t_hi:.3g} N")
+        stress = float(self.stress(self.max_force))
+        if stress > self.allowable_stress:
+            out.append(f"stress {stress / 1e6:.0f} MPa at the largest force {self.max_force:.1f} N above the allowable "
+                       f"{self.allowable_stress / 1e6:.0f} MPa")
+        return out
+
+
+def _coils_for(material: Material, d, C, k):
+    """N_b for the rate k (N/m) at wire d (m) and index C: N_a = d G / (8 C^3 k), less G / E."""
+    G, E = material.moduli_at(d)
+    return d * G / (8 * C**3 * k) - G / E
+
+
+def zero_length_spring(k: float, lengths, material: str = "music wire", *, tension_scale: float = 1.0):
+    """A spring with F_i = k L_0 (force k l over ``lengths`` = (shortest, longest) m), or the reason none fits.
+
+    Searches every stocked wire and indices C in :data:`INDEX_RANGE` (steps of 0.01).
+    ``tension_scale`` widens the windable initial-tension range (1: the preferred range).
+
+    :returns: (ExtensionSpring, '') or (None, why)
+    """
+    k = _checks.positive("k", k, unit="N/m")
+    short, long = _lengths(lengths)
+    mat = _material(material)
+    tension_scale = _checks.positive("tension_scale", tension_scale)
+    best, closest, other = None, None, {}
+    C = np.arange(INDEX_RANGE[0], INDEX_RANGE[1] + 1e-9, 0.01)
+    for d_mm in mat.diameters_mm:
+        d = d_mm * 1e-3
+        Nb = _coils_for(mat, d, C, k)
+        L0 = (2 * C - 1 + Nb) * d
+        need = 8 * k * L0 * C / (np.pi * d**2)  # the stress of F_i = k L_0
+        _, hi = initial_tension_stress_range(C)
+        ratio = need / (hi * tension_scale)
+        if closest is None or ratio.min() < closest[0]:
+            at = int(np.argmin(ratio))
+            closest = (float(ratio[at]), d_mm, float(C[at]), float(need[at]), float(hi[at] * tension_scale))
+        windable = ratio <= 1 + 1e-9
+        if np.any(windable & (Nb < MIN_BODY_COILS)):
+            other.setdefault("coils", f"fewer than {MIN_BODY_COILS:g} body coils")
+        if np.any(windable & (L0 > short)):
+            other.setdefault("short", f"a free length above the shortest length over the workspace ({short:.3g} m)")
+        ok = windable & (Nb >= MIN_BODY_COILS) & (L0 <= short)
+        for c, nb, l0 in zip(C[ok], Nb[ok], L0[ok], strict=True):
+            spring = ExtensionSpring(material, d, float(c * d), float(nb), float(k * l0), long)
+            if spring.stress(spring.max_force) > spring.allowable_stress:
+                other.setdefault("stress", f"a stress above the allowable at {k * long:.1f} N")
+            elif best is None or _volume(spring) < _volume(best):
+                best = spring
+    if best is not None:
+        return best, ""
+    if other:
+        return None, (f"every {material} spring whose initial tension k L_0 can be wound has "
+                      + " or ".join(other.values()))
+    _, d_mm, c, need, hi = closest
+    return None, (f"F_i = k L_0 needs an initial-tension stress of at least {need / 1e6:.0f} MPa ({material}, d = "
+                  f"{d_mm:g} mm, C = {c:.2f}), and makers wind at most {hi / 1e6:.0f} MPa at that index: "
+                  f"no {material} spring of C {INDEX_RANGE[0]:g}-{INDEX_RANGE[1]:g} is zero-length")
+
+
+def cable_spring(k: float, lengths, material: str = "music wire", *, room: float | None = None):
+    """A spring for the cable realisation (force k times the cable's path over ``lengths`` = (shortest,
+    longest) m): initial tension in the middle of the windable range, or :data:`STRETCH_MARGIN` times
+    k times the shortest path where that is less (the spring must be stretched past its free length
+    everywhere, with a margin for the maker's tolerances; a lighter initial tension is wound with the
+    coils just touching), stress within the allowable. Among those, the
+    shortest when fully stretched (it lies along a link), then the least wire; ``room`` (m) bounds that
+    length if given.
+
+    :returns: (ExtensionSpring, '') or (None, why)
+    """
+    k = _checks.positive("k", k, unit="N/m")
+    short, long = _lengths(lengths)
+    mat = _material(material)
+    room = _checks.optional_positive("room", room, "m")
+    best, reasons = None, {}
+    C = np.arange(INDEX_RANGE[0], INDEX_RANGE[1] + 1e-9, 0.05)
+    for d_mm in mat.diameters_mm:
+        d = d_mm * 1e-3
+        Nb = _coils_for(mat, d, C, k)
+        lo, hi = initial_tension_stress_range(C)
+        Fi = np.minimum(0.5 * (lo + hi) * np.pi * d**3 / (8 * C * d), STRETCH_MARGIN * k * short)
+        for c, nb, fi in zip(C, Nb, Fi, strict=True):
+            if nb < MIN_BODY_COILS:
+                reasons.setdefault("coils", f"fewer than {MIN_BODY_COILS:g} body coils for k = {k:.4g} N/m")
+                continue
+            L0 = (2 * c - 1 + nb) * d
+            spring = ExtensionSpring(material, d, float(c * d), float(nb), float(fi), float(L0 + long - fi / k))
+            if spring.stress(spring.max_force) > spring.allowable_stress:
+                reasons.setdefault("stress", f"the stress at {k * long:.1f} N exceeds the allowable for every wire")
+                continue
+            if room is not None and spring.max_length > room:
+                reasons.setdefault("room", f"no spring stretched to carry it is shorter than the room, {room:g} m")
+                continue
+            key = (round(spring.max_length, 4), _volume(spring))
+            if best is None or key < (round(best.max_length, 4), _volume(best)):
+                best = spring
+    if best is not None:
+        return best, ""
+    return None, "; ".join(reasons.values()) or f"no {material} wire is stocked"
+
+
+def _windable(spring: ExtensionSpring, scale: float) -> bool:
+    lo, hi = spring.initial_tension_range
+    return lo <= spring.initial_tension <= hi * scale
+
+
+def _volume(spring: ExtensionSpring) -> float:
+    """Wire volume (m^3) of the body and hooks."""
+    return np.pi * spring.wire**2 / 4 * np.pi * spring.mean_diameter * (spring.body_coils + 2)
+
+
+def _lengths(lengths) -> tuple[float, float]:
+    values = _checks.real_array("lengths", lengths, shape=(2,))
+    short, long = float(values[0]), float(values[1])
+    if not 0 < short <= long:
+        raise SpringlabError(f"lengths must be (shortest, longest) with 0 < shortest <= longest (m), got {tuple(values)}")
+    return short, long
+
+
+def _material(name) -> Material:
+    return MATERIALS[_checks.choice("material", name, tuple(MATERIALS))]
+
+
+@dataclass(frozen=True)
+class Realisation:
+    """How one ideal spring is built.
+
+    :ivar spring: the ideal spring (zero-free-length)
+    :ivar kind: 'zero-length spring' or 'cable over a pulley'
+    :ivar coil: the extension spring
+    :ivar pulley_radius: m (cable kind), None for the zero-length kind
+    :ivar lengths: (shortest, longest) distance between the ends over the workspace (m)
+    :ivar note: why the zero-length kind was not used (cable kind)
+    """
+
+    spring: Spring
+    kind: str
+    coil: ExtensionSpring
+    pulley_radius: float | None
+    lengths: tuple
+    note: str = ""
+
+    @property
+    def cable_offset(self) -> float:
+        """L_0 - F_i / k (m): what the cable's length absorbs so that the force is k times the path
+        (0 for the zero-length kind, whose F_i = k L_0)."""
+        return self.coil.free_length - self.coil.initial_tension / self.coil.rate
+
+    def built(self, *, tension: float = 1.0, free_length: float = 1.0, stiffness: float = 1.0) -> Spring:
+        """The line spring route 2 and exudyn model, with the built spring's initial tension, free
+        length and rate multiplied by the factors (1: as specified). Its force along the spring's
+        path (the cable's, for the cable kind) is F_i + k (path + c - L_0), c the cable offset."""
+        s, coil = self.spring, self.coil
+        k = s.k * stiffness
+        L0 = coil.free_length * free_length - (self.cable_offset if self.kind != "zero-length spring" else 0.0)
+        Fi = coil.initial_tension * tension
+        if L0 >= 0:
+            return Spring(s.i, s.j, s.a, s.b, k, free_length=L0, initial_tension=Fi)
+        return Spring(s.i, s.j, s.a, s.b, k, free_length=0.0, initial_tension=Fi - k * L0)
+
+
+def spring_lengths(chain: Chain, spring: Spring, X) -> tuple[float, float]:
+    """(shortest, longest) distance |B - A| (m) over the poses X (route 2)."""
+    A, B = attachment_points(chain, spring, X)
+    L = np.linalg.norm(B - A, axis=1)
+    return float(L.min()), float(L.max())
+
+
+def realise(chain: Chain, springs, X, *, material: str = "music wire", pulley_radius: float = PULLEY_RADIUS,
+            tension_scale: float = 1.0) -> list[Realisation]:
+    """A realisation per ideal spring over the workspace poses X (N, n, 3): the zero-length spring
+    where one fits, else a cable over a pulley of ``pulley_radius`` (m).
+
+    :raises SpringlabError: naming the spring and why, where neither fits
+    """
+    springs = check_springs(chain, springs)
+    X = chain.check_directions(X)
+    pulley_radius = _checks.positive("pulley_radius", pulley_radius, allow_zero=True, unit="m")
+    out = []
+    for s in springs:
+        if not s.ideal:
+            raise SpringlabError(f"{s.label} already has a free length or initial tension: realise ideal springs")
+        lengths = spring_lengths(chain, s, X)
+        coil, why = zero_length_spring(s.k, lengths, material, tension_scale=tension_scale)
+        if coil is not None:
+            out.append(Realisation(s, "zero-length spring", coil, None, lengths))
+            continue
+        path, _ = cable_path(chain, s, X, pulley_radius)
+        coil, why_cable = cable_spring(s.k, (float(path.min()), float(path.max())), material)
+        if coil is None:
+            raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m, {lengths[0]:.3f}-{lengths[1]:.3f} m): no zero-length "
+                                 f"spring ({why}) and no cable spring ({why_cable}); try material='stainless 302' "
+                                 "or another design")
+        out.append(Realisation(s, "cable over a pulley", coil, pulley_radius, lengths, why))
+    return out
+
+
+def realised_torques(chain: Chain, realisations, X, **factors) -> np.ndarray:
+    """Route 2's holding torques (N m), (N, n-1, 3), of the built springs (factors as in
+    :meth:`Realisation.built`), cables led over their pulleys."""
+    built = [r.built(**factors) for r in realisations]
+    radii = [r.pulley_radius if r.kind == "cable over a pulley" else None for r in realisations]
+    return holding_torques_with_pulleys(chain, built, radii, X)
+
+
+def _worst(torques: np.ndarray) -> float:
+    return float(np.max(np.linalg.norm(torques, axis=-1)))
+
+
+@dataclass(frozen=True)
+class BalanceLoss:
+    """The largest holding torque (N m, the norm at a joint, over joints and poses) each case leaves,
+    and gravity's own (no springs) to compare: rows (case, N m, percent of gravity's)."""
+
+    rows: list
+    gravity: float
+
+    def table(self) -> Table:
+        return Table(["built", "largest holding torque (N m)", "of gravity's unbalanced (%)"],
+                     [(case, f"{t:.3g}", f"{100 * t / self.gravity:.3g}") for case, t in self.rows])
+
+    def worst(self) -> float:
+        return max(t for _, t in self.rows)
+
+
+TOLERANCES = {"tension": 0.10, "free_length": 0.02, "stiffness": 0.10}
+"""Relative tolerances of a wound spring assumed by :func:`balance_loss`: initial tension +-10 %,
+free length +-2 %, rate +-10 % (the order makers quote for standard quality; give your maker's)."""
+
+
+def balance_loss(chain: Chain, realisations, X, *, tolerances: dict | None = None) -> BalanceLoss:
+    """What the built springs leave unbalanced over the poses X (route 2): as designed (ideal), as
+    built (the pulleys' radii), and with each tolerance at its + and - limit on every spring at once."""
+    X = chain.check_directions(X)
+    tolerances = dict(TOLERANCES if tolerances is None else tolerances)
+    for name, value in tolerances.items():
+        _checks.choice("tolerance", name, tuple(TOLERANCES))
+        _checks.positive(f"tolerance {name}", value, allow_zero=True)
+    gravity = _worst(holding_torques(chain, [], X))
+    rows = [("as designed (ideal springs)", _worst(holding_torques(chain, [r.spring for r in realisations], X))),
+            ("as specified", _worst(realised_torques(chain, realisations, X)))]
+    for name, value in tolerances.items():
+        for sign in (1, -1):
+            rows.append((f"{name.replace('_', ' ')} {'+' if sign > 0 else '-'}{100 * value:g} %",
+                         _worst(realised_torques(chain, realisations, X, **{name: 1 + sign * value}))))
+    return BalanceLoss(rows, gravity)
+
+
+SHEET_COLUMNS = ("spring", "realisation", "material", "wire d (mm)", "mean coil D (mm)", "outer diameter (mm)",
+                 "index C", "body coils", "active coils", "free length inside hooks (mm)", "initial tension (N)",
+                 "windable initial tension (N)", "rate (N/mm)", "longest in service (mm)", "largest force (N)",
+                 "stress at largest force (MPa)", "allowable stress (MPa)", "a (mm)", "b (mm)",
+                 "cable offset L0 - Fi/k (mm)", "pulley radius (mm)")
+
+
+def spec_sheet(realisations) -> Table:
+    """One row per spring: what a spring maker needs (and where it goes on the arm)."""
+    rows = []
+    for r in realisations:
+        c = r.coil
+        lo, hi = c.initial_tension_range
+        rows.append((f"{r.spring.label}{r.spring.pattern}", r.kind, f"{c.material} ({MATERIALS[c.material].standard})",
+                     f"{c.wire * 1e3:.2f}", f"{c.mean_diameter * 1e3:.2f}", f"{c.outer_diameter * 1e3:.2f}",
+                     f"{c.index:.2f}", f"{c.body_coils:.2f}", f"{c.active_coils:.2f}", f"{c.free_length * 1e3:.1f}",
+                     f"{c.initial_tension:.2f}", f"{lo:.2f}-{hi:.2f}", f"{c.rate / 1e3:.4f}", f"{c.max_length * 1e3:.1f}",
+                     f"{c.max_force:.1f}", f"{c.stress(c.max_force) / 1e6:.0f}", f"{c.allowable_stress / 1e6:.0f}",
+                     f"{r.spring.a * 1e3:.1f}", f"{r.spring.b * 1e3:.1f}",
+                     f"{r.cable_offset * 1e3:.1f}" if r.kind != "zero-length spring" else "",
+                     f"{r.pulley_radius * 1e3:.1f}" if r.pulley_radius is not None else ""))
+    return Table(list(SHEET_COLUMNS), rows)
+
+
+def sheet_csv(realisations) -> str:
+    """:func:`spec_sheet` as CSV text."""
+    table = spec_sheet(realisations)
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(table.headers)
+    writer.writerows(table.rows)
+    return buf.getvalue()

@@ -1,0 +1,187 @@
+"""From ideal to buildable springs: the extension-spring formulas, the two realisations, the
+pulley's route-2 model, the balance the built springs leave, checked in exudyn, and the spec sheet."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from springlab import Spring
+from springlab.design import buildable as bd
+from springlab.design.rank import design_arm, workspace_poses
+from springlab.energy import geometry, pulley, simulation
+from springlab.energy.quadratic import spring_matrix
+from springlab.errors import SpringlabError
+from springlab.model.armfile import load_arm
+from springlab.model.chain import random_directions
+from springlab.workbench.cli import main
+
+PAPER_ARM = Path(__file__).resolve().parents[1] / "notebooks" / "arms" / "paper000_arm.toml"
+
+
+@pytest.fixture(scope="module")
+def paper_arm():
+    spec = load_arm(PAPER_ARM)
+    chain = spec.chain()
+    report = design_arm(spec, max_designs=1, progress=False)
+    X = workspace_poses(spec, chain)
+    return chain, report.designs[0].springs, X
+
+
+def test_textbook_formulas():
+    # Shigley, Section 10-2: K_W at C = 8 is 1.184; the preferred initial tension at C = 6 is 125-175 MPa
+    assert bd.wahl_factor(8.0) == pytest.approx(1.1840, abs=5e-4)
+    lo, hi = bd.initial_tension_stress_range(6.0)
+    assert lo / 1e6 == pytest.approx(231 * np.exp(-0.63) - 6.9 * (4 - 3 / 6.5))
+    assert hi / 1e6 == pytest.approx(231 * np.exp(-0.63) + 6.9 * (4 - 3 / 6.5))
+    # S_ut of 1 mm music wire is A = 2211 MPa; of 2 mm, 2211 / 2^0.145
+    mw = bd.MATERIALS["music wire"]
+    assert mw.tensile_strength(1e-3) == pytest.approx(2211e6)
+    assert mw.tensile_strength(2e-3) == pytest.approx(2211e6 / 2**0.145)
+    spring = bd.ExtensionSpring("music wire", 1e-3, 8e-3, 20.0, 5.0, 0.1)
+    G, E = mw.moduli_at(1e-3)
+    assert spring.rate == pytest.approx(1e-12 * G / (8 * 512e-9 * (20 + G / E)))
+    assert spring.free_length == pytest.approx((2 * 8 - 1 + 20) * 1e-3)
+    with pytest.raises(SpringlabError, match="C"):
+        bd.wahl_factor(0.5)
+    with pytest.raises(SpringlabError, match="outside"):
+        mw.tensile_strength(20e-3)
+
+
+def test_zero_length_needs_more_initial_tension_than_makers_wind():
+    spring, why = bd.zero_length_spring(300.0, (0.1, 0.4))
+    assert spring is None and "MPa" in why and "makers wind at most" in why
+    # a maker who winds three to five times the preferred range can make one: its force is k l exactly
+    spring, why = bd.zero_length_spring(200.0, (0.3, 0.5), tension_scale=5.0)
+    assert spring is not None and why == ""
+    length = np.linspace(spring.free_length, spring.max_length, 50)
+    assert np.allclose(spring.force(length), spring.rate * length, rtol=0, atol=1e-12 * spring.max_force)
+    assert spring.rate == pytest.approx(200.0, rel=1e-12)
+    assert spring.stress(spring.max_force) <= spring.allowable_stress
+    assert any("above the windable" in p for p in spring.problems())  # the sheet says it is not standard winding
+    with pytest.raises(SpringlabError, match="coils are closed"):
+        spring.force(0.5 * spring.free_length)
+
+
+def test_overstressed_springs_are_rejected():
+    spring = bd.ExtensionSpring("music wire", 1e-3, 10e-3, 20.0, 2.0, 5.0)  # stretched to 5 m
+    assert any("stress" in p and "above the allowable" in p for p in spring.problems())
+    ok = bd.ExtensionSpring("music wire", 1e-3, 10e-3, 20.0, 2.0, spring.free_length + 0.01)
+    assert ok.problems() == []
+    coil, why = bd.cable_spring(2e3, (0.1, 100.0))  # 200 kN: no stocked wire carries it
+    assert coil is None and "stress" in why
+    chain = load_arm(PAPER_ARM).chain()
+    with pytest.raises(SpringlabError, match=r"S\(1,2\).*no cable spring"):
+        bd.realise(chain, [Spring(1, 2, 0.2, 0.2, 1e6)], random_directions(chain.n, 20, 0))
+
+
+def test_cable_springs_of_a_design_fit_and_their_sheet_reproduces_k_l(paper_arm):
+    chain, springs, X = paper_arm
+    built = bd.realise(chain, springs, X)
+    rows = list(csv.DictReader(io.StringIO(bd.sheet_csv(built))))
+    assert len(rows) == len(springs)
+    for r, row in zip(built, rows, strict=True):
+        assert r.kind == "cable over a pulley" and "makers wind at most" in r.note
+        assert r.coil.problems() == []
+        assert r.built().effective_free_length == pytest.approx(0.0, abs=1e-12)
+        # the spring rebuilt from the sheet's rounded numbers pulls k times the path to 1 %
+        coil = bd.ExtensionSpring("music wire", float(row["wire d (mm)"]) / 1e3, float(row["mean coil D (mm)"]) / 1e3,
+                                  float(row["body coils"]), float(row["initial tension (N)"]),
+                                  float(row["longest in service (mm)"]) / 1e3)
+        offset = float(row["cable offset L0 - Fi/k (mm)"]) / 1e3
+        path, _ = pulley.cable_path(chain, r.spring, X, r.pulley_radius)
+        force = coil.force(path + offset)
+        assert np.max(np.abs(force / (r.spring.k * path) - 1)) < 0.01
+
+
+def test_pulley_route2_is_the_energy_gradient_and_vanishes_with_the_radius(paper_arm):
+    chain, springs, X = paper_arm
+    X = X[:6]
+    plain = geometry.holding_torques(chain, springs, X)
+    assert np.abs(pulley.holding_torques_with_pulleys(chain, springs, [0.0] * len(springs), X) - plain).max() < 1e-12
+    radii = [0.02, None, 0.01, 0.015][:len(springs)]
+    tau = pulley.holding_torques_with_pulleys(chain, springs, radii, X)
+
+    def energy(Y):
+        out = geometry.gravity_energy(chain, Y)
+        for s, rho in zip(springs, radii, strict=True):
+            out = out + (geometry.spring_energy(chain, [s], Y) if rho is None else pulley.cable_energy(chain, s, Y, rho))
+        return out
+
+    h, worst = 1e-6, 0.0
+    for j in range(2, chain.n + 1):
+        for axis in np.eye(3):
+            R = Rotation.from_rotvec(h * axis).as_matrix()
+            up, down = X.copy(), X.copy()
+            up[:, j - 1:] = X[:, j - 1:] @ R.T
+            down[:, j - 1:] = X[:, j - 1:] @ R
+            worst = max(worst, np.abs((energy(up) - energy(down)) / (2 * h) - tau[:, j - 2] @ axis).max())
+    assert worst < 1e-6 * np.abs(tau).max()
+    assert np.abs(tau - plain).max() > 1e-3  # the pulley does move the balance (a check that can fail)
+    with pytest.raises(SpringlabError, match="pulley's radius"):
+        pulley.cable_path(chain, springs[0], X, 10.0)
+
+
+def test_balance_loss_grows_with_the_pulley_and_the_tolerances(paper_arm):
+    chain, springs, X = paper_arm
+    X = X[:200]
+    small = bd.balance_loss(chain, bd.realise(chain, springs, X, pulley_radius=0.002), X)
+    large = bd.balance_loss(chain, bd.realise(chain, springs, X, pulley_radius=0.01), X)
+    rows = dict(large.rows)
+    assert rows["as designed (ideal springs)"] < 1e-10 * large.gravity
+    assert 0 < dict(small.rows)["as specified"] < rows["as specified"] < large.gravity
+    assert rows["tension +10 %"] != rows["tension -10 %"]
+    assert "%" in large.table().markdown()
+    point = bd.balance_loss(chain, bd.realise(chain, springs, X, pulley_radius=0.0), X)
+    assert dict(point.rows)["as specified"] < 1e-9 * point.gravity  # point pulleys: the cable emulates k l exactly
+
+
+def test_built_springs_route2_matches_exudyn(paper_arm):
+    """The residual of real springs (free length and initial tension modelled in exudyn's
+    spring-damper, initial tension 10 % high) by route 2 and by exudyn's statics, to 1e-6 N m."""
+    chain, springs, X = paper_arm
+    built = bd.realise(chain, springs, X, pulley_radius=0.0)
+    real = [r.built(tension=1.1) for r in built]
+    assert all(s.free_length > 0 and s.initial_tension > 0 for s in real)
+    poses = X[:4]
+    result = simulation.holding_torques(chain, real, poses)
+    assert result.max_difference < 1e-6
+    gravity = np.abs(geometry.holding_torques(chain, [], poses)).max()
+    assert 1e-3 * gravity < np.abs(result.simulated).max() < gravity  # a residual, smaller than gravity's
+    ideal = simulation.holding_torques(chain, springs, poses)
+    assert np.abs(ideal.simulated).max() < 1e-6 and np.abs(result.simulated - ideal.simulated).max() > 1e-3
+
+
+def test_initial_tension_is_a_spring_field():
+    s = Spring(1, 2, 0.1, 0.2, 100.0, free_length=0.05, initial_tension=8.0)
+    assert s.effective_free_length == pytest.approx(-0.03) and not s.ideal
+    assert s.scaled(0.9).initial_tension == pytest.approx(7.2)
+    with pytest.raises(SpringlabError, match="initial_tension"):
+        Spring(1, 2, 0.1, 0.2, 100.0, initial_tension=-1.0)
+    chain = load_arm(PAPER_ARM).chain()
+    with pytest.raises(SpringlabError, match="zero-free-length"):
+        spring_matrix(chain, Spring(1, 2, 0.1, 0.2, 100.0, initial_tension=1.0))
+    X = random_directions(chain.n, 30, 1)
+    # F_i + k (l - L_0) is the spring of free length L_0 - F_i / k (route 2)
+    a = geometry.holding_torques(chain, [s], X)
+    b = geometry.holding_torques(chain, [Spring(1, 2, 0.1, 0.2, 100.0, initial_tension=3.0)], X)
+    assert np.abs(a - b).max() < 1e-12
+
+
+def test_cli_writes_the_sheet(tmp_path, capsys):
+    out = tmp_path / "arm.design.json"
+    code = main(["design", str(PAPER_ARM), "--json", str(out), "--max-designs", "1", "--quiet", "--sheet"])
+    assert code == 0, capsys.readouterr().err
+    sheet = (tmp_path / "arm.sheet.csv").read_text()
+    rows = list(csv.DictReader(io.StringIO(sheet)))
+    assert len(rows) == len(json.loads(out.read_text())["springs"])
+    md = (tmp_path / "arm.sheet.md").read_text()
+    assert "| spring |" in md and "as specified" in md and "largest force (N)" in md
+    code = main(["design", str(PAPER_ARM), "--json", str(out), "--sheet", "--pulley-radius", "-1"])
+    assert code == 2 and "--pulley-radius" in capsys.readouterr().err
