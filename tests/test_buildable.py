@@ -185,3 +185,28 @@ def test_cli_writes_the_sheet(tmp_path, capsys):
     assert "| spring |" in md and "as specified" in md and "largest force (N)" in md
     code = main(["design", str(PAPER_ARM), "--json", str(out), "--sheet", "--pulley-radius", "-1"])
     assert code == 2 and "--pulley-radius" in capsys.readouterr().err
+
+
+def test_clearance_flags_a_spring_through_a_link():
+    from springlab import serial_chain
+    from springlab.design.clearance import clearance, segment_distance
+
+    rng = np.random.default_rng(0)
+    P0, P1, Q0, Q1 = (rng.normal(size=(100, 3)) for _ in range(4))
+    s = np.linspace(0, 1, 301)
+    brute = [np.min(np.linalg.norm((P0[k] + s[:, None] * (P1[k] - P0[k]))[:, None]
+                                   - (Q0[k] + s[:, None] * (Q1[k] - Q0[k]))[None], axis=2)) for k in range(100)]
+    d = segment_distance(P0, P1, Q0, Q1)
+    assert np.all(d <= np.array(brute) + 1e-12) and np.max(np.array(brute) - d) < 1e-3
+    chain = serial_chain([0.4, 0.3], [0.2, 0.15], [2.0, 1.0])
+    up, side = np.array([1.0, 0, 0]), np.array([0, 1.0, 0])
+    spring = Spring(1, 3, 0.2, 0.2, 100.0)  # A on the column 0.2 m above the base, B 0.2 m along link 3
+    folded = np.array([[up, up, side]])  # link 2 vertical: A lies on it
+    bent = np.array([[up, side, up]])  # link 2 horizontal, the spring 0.2 m above and parallel to it
+    crossing = clearance(chain, [spring], folded)
+    assert crossing.crossing and crossing.per_spring()["S(1,3)(+,+)"][1] == 2
+    clear = clearance(chain, [spring], bent, link_radii=0.02)
+    assert not clear.crossing and clear.per_spring()["S(1,3)(+,+)"][0] == pytest.approx(0.2 - 0.02)
+    assert clearance(chain, [spring], bent, link_radii=0.02, spring_radii=[0.19]).crossing  # a fat spring touches
+    with pytest.raises(SpringlabError, match="link_radii"):
+        clearance(chain, [spring], bent, link_radii=[0.1, 0.1, 0.1])

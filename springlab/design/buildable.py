@@ -62,6 +62,9 @@ from springlab.tables import Table
 INDEX_RANGE = (4.0, 12.0)
 """Spring indices C = D / d a maker winds without trouble (Shigley, Section 10-2)."""
 
+CABLE_RADIUS = 0.0006
+"""m: the cable of the cable realisation (1.2 mm steel cable), for the clearance."""
+
 PULLEY_RADIUS = 0.01
 """m: the default pulley (a 20 mm sheave, about 15 times a 1.2 mm steel cable)."""
 
@@ -431,6 +434,12 @@ def realise(chain: Chain, springs, X, *, material: str = "music wire", pulley_ra
                                  "or another design")
         out.append(Realisation(s, "cable over a pulley", coil, pulley_radius, lengths, why))
     return out
+
+
+def line_radii(realisations) -> list[float]:
+    """The radius (m) of what runs between each spring's ends: the coil's outer radius for a
+    zero-length spring, :data:`CABLE_RADIUS` for a cable (:func:`springlab.design.clearance.clearance`)."""
+    return [r.coil.outer_diameter / 2 if r.kind == "zero-length spring" else CABLE_RADIUS for r in realisations]
 
 
 def realised_torques(chain: Chain, realisations, X, **factors) -> np.ndarray:
