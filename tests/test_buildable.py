@@ -210,3 +210,14 @@ def test_clearance_flags_a_spring_through_a_link():
     assert clearance(chain, [spring], bent, link_radii=0.02, spring_radii=[0.19]).crossing  # a fat spring touches
     with pytest.raises(SpringlabError, match="link_radii"):
         clearance(chain, [spring], bent, link_radii=[0.1, 0.1, 0.1])
+
+
+def test_bad_spring_specs_are_refused():
+    with pytest.raises(SpringlabError, match="material"):
+        bd.ExtensionSpring("cheese", 1e-3, 8e-3, 10.0, 1.0, 0.1)
+    with pytest.raises(SpringlabError, match="wire"):
+        bd.ExtensionSpring("music wire", float("nan"), 8e-3, 10.0, 1.0, 0.1)
+    with pytest.raises(SpringlabError, match="mean_diameter"):
+        bd.ExtensionSpring("music wire", 2e-3, 1e-3, 10.0, 1.0, 0.1)
+    with pytest.raises(SpringlabError, match="lengths"):
+        bd.cable_spring(100.0, (0.5, 0.1))

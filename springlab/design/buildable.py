@@ -168,6 +168,15 @@ class ExtensionSpring:
     initial_tension: float
     max_length: float
 
+    def __post_init__(self):
+        _material(self.material)
+        for name, unit in (("wire", "m"), ("mean_diameter", "m"), ("body_coils", ""), ("max_length", "m")):
+            object.__setattr__(self, name, _checks.positive(name, getattr(self, name), unit=unit))
+        object.__setattr__(self, "initial_tension",
+                           _checks.positive("initial_tension", self.initial_tension, allow_zero=True, unit="N"))
+        if self.mean_diameter <= self.wire:
+            raise SpringlabError(f"mean_diameter = {self.mean_diameter:g} m must exceed the wire's {self.wire:g} m")
+
     @property
     def wire_material(self) -> Material:
         return MATERIALS[self.material]
