@@ -52,7 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.energy.geometry import attachment_points, holding_torques
+from springlab.energy.geometry import holding_torques, spring_length
 from springlab.energy.pulley import cable_path, holding_torques_with_pulleys
 from springlab.errors import SpringlabError
 from springlab.model.chain import Chain
@@ -411,8 +411,7 @@ class Realisation:
 
 def spring_lengths(chain: Chain, spring: Spring, X) -> tuple[float, float]:
     """(shortest, longest) distance |B - A| (m) over the poses X (route 2)."""
-    A, B = attachment_points(chain, spring, X)
-    L = np.linalg.norm(B - A, axis=1)
+    L = spring_length(chain, spring, X)
     return float(L.min()), float(L.max())
 
 

@@ -37,7 +37,7 @@ from springlab.design.solve import (
     minimise_largest_force,
     relaxation_margin,
 )
-from springlab.energy.geometry import attachment_points, energies
+from springlab.energy.geometry import energies, spring_length
 from springlab.errors import SearchExhaustedError, SpringlabError, UnbalanceableError
 from springlab.model.armfile import ArmSpec, load_arm
 from springlab.model.chain import Chain
@@ -169,8 +169,7 @@ def evaluate(method: str, chain: Chain, configuration, springs, X) -> RankedDesi
     rel = verify(chain, springs, X)
     force = 0.0
     for s in springs:
-        A, B = attachment_points(chain, s, X)
-        force = max(force, float(s.k * np.max(np.linalg.norm(B - A, axis=1))))
+        force = max(force, float(s.k * np.max(spring_length(chain, s, X))))
     eff = float(np.mean(spatial_system_efficiency(chain, springs, X)))
     return RankedDesign(method, tuple(configuration), tuple(springs), force, float(sum(s.k for s in springs)),
                         eff, rel, sum(s.j - s.i for s in springs))
@@ -327,8 +326,7 @@ def springs_table(chain: Chain, springs, X) -> Table:
     _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     rows = []
     for s in springs:
-        A, B = attachment_points(chain, s, X)
-        force = s.k * np.max(np.linalg.norm(B - A, axis=1))
+        force = s.k * np.max(spring_length(chain, s, X))
         rows.append((s.label, s.pattern, f"{s.a:.4f}", f"{s.b:.4f}", f"{s.k:.1f}", f"{force:.1f}"))
     return Table(["spring", "pattern", "a (m)", "b (m)", "k (N/m)", "largest force (N)"], rows)
 

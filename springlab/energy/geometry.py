@@ -38,6 +38,12 @@ def attachment_points(chain: Chain, spring: Spring, X) -> tuple[np.ndarray, np.n
     return A, B
 
 
+def spring_length(chain: Chain, spring: Spring, X) -> np.ndarray:
+    """|B - A| (m), the distance between a spring's ends at each pose, ndarray(N,)."""
+    A, B = attachment_points(chain, spring, X)
+    return np.linalg.norm(B - A, axis=1)
+
+
 def _energy_chunk(chain: Chain, springs, xt: np.ndarray, out: np.ndarray,
                   gravity: bool, elastic: bool) -> None:
     """Energies of one component-major chunk ``xt`` (n, 3, m) into ``out`` (m,).
