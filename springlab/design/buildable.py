@@ -391,6 +391,11 @@ class Realisation:
     note: str = ""
 
     @property
+    def cable(self) -> bool:
+        """True for the cable-over-a-pulley kind."""
+        return self.kind == "cable over a pulley"
+
+    @property
     def cable_offset(self) -> float:
         """L_0 - F_i / k (m): what the cable's length absorbs so that the force is k times the path
         (0 for the zero-length kind, whose F_i = k L_0)."""
@@ -402,7 +407,7 @@ class Realisation:
         path (the cable's, for the cable kind) is F_i + k (path + c - L_0), c the cable offset."""
         s, coil = self.spring, self.coil
         k = s.k * stiffness
-        L0 = coil.free_length * free_length - (self.cable_offset if self.kind != "zero-length spring" else 0.0)
+        L0 = coil.free_length * free_length - (self.cable_offset if self.cable else 0.0)
         Fi = coil.initial_tension * tension
         if L0 >= 0:
             return Spring(s.i, s.j, s.a, s.b, k, free_length=L0, initial_tension=Fi)
@@ -447,14 +452,14 @@ def realise(chain: Chain, springs, X, *, material: str = "music wire", pulley_ra
 def line_radii(realisations) -> list[float]:
     """The radius (m) of what runs between each spring's ends: the coil's outer radius for a
     zero-length spring, :data:`CABLE_RADIUS` for a cable (:func:`springlab.design.clearance.clearance`)."""
-    return [r.coil.outer_diameter / 2 if r.kind == "zero-length spring" else CABLE_RADIUS for r in realisations]
+    return [CABLE_RADIUS if r.cable else r.coil.outer_diameter / 2 for r in realisations]
 
 
 def realised_torques(chain: Chain, realisations, X, **factors) -> np.ndarray:
     """Route 2's holding torques (N m), (N, n-1, 3), of the built springs (factors as in
     :meth:`Realisation.built`), cables led over their pulleys."""
     built = [r.built(**factors) for r in realisations]
-    radii = [r.pulley_radius if r.kind == "cable over a pulley" else None for r in realisations]
+    radii = [r.pulley_radius if r.cable else None for r in realisations]
     return holding_torques_with_pulleys(chain, built, radii, X)
 
 
@@ -520,7 +525,7 @@ def spec_sheet(realisations) -> Table:
                      f"{c.initial_tension:.2f}", f"{lo:.2f}-{hi:.2f}", f"{c.rate / 1e3:.4f}", f"{c.max_length * 1e3:.1f}",
                      f"{c.max_force:.1f}", f"{c.stress(c.max_force) / 1e6:.0f}", f"{c.allowable_stress / 1e6:.0f}",
                      f"{r.spring.a * 1e3:.1f}", f"{r.spring.b * 1e3:.1f}",
-                     f"{r.cable_offset * 1e3:.1f}" if r.kind != "zero-length spring" else "",
+                     f"{r.cable_offset * 1e3:.1f}" if r.cable else "",
                      f"{r.pulley_radius * 1e3:.1f}" if r.pulley_radius is not None else ""))
     return Table(list(SHEET_COLUMNS), rows)
 
