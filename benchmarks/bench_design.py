@@ -4,8 +4,9 @@
   n = 3..6 (n = 5 target: under 10 s), and the count per n;
 * best first: the first 10 configurations (fewest springs, then fewest spanned joints)
   for n = 3..8 (n = 8 target: under 10 s);
-* design_arm on the two example arm files (verified designs, route 2), with and without
-  the largest-force minimisation of the free choices;
+* design_arm on the two example arm files (verified designs, route 2): paper 000's
+  configurations with and without the largest-force minimisation of the free choices, and
+  the default search over every family, fewest springs first (6-link target: under 20 s);
 * the n - 1 ground springs for n = 3..8, and the relaxation screen that proves n - 2
   impossible (n = 3..6);
 * the rules against physics: every inclusion-minimal multiset of springs whose linear
@@ -56,12 +57,13 @@ def main() -> None:
         dt = time.perf_counter() - t0
         print(f"  n = {n}: {dt:6.2f} s, {first[0][0]} springs spanning {first[0][1]} joints first")
     for name in ("paper000_arm.toml", "industrial_6link.toml"):
-        for minimise in (False, True):
+        for method, minimise in (("no auxiliary links", False), ("no auxiliary links", True), ("fewest springs", True)):
             t0 = time.perf_counter()
-            report = design_arm(ARMS / name, max_designs=10, minimise_force=minimise)
-            print(f"design_arm({name}, minimise_force={minimise}): {len(report.designs)} verified designs from "
-                  f"{report.configurations_tried} configurations in {time.perf_counter() - t0:.1f} s; "
-                  f"best largest force {report.designs[0].max_force:.0f} N")
+            report = design_arm(ARMS / name, method=method, max_designs=10, minimise_force=minimise)
+            best = report.designs[0]
+            print(f"design_arm({name}, method={method!r}, minimise_force={minimise}): {len(report.designs)} verified "
+                  f"designs from {report.configurations_tried} configurations in {time.perf_counter() - t0:.1f} s; "
+                  f"best: {best.spring_count} springs ({best.method}), largest force {best.max_force:.0f} N")
     lengths, masses = [0.30, 0.24, 0.20, 0.15, 0.12, 0.10, 0.08], [4.0, 3.2, 2.8, 1.5, 1.2, 1.0, 0.8]
     print("n - 1 ground springs (solved, force minimised, verified on 1000 poses), and n - 2 screened:")
     for n in range(3, 9):

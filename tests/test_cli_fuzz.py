@@ -171,7 +171,8 @@ def test_a_ten_link_arm_stops_at_the_time_limit_and_says_so(tmp_path, capsys):
     assert main(["design", str(arm), "--quiet"]) == 2  # more than 8 links needs --allow-large
     assert "--allow-large" in capsys.readouterr().err
     t0 = time.perf_counter()
-    code = main(["design", str(arm), "--quiet", "--allow-large", "--time-limit", "1", "--json", str(tmp_path / "o.json")])
+    code = main(["design", str(arm), "--quiet", "--allow-large", "--method", "no auxiliary links", "--time-limit", "1",
+                 "--json", str(tmp_path / "o.json")])
     err = capsys.readouterr().err
     assert code == 1 and time.perf_counter() - t0 < 30
     assert "the time limit of 1 s was reached" in err and "--method 'ground springs'" in err, err
@@ -179,3 +180,7 @@ def test_a_ten_link_arm_stops_at_the_time_limit_and_says_so(tmp_path, capsys):
     code = main(["design", str(arm), "--quiet", "--allow-large", "--method", "ground springs",
                  "--json", str(tmp_path / "o.json")])
     assert code == 0 and json.loads((tmp_path / "o.json").read_text())["energy_variation"] < VERIFY_TOLERANCE
+    # and so does the default, which tries the ground springs before paper 000's configurations
+    code = main(["design", str(arm), "--quiet", "--allow-large", "--time-limit", "30", "--json", str(tmp_path / "d.json")])
+    assert code == 0 and json.loads((tmp_path / "d.json").read_text())["method"] == "ground springs"
+    assert "not screened" in capsys.readouterr().out

@@ -83,10 +83,10 @@ def test_grouping_writes_the_papers_alternatives():
 
 
 def test_the_sign_refutation_never_refutes_what_the_relaxation_admits():
-    from springlab.design.ground import _any_sign_candidates, example_family
+    from springlab.design.ground import any_sign_candidates, example_family
 
     chain = example_family([4])[4].chain()
-    candidates = _any_sign_candidates(4, 3)  # 462 sets of three springs, any pattern, with S(1,4)
+    candidates = any_sign_candidates(4, 3)  # 462 sets of three springs, any pattern, with S(1,4)
     signs = design.sign_consistent(chain, candidates)
     relaxed = [design.relaxation_margin(chain, cfg) > 1e-9 for cfg in candidates]
     assert all(ok for ok, lp in zip(signs, relaxed, strict=True) if lp)  # a refutation is a proof

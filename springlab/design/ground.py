@@ -56,7 +56,7 @@ def all_pattern_slots(n: int) -> list[SpringSlot]:
     return [SpringSlot(i, j, p) for i in range(1, n) for j in range(i + 1, n + 1) for p in PATTERNS]
 
 
-def _any_sign_candidates(n: int, count: int) -> list[tuple[SpringSlot, ...]]:
+def any_sign_candidates(n: int, count: int) -> list[tuple[SpringSlot, ...]]:
     """Every set of ``count`` slots, any sign pattern, that includes a same-sign S(1,n) (the
     only spring with an entry (1, n), which gravity's G_1n > 0 needs: -k a b < 0)."""
     import itertools
@@ -93,7 +93,7 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
     chain = _chain_of(spec_or_chain)
     X = random_poses(chain, samples, seed)
     out = []
-    candidates = _any_sign_candidates(chain.n, count)
+    candidates = any_sign_candidates(chain.n, count)
     candidates = [cfg for cfg, ok in zip(candidates, sign_consistent(chain, candidates), strict=True) if ok]
     for cfg in tqdm(candidates, disable=not progress, desc=f"{count} springs, all patterns", mininterval=1.0):
         if relaxation_margin(chain, cfg) <= 1e-9:
@@ -118,7 +118,7 @@ def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False) -> t
     from tqdm import tqdm
 
     chain = _chain_of(spec_or_chain)
-    candidates = _any_sign_candidates(chain.n, count)
+    candidates = any_sign_candidates(chain.n, count)
     signs_allow = sign_consistent(chain, candidates)  # an exact refutation by signs first, no programme
     rest = [cfg for cfg, ok in zip(candidates, signs_allow, strict=True) if ok]
     survivors = sum(1 for cfg in tqdm(rest, disable=not progress, desc=f"{count} springs, screen", mininterval=1.0)
@@ -205,7 +205,7 @@ def springs_per_n(family: dict, *, screen_up_to: int) -> list[SpringsPerN]:
     for n, spec_n in family.items():
         arm_n = spec_n.chain()
         necessary = next(best_first_configurations(n))[0]
-        rules = design_arm(spec_n, max_designs=3, max_configurations=12)
+        rules = design_arm(spec_n, method="no auxiliary links", max_designs=3, max_configurations=12)
         ground = ground_spring_design(spec_n, samples=1000, seed=n)
         hold = hold_test(arm_n, list(ground.springs), random_directions(n, 2, np.random.default_rng(n)), duration=2.0)
         screen = relaxation_screen(arm_n, n - 2) if n <= screen_up_to else None

@@ -92,14 +92,15 @@ def pseudobase_summary(spec: ArmSpec, *, aux_mass_ratio: float = 0.09, pseudobas
 
 def compare_methods(spec: ArmSpec, report: DesignReport | None = None, **pseudobase_options) -> list[MethodSummary]:
     """The best design of each method that applies to the arm: 000's (no auxiliary links, the
-    top of ``report``), the n - 1 ground springs (:func:`springlab.design.ground.ground_spring_design`), 001's
+    best of that family in ``report``), the n - 1 ground springs (:func:`springlab.design.ground.ground_spring_design`), 001's
     pseudobases (idealised), and 004's two springs where the arm has
     two moving links (n = 3), which are 000's configurations S(1,3) + S(2,3) (Lenzo's layouts
     a and b; c and d need a COM off the link)."""
-    report = report or design_arm(spec, max_designs=5)
+    report = report or design_arm(spec, method="no auxiliary links", max_designs=5)
     out = []
-    if report.designs:
-        d = report.designs[0]
+    ours = [d for d in report.designs if d.method == "no auxiliary links"]  # 000's family of a default report
+    if ours:
+        d = ours[0]
         out.append(MethodSummary("no auxiliary links (000)", d.spring_count, d.stiffness_sum, d.max_force, 0.0,
                                  d.efficiency, d.energy_variation))
     try:
@@ -111,7 +112,7 @@ def compare_methods(spec: ArmSpec, report: DesignReport | None = None, **pseudob
                                  float("nan"), float("nan"), f"none within the limits: {err}"[:120]))
     out.append(pseudobase_summary(spec, **pseudobase_options))
     if spec.n == 3:  # Lenzo's two springs are 000's S(1,3) + S(2,3): layouts b (+,+) and a (-,-)
-        two = [d for d in report.designs if [(s.i, s.j) for s in d.springs] == [(1, 3), (2, 3)]]
+        two = [d for d in ours if [(s.i, s.j) for s in d.springs] == [(1, 3), (2, 3)]]
         if two:
             d = two[0]
             layout = "b" if d.springs[1].pattern == "(+,+)" else "a"

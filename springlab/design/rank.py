@@ -36,6 +36,7 @@ from springlab.design.solve import (
     largest_force_bound,
     minimise_largest_force,
     relaxation_margin,
+    sign_consistent,
 )
 from springlab.energy.geometry import energies, spring_length
 from springlab.errors import SearchExhaustedError, SpringlabError, UnbalanceableError
@@ -44,7 +45,16 @@ from springlab.model.chain import Chain
 from springlab.model.springs import Spring, check_springs
 from springlab.tables import Table
 
-METHODS = ("no auxiliary links", "ground springs")
+METHODS = ("fewest springs", "no auxiliary links", "ground springs")
+"""What :func:`design_arm` searches: every family below, ranked together (the default); paper
+000's configurations (rules R1-R6); or the n - 1 ground springs alone."""
+
+ANY_SIGNS = "any signs"
+"""The family of sets of n - 2 springs of any sign pattern that pass the relaxation screen."""
+
+SCREEN_BUDGET = 200_000
+"""Most candidate sets of n - 2 springs the default search screens (n = 6 has 61,712, refuted
+by their signs in 0.4 s; n = 7 has about 3.5 million): above it the report says they were not."""
 
 
 VERIFY_TOLERANCE = 1e-10
@@ -126,9 +136,9 @@ class DesignReport:
 
     def table(self) -> Table:
         """The ranked designs as a table (shown as Markdown in a notebook)."""
-        return Table(["rank", "springs", "configuration", "max force (N)", "sum of k (N/m)", "efficiency",
+        return Table(["rank", "springs", "family", "configuration", "max force (N)", "sum of k (N/m)", "efficiency",
                       "energy variation"],
-                     [(rank, d.spring_count, d.label(), f"{d.max_force:.1f}", f"{d.stiffness_sum:.0f}",
+                     [(rank, d.spring_count, d.method, d.label(), f"{d.max_force:.1f}", f"{d.stiffness_sum:.0f}",
                        f"{d.efficiency:.4f}", f"{d.energy_variation:.1e}")
                       for rank, d in enumerate(self.designs, start=1)])
 
@@ -181,13 +191,17 @@ def rank_key(d: RankedDesign):
     return (d.spring_count, d.max_force, -d.efficiency)
 
 
-def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10, max_configurations: int | None = None,
+def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, max_configurations: int | None = None,
                restarts: int = 8, seed: int = 0, progress: bool = False, finder=None,
                minimise_force: bool = True, force_starts: int = 2, time_limit: float | None = None) -> DesignReport:
     """Ranked, verified spring designs for an arm.
 
     :param arm: an :class:`~springlab.model.armfile.ArmSpec` or the path of an arm file
-    :param method: 'no auxiliary links' (paper 000: configurations with necessary springs
+    :param method: 'fewest springs' (the default: every family below, ranked together; each
+        design's ``method`` names its family): the sets of n - 2 springs of any sign pattern that
+        the exact sign test and the linear relaxation admit (:data:`ANY_SIGNS`, screened up to
+        :data:`SCREEN_BUDGET` candidates), the n - 1 ground springs, then paper 000's
+        configurations; or 'no auxiliary links' (paper 000: configurations with necessary springs
         from rules R1-R6, fewest springs and then fewest spanned joints first
         (:func:`~springlab.design.rules.best_first_configurations`); each solved within
         the arm's limits), or 'ground springs' (the n - 1 springs from the base column
@@ -239,12 +253,16 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
                             + (f"links 2..{core.n}" if core.n > 2 else "link 2"))
     bar = tqdm(disable=not progress, desc="search steps", mininterval=1.0)
     # fewest springs first, then fewest spanned joints: best first, without enumerating the rest
+    rules = ((method if method != "fewest springs" else "no auxiliary links", cfg)
+             for _, _, cfg in best_first_configurations(core.n, deadline=deadline, step=bar.update))
     if method == "ground springs":
-        configs = iter([ground_springs(core.n)])
+        configs = iter([(method, ground_springs(core.n))])
+    elif method == "no auxiliary links":
+        configs = rules
     else:
-        configs = (cfg for _, _, cfg in best_first_configurations(core.n, deadline=deadline, step=bar.update))
+        configs = _fewest_first(core, report, rules)
     report.stopped = "every configuration was tried"
-    for cfg in configs:
+    for family, cfg in configs:
         if max_configurations is not None and report.configurations_tried >= max_configurations:
             report.stopped = f"max_configurations = {max_configurations} configurations were tried"
             break
@@ -268,7 +286,7 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
             if minimise_force:
                 springs = least_force(core, cfg, springs, finder, seed, restarts, force_starts,
                                       max_extension=spec.max_attachment, max_stiffness=spec.max_stiffness)
-            report.designs.append(evaluate(method, chain, cfg, springs, X))
+            report.designs.append(evaluate(family, chain, cfg, springs, X))
         except (UnbalanceableError, SearchExhaustedError) as err:
             report.rejected.append((cfg, str(err)))
     if deadline is not None and time.perf_counter() > deadline and report.stopped == "every configuration was tried":
@@ -277,6 +295,43 @@ def design_arm(arm, *, method: str = "no auxiliary links", max_designs: int = 10
     report.designs.sort(key=rank_key)
     report.seconds = time.perf_counter() - t0
     return report
+
+
+def _fewest_first(core: Chain, report: DesignReport, rules):
+    """The default search's configurations, (family, configuration), fewest springs first: the
+    screened sets of n - 2 springs of any signs, the n - 1 ground springs, then ``rules``
+    (paper 000's); a configuration met twice is tried once. Notes what the screen did."""
+    import math
+
+    from springlab.design.ground import all_pattern_slots, any_sign_candidates
+
+    n, count = core.n, core.n - 2
+    seen = set()
+    if count >= 1:
+        slots = all_pattern_slots(n)
+        total = 2 * math.comb(len(slots) - 2, count - 1)  # S(1,n) (+,+) or (-,-), and count - 1 others
+        if total > SCREEN_BUDGET:
+            report.notes.append(f"sets of {count} springs of any signs were not screened ({total:,} candidates, "
+                                f"more than {SCREEN_BUDGET:,}): fewer than n - 1 springs were not sought")
+        else:
+            candidates = any_sign_candidates(n, count)
+            allowed = [cfg for cfg, ok in zip(candidates, sign_consistent(core, candidates), strict=True) if ok]
+            passed = [cfg for cfg in allowed if relaxation_margin(core, cfg) > 1e-9]
+            report.notes.append(f"sets of {count} springs of any signs: {len(candidates):,} candidates, "
+                                f"{len(candidates) - len(allowed):,} refuted by their signs, "
+                                f"{len(allowed) - len(passed):,} by the linear relaxation (proofs); "
+                                f"{len(passed)} left to solve")
+            for cfg in passed:
+                seen.add(tuple(sorted(cfg)))
+                yield ANY_SIGNS, tuple(sorted(cfg))
+    ground = ground_springs(n)
+    if tuple(sorted(ground)) not in seen:
+        seen.add(tuple(sorted(ground)))
+        yield "ground springs", ground
+    for family, cfg in rules:
+        if tuple(sorted(cfg)) not in seen:
+            seen.add(tuple(sorted(cfg)))
+            yield family, cfg
 
 
 def least_force(chain, cfg, springs, finder, seed, restarts, starts, *, max_extension, max_stiffness):

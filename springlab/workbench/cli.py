@@ -146,8 +146,9 @@ def main(argv=None) -> int:
     p.add_argument("arm_file")
     p.add_argument("--json", help="where to write the chosen design (default: <arm>.design.json here)")
     p.add_argument("--pick", type=int, default=1, help="which ranked design to write (default 1)")
-    p.add_argument("--method", default="no auxiliary links", choices=("no auxiliary links", "ground springs"),
-                   help="paper 000's configurations (default), or n - 1 springs from the base column")
+    p.add_argument("--method", default="fewest springs", choices=("fewest springs", "no auxiliary links", "ground springs"),
+                   help="every family ranked together, fewest springs first (default); paper 000's configurations; "
+                        "or n - 1 springs from the base column")
     p.add_argument("--max-designs", type=int, default=10, help="stop after this many verified designs (default 10)")
     p.add_argument("--max-configurations", type=int, default=None, help="stop after this many configurations")
     p.add_argument("--seed", type=int, default=0, help="seed of the random starts (default 0)")
