@@ -324,26 +324,32 @@ def cable_spring(k: float, lengths, material: str = "music wire", *, room: float
     room = _checks.optional_positive("room", room, "m")
     best, reasons = None, {}
     C = np.arange(INDEX_RANGE[0], INDEX_RANGE[1] + 1e-9, 0.05)
-    for d_mm in mat.diameters_mm:
+    K = wahl_factor(C)
+    lo, hi = initial_tension_stress_range(C)
+    for d_mm in mat.diameters_mm:  # each wire's indices at once; the spring built for the winner only
         d = d_mm * 1e-3
         Nb = _coils_for(mat, d, C, k)
-        lo, hi = initial_tension_stress_range(C)
         Fi = np.minimum(0.5 * (lo + hi) * np.pi * d**3 / (8 * C * d), STRETCH_MARGIN * k * short)
-        for c, nb, fi in zip(C, Nb, Fi, strict=True):
-            if nb < MIN_BODY_COILS:
-                reasons.setdefault("coils", f"fewer than {MIN_BODY_COILS:g} body coils for k = {k:.4g} N/m")
-                continue
-            L0 = (2 * c - 1 + nb) * d
-            spring = ExtensionSpring(material, d, float(c * d), float(nb), float(fi), float(L0 + long - fi / k))
-            if spring.stress(spring.max_force) > spring.allowable_stress:
-                reasons.setdefault("stress", f"the stress at {k * long:.1f} N exceeds the allowable for every wire")
-                continue
-            if room is not None and spring.max_length > room:
-                reasons.setdefault("room", f"no spring stretched to carry it is shorter than the room, {room:g} m")
-                continue
-            key = (round(spring.max_length, 4), _volume(spring))
-            if best is None or key < (round(best.max_length, 4), _volume(best)):
-                best = spring
+        L0 = (2 * C - 1 + Nb) * d
+        longest = L0 + long - Fi / k
+        stress = K * 8 * (k * long) * C * d / (np.pi * d**3)  # at the largest force, k times the longest path
+        coils = Nb >= MIN_BODY_COILS
+        strong = stress <= mat.body_allowable * mat.tensile_strength(d)
+        fits = np.ones_like(C, dtype=bool) if room is None else longest <= room
+        if not coils.all():
+            reasons.setdefault("coils", f"fewer than {MIN_BODY_COILS:g} body coils for k = {k:.4g} N/m")
+        if np.any(coils & ~strong):
+            reasons.setdefault("stress", f"the stress at {k * long:.1f} N exceeds the allowable for every wire")
+        if np.any(coils & strong & ~fits):
+            reasons.setdefault("room", f"no spring stretched to carry it is shorter than the room, {room:g} m")
+        ok = np.flatnonzero(coils & strong & fits)
+        if not len(ok):
+            continue
+        volume = np.pi * d**2 / 4 * np.pi * C * d * (Nb + 2)
+        at = ok[np.lexsort((volume[ok], np.round(longest[ok], 4)))[0]]
+        spring = ExtensionSpring(material, d, float(C[at] * d), float(Nb[at]), float(Fi[at]), float(longest[at]))
+        if best is None or (round(spring.max_length, 4), _volume(spring)) < (round(best.max_length, 4), _volume(best)):
+            best = spring
     if best is not None:
         return best, ""
     return None, "; ".join(reasons.values()) or f"no {material} wire is stocked"
@@ -504,6 +510,19 @@ def balance_loss(chain: Chain, realisations, X, *, tolerances: dict | None = Non
             rows.append((f"{name.replace('_', ' ')} {'+' if sign > 0 else '-'}{100 * value:g} %",
                          _worst(realised_torques(chain, realisations, X, **{name: 1 + sign * value}))))
     return BalanceLoss(rows, gravity)
+
+
+def pulley_study(chain: Chain, springs, X, radii, *, material: str = "music wire") -> dict[str, list[float]]:
+    """The balance the built springs leave against the pulley's radius: for each radius (m), the
+    largest holding torque in percent of gravity's, as specified and at the worst tolerance limit
+    (:func:`balance_loss`)."""
+    radii = _checks.real_array("radii", radii, shape=(None,))
+    out = {"as specified": [], "worst tolerance limit": []}
+    for rho in radii:
+        loss = balance_loss(chain, realise(chain, springs, X, material=material, pulley_radius=float(rho)), X)
+        out["as specified"].append(100 * dict(loss.rows)["as specified"] / loss.gravity)
+        out["worst tolerance limit"].append(100 * loss.worst() / loss.gravity)
+    return out
 
 
 SHEET_COLUMNS = ("spring", "realisation", "material", "wire d (mm)", "mean coil D (mm)", "outer diameter (mm)",

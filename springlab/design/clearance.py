@@ -58,6 +58,7 @@ class Clearance:
     """Per (spring label, link): the smallest clearance (m) and the pose where it occurs."""
 
     pairs: list  # (spring label, link, clearance m, pose index)
+    per_pose: dict  # spring label -> (N,) its smallest clearance from any other link at each pose (m)
 
     @property
     def crossing(self) -> list:
@@ -109,7 +110,7 @@ def clearance(chain: Chain, springs, X, *, link_radii=None, spring_radii=None,
     joints = chain.joint_positions(X)  # joints[:, t - 1] = J_t
     reach = float(np.sum(chain.r))
     base = np.broadcast_to(np.asarray(UP, dtype=float) * -reach, joints[:, 0].shape)
-    pairs = []
+    pairs, per_pose = [], {}
     for idx, s in enumerate(springs):
         A, B = attachment_points(chain, s, X)
         line = B - A
@@ -129,5 +130,7 @@ def clearance(chain: Chain, springs, X, *, link_radii=None, spring_radii=None,
                 Q0, Q1, r = joints[:, t - 2], joints[:, t - 1], float(radii[t - 2])
             gap = segment_distance(A, B, Q0, Q1) - r - own[idx]
             at = int(np.argmin(gap))
-            pairs.append((f"{s.label}{s.pattern}", t, float(gap[at]), at))
-    return Clearance(pairs)
+            label = f"{s.label}{s.pattern}"
+            pairs.append((label, t, float(gap[at]), at))
+            per_pose[label] = np.minimum(per_pose[label], gap) if label in per_pose else gap
+    return Clearance(pairs, per_pose)

@@ -372,6 +372,35 @@ def tolerance_figure(study, *, title: str):
     return fig
 
 
+def clearance_figure(gaps, *, title: str):
+    """Each spring's smallest clearance from the other links at every workspace pose (mm), as
+    histograms (a :class:`springlab.design.clearance.Clearance`); below zero it passes through a link."""
+    fig, ax = plt.subplots()
+    for label, values in gaps.per_pose.items():
+        ax.hist(1e3 * values, bins=40, histtype="step", label=label)
+    ax.axvline(0.0, color="k", lw=0.8)
+    ax.set_xlabel("smallest clearance from the other links (mm); < 0: through a link")
+    ax.set_ylabel("workspace poses")
+    ax.set_title(title)
+    ax.legend(fontsize=7)
+    return fig
+
+
+def pulley_loss_figure(radii, percent: dict, *, title: str):
+    """The largest holding torque the built springs leave (% of gravity's) against the pulley's
+    radius (m, plotted in mm), one curve per case ({case: values})."""
+    import numpy as np
+
+    fig, ax = plt.subplots()
+    for case, values in percent.items():
+        ax.plot(1e3 * np.asarray(radii), values, marker="o", ms=3, label=case)
+    ax.set_xlabel("pulley radius (mm)")
+    ax.set_ylabel("largest holding torque (% of gravity's)")
+    ax.set_title(title)
+    ax.legend(fontsize=7)
+    return fig
+
+
 def workspace_panels_figure(theta3, theta4, panels: dict, *, title: str, label: str, levels=None):
     """Values over (theta_3, theta_4) in degrees, one panel per theta_2 ({theta_2 deg:
     (len(theta3), len(theta4)) array}), a shared colour bar, the look of 003 Fig. 5."""
