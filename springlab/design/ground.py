@@ -108,22 +108,49 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
     return sorted(out, key=rank_key)
 
 
-def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False) -> tuple[int, int]:
+SCREEN_CHUNK = 2000
+"""Candidate sets per task of :func:`screen`."""
+
+
+def _passing(chain: Chain, candidates) -> list[bool]:
+    return [relaxation_margin(chain, cfg) > 1e-9 for cfg in candidates]
+
+
+def screen(chain: Chain, candidates, *, executor=None, progress: bool = False, desc: str = "screen") -> list[bool]:
+    """Per candidate set of springs: True when the linear relaxation of 000 Eqs. (39) admits it
+    (:func:`springlab.design.solve.relaxation_margin`; False is a proof that it cannot balance).
+    The exact sign test (:func:`springlab.design.solve.sign_consistent`) refutes most without a
+    programme; the rest run in tasks of :data:`SCREEN_CHUNK` on ``executor`` (None: here)."""
+    from tqdm import tqdm
+
+    from springlab.executors import check_executor, map_ordered
+
+    _checks.instance("chain", chain, Chain)
+    executor = check_executor(executor)
+    candidates = list(candidates)
+    allowed = sign_consistent(chain, candidates) if candidates else np.zeros(0, dtype=bool)
+    rest = [cfg for cfg, ok in zip(candidates, allowed, strict=True) if ok]
+    chunks = [rest[k:k + SCREEN_CHUNK] for k in range(0, len(rest), SCREEN_CHUNK)]
+    out = []
+    for passed in tqdm(map_ordered(executor, _passing, [(chain, c) for c in chunks]), disable=not progress,
+                       desc=desc, mininterval=1.0):
+        out += passed
+    verdicts = iter(out)
+    return [bool(ok) and next(verdicts) for ok in allowed]
+
+
+def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False, executor=None) -> tuple[int, int]:
     """(candidates, survivors): how many sets of ``count`` springs, any sign pattern, any
     attachment (limits ignored), pass the linear relaxation of 000 Eqs. (39). No survivor
     proves that no ``count`` springs without auxiliary links balance this arm: the
     relaxation only drops constraints (P k = A B per spring). Candidates the signs alone
     refute (:func:`springlab.design.solve.sign_consistent`, exact) get no linear programme:
-    at n = 6 that is all 61,712 sets of four springs, screened in 0.2 s (97 s by programmes)."""
-    from tqdm import tqdm
-
+    at n = 6 that is all 61,712 sets of four springs, screened in 0.2 s (97 s by programmes).
+    ``executor``: as :func:`screen`'s."""
     chain = _chain_of(spec_or_chain)
     candidates = any_sign_candidates(chain.n, count)
-    signs_allow = sign_consistent(chain, candidates)  # an exact refutation by signs first, no programme
-    rest = [cfg for cfg, ok in zip(candidates, signs_allow, strict=True) if ok]
-    survivors = sum(1 for cfg in tqdm(rest, disable=not progress, desc=f"{count} springs, screen", mininterval=1.0)
-                    if relaxation_margin(chain, cfg) > 1e-9)
-    return len(candidates), survivors
+    return len(candidates), sum(screen(chain, candidates, executor=executor, progress=progress,
+                                       desc=f"{count} springs, screen"))
 
 
 def ground_spring_design(spec_or_chain, *, max_extension: float | None = None, max_stiffness: float | None = None,

@@ -193,7 +193,8 @@ def rank_key(d: RankedDesign):
 
 def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, max_configurations: int | None = None,
                restarts: int = 8, seed: int = 0, progress: bool = False, finder=None,
-               minimise_force: bool = True, force_starts: int = 2, time_limit: float | None = None) -> DesignReport:
+               minimise_force: bool = True, force_starts: int = 2, time_limit: float | None = None,
+               executor=None, batch: int = 8) -> DesignReport:
     """Ranked, verified spring designs for an arm.
 
     :param arm: an :class:`~springlab.model.armfile.ArmSpec` or the path of an arm file
@@ -217,6 +218,10 @@ def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, ma
     :param time_limit: stop the search after this many seconds (None: no limit); the report's
         ``stopped`` says so
     :param progress: show a progress bar (tqdm) of the search steps, configurations and designs
+    :param executor: a concurrent.futures.Executor (a process pool, or a dask cluster's
+        ``client.get_executor()``) to solve ``batch`` configurations at a time on; each task
+        carries its configuration and seed and the results are read in order, so the report is
+        the serial one (None: solve here, one at a time)
 
     An end link whose centre of mass is on its proximal joint needs no spring
     (:func:`~springlab.design.solve.balanced_core`): the configurations are those of the
@@ -235,6 +240,10 @@ def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, ma
     seed = _checks.count("seed", seed)
     force_starts = _checks.count("force_starts", force_starts, least=1)
     time_limit = _checks.optional_positive("time_limit", time_limit, "s")
+    from springlab.executors import check_executor, map_ordered
+
+    executor = check_executor(executor)
+    batch = _checks.count("batch", batch, least=1) if executor is not None else 1
     finder = finder or find_design
     chain = spec.chain()
     X = workspace_poses(spec, chain)
@@ -260,35 +269,38 @@ def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, ma
     elif method == "no auxiliary links":
         configs = rules
     else:
-        configs = _fewest_first(core, report, rules)
+        configs = _fewest_first(core, report, rules, executor)
     report.stopped = "every configuration was tried"
-    for family, cfg in configs:
+    limits = (spec.max_attachment, spec.max_stiffness)
+
+    def done() -> bool:  # checked before each configuration is counted, as a serial search would
         if max_configurations is not None and report.configurations_tried >= max_configurations:
             report.stopped = f"max_configurations = {max_configurations} configurations were tried"
-            break
-        if len(report.designs) >= max_designs:
+        elif len(report.designs) >= max_designs:
             report.stopped = f"max_designs = {max_designs} verified designs were found"
+        elif not (deadline is not None and time.perf_counter() > deadline):
+            return False
+        return True
+
+    while not done():
+        todo = []
+        for family, cfg in configs:  # the next batch (one configuration when solving here)
+            todo.append((family, cfg))
+            if len(todo) >= batch:
+                break
+        if not todo:
             break
-        if deadline is not None and time.perf_counter() > deadline:
-            break
-        report.configurations_tried += 1
-        bar.set_postfix(configurations=report.configurations_tried, designs=len(report.designs), refresh=False)
-        if relaxation_margin(core, cfg) <= 1e-9:
-            report.rejected.append((cfg, PROOF + ": 000 Eqs. (39) have no solution with these signs "
-                                    "(linear relaxation)"))
-            continue
-        try:
-            springs = finder(core, cfg, seed=seed, restarts=restarts, max_extension=spec.max_attachment)
-            stiff = [s for s in springs if s.k > spec.max_stiffness]
-            if stiff:
-                raise SearchExhaustedError(f"{stiff[0].label} needs k = {stiff[0].k:.0f} N/m > max_stiffness = "
-                                           f"{spec.max_stiffness:.0f} N/m")
-            if minimise_force:
-                springs = least_force(core, cfg, springs, finder, seed, restarts, force_starts,
-                                      max_extension=spec.max_attachment, max_stiffness=spec.max_stiffness)
-            report.designs.append(evaluate(family, chain, cfg, springs, X))
-        except (UnbalanceableError, SearchExhaustedError) as err:
-            report.rejected.append((cfg, str(err)))
+        tasks = [(core, chain, family, cfg, X, limits, finder, seed, restarts, minimise_force, force_starts)
+                 for family, cfg in todo]
+        for (_, cfg), (design, why) in zip(todo, map_ordered(executor, _attempt, tasks), strict=True):
+            if done():  # the batch's later results, which a serial search never reached
+                break
+            report.configurations_tried += 1
+            bar.set_postfix(configurations=report.configurations_tried, designs=len(report.designs), refresh=False)
+            if design is not None:
+                report.designs.append(design)
+            else:
+                report.rejected.append((cfg, why))
     if deadline is not None and time.perf_counter() > deadline and report.stopped == "every configuration was tried":
         report.stopped = f"the time limit of {time_limit:g} s was reached"
     bar.close()
@@ -297,13 +309,32 @@ def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, ma
     return report
 
 
-def _fewest_first(core: Chain, report: DesignReport, rules):
+def _attempt(core, chain, family, cfg, X, limits, finder, seed, restarts, minimise_force, force_starts):
+    """One configuration of :func:`design_arm`: (RankedDesign, None), or (None, why it was rejected)."""
+    max_attachment, max_stiffness = limits
+    if relaxation_margin(core, cfg) <= 1e-9:
+        return None, PROOF + ": 000 Eqs. (39) have no solution with these signs (linear relaxation)"
+    try:
+        springs = finder(core, cfg, seed=seed, restarts=restarts, max_extension=max_attachment)
+        stiff = [s for s in springs if s.k > max_stiffness]
+        if stiff:
+            raise SearchExhaustedError(f"{stiff[0].label} needs k = {stiff[0].k:.0f} N/m > max_stiffness = "
+                                       f"{max_stiffness:.0f} N/m")
+        if minimise_force:
+            springs = least_force(core, cfg, springs, finder, seed, restarts, force_starts,
+                                  max_extension=max_attachment, max_stiffness=max_stiffness)
+        return evaluate(family, chain, cfg, springs, X), None
+    except (UnbalanceableError, SearchExhaustedError) as err:
+        return None, str(err)
+
+
+def _fewest_first(core: Chain, report: DesignReport, rules, executor=None):
     """The default search's configurations, (family, configuration), fewest springs first: the
     screened sets of n - 2 springs of any signs, the n - 1 ground springs, then ``rules``
     (paper 000's); a configuration met twice is tried once. Notes what the screen did."""
     import math
 
-    from springlab.design.ground import all_pattern_slots, any_sign_candidates
+    from springlab.design.ground import all_pattern_slots, any_sign_candidates, screen
 
     n, count = core.n, core.n - 2
     seen = set()
@@ -315,11 +346,11 @@ def _fewest_first(core: Chain, report: DesignReport, rules):
                                 f"more than {SCREEN_BUDGET:,}): fewer than n - 1 springs were not sought")
         else:
             candidates = any_sign_candidates(n, count)
-            allowed = [cfg for cfg, ok in zip(candidates, sign_consistent(core, candidates), strict=True) if ok]
-            passed = [cfg for cfg in allowed if relaxation_margin(core, cfg) > 1e-9]
+            signs = int(np.sum(sign_consistent(core, candidates)))
+            passed = [cfg for cfg, ok in zip(candidates, screen(core, candidates, executor=executor), strict=True) if ok]
             report.notes.append(f"sets of {count} springs of any signs: {len(candidates):,} candidates, "
-                                f"{len(candidates) - len(allowed):,} refuted by their signs, "
-                                f"{len(allowed) - len(passed):,} by the linear relaxation (proofs); "
+                                f"{len(candidates) - signs:,} refuted by their signs, "
+                                f"{signs - len(passed):,} by the linear relaxation (proofs); "
                                 f"{len(passed)} left to solve")
             for cfg in passed:
                 seen.add(tuple(sorted(cfg)))

@@ -94,34 +94,46 @@ class ToleranceResult:
                      [(n, f"{a:.3g}", f"{b:.3g}", f"{c:.3g}") for n, a, b, c in self.summary()])
 
 
+def _study_factor(chain: Chain, springs, X, tol: Tolerances, seed_sequence, samples: int, step=None) -> np.ndarray:
+    """One factor's built arms, seeded by its own SeedSequence: the largest holding torque of each (N m)."""
+    rng = np.random.default_rng(seed_sequence)
+    worst = np.zeros(samples)
+    for k in range(samples):
+        built_chain, built = perturbed(chain, springs, tol, rng)
+        worst[k] = float(np.max(np.linalg.norm(holding_torques(built_chain, built, X), axis=-1)))
+        if step is not None:
+            step()
+    return worst
+
+
 def tolerance_study(chain: Chain, springs, X, tol: Tolerances, *, samples: int = 500, seed: int = 0,
-                    progress: bool = True) -> ToleranceResult:
+                    progress: bool = True, executor=None) -> ToleranceResult:
     """Monte Carlo over built arms: each factor alone, then all together.
 
     :param X: workspace poses, link directions (N, n, 3)
     :param samples: built arms per factor; ``seed`` makes the study repeatable
+    :param executor: a concurrent.futures.Executor to run the factors on (one task each, seeded by
+        its own child of ``seed``: the same results as serially); None runs them here
     """
     from tqdm import tqdm
+
+    from springlab.executors import check_executor, map_ordered
 
     springs = check_springs(chain, springs)
     X = chain.check_directions(X)
     _checks.instance("tol", tol, Tolerances)
     samples = _checks.sample_count(samples, least=1)
     seed = _checks.count("seed", seed)
+    executor = check_executor(executor)
     active = [f for f in FACTORS if getattr(tol, f)]
     if not active:
         raise SpringlabError("every tolerance is 0: nothing to study")
     runs = {f: tol.only(f) for f in active} | ({"all": tol} if len(active) > 1 else {})
-    out = {}
     seeds = np.random.SeedSequence(seed).spawn(len(runs))
     bar = tqdm(total=len(runs) * int(samples), disable=not progress, desc="tolerance study", mininterval=1.0)
-    for (name, t), ss in zip(runs.items(), seeds, strict=True):
-        rng = np.random.default_rng(ss)
-        worst = np.zeros(int(samples))
-        for k in range(int(samples)):
-            built_chain, built = perturbed(chain, springs, t, rng)
-            worst[k] = float(np.max(np.linalg.norm(holding_torques(built_chain, built, X), axis=-1)))
-            bar.update()
-        out[name] = worst
+    step = bar.update if executor is None else None  # a task on another process cannot move this bar
+    tasks = [(chain, springs, X, t, ss, int(samples), step) for t, ss in zip(runs.values(), seeds, strict=True)]
+    worst = map_ordered(executor, _study_factor, tasks)
+    bar.update(bar.total - bar.n)
     bar.close()
-    return ToleranceResult(out, int(samples), seed)
+    return ToleranceResult(dict(zip(runs, worst, strict=True)), int(samples), seed)
