@@ -221,3 +221,35 @@ def test_bad_spring_specs_are_refused():
         bd.ExtensionSpring("music wire", 2e-3, 1e-3, 10.0, 1.0, 0.1)
     with pytest.raises(SpringlabError, match="lengths"):
         bd.cable_spring(100.0, (0.5, 0.1))
+
+
+def test_joint_limits_shape_the_workspace_and_crossing_designs_rank_last(tmp_path):
+    from dataclasses import replace
+
+    from springlab.design.rank import rank_key, workspace_note
+    from springlab.model.armfile import arm_from_dict
+    from springlab.model.chain import bend_angles
+
+    link = {"length": "300 mm", "com": "150 mm", "mass": "4 kg"}
+    data = {"link": [link | {"cone": "60 deg", "radius": "30 mm"}, link | {"cone": "90 deg"}, link]}
+    spec = arm_from_dict(data, source="limited")
+    assert spec.limits[0] == pytest.approx(np.pi / 3) and spec.limits[2] is None
+    assert spec.link_radii == (0.03, 0.025, 0.025)
+    X = workspace_poses(spec, spec.chain())
+    bends = np.degrees(bend_angles(X))
+    assert bends[:, 0].max() <= 60 + 1e-9 and bends[:, 1].max() <= 90 + 1e-9 and bends[:, 2].max() > 150
+    assert "cone 60 deg" in workspace_note(spec)
+    revolute = {"link": [link | {"joint": [0, 0, 1], "range": ["-30 deg", "45 deg"]}, link | {"joint": [0, 0, 1]}]}
+    angles = np.degrees(bend_angles(workspace_poses(arm_from_dict(revolute), arm_from_dict(revolute).chain())))
+    assert angles[:, 0].max() <= 45 + 1e-9  # planar: the bend is the joint angle's size
+    for bad, match in (({"cone": "60 deg", "joint": [0, 0, 1]}, "cone limits a spherical joint"),
+                       ({"range": ["0 deg", "10 deg"]}, "range limits a revolute joint"),
+                       ({"cone": "200 deg"}, "half-angle"), ({"cone": "60 kg"}, "unknown unit"),
+                       ({"joint": [0, 0, 1], "range": ["10 deg", "0 deg"]}, "low < high")):
+        with pytest.raises(SpringlabError, match=match):
+            arm_from_dict({"link": [link | bad, link]})
+    report = design_arm(spec, max_designs=2)
+    assert "within the joint limits" in report.notes[0] and "clearance (mm)" in report.table().headers
+    crossing, clear = report.designs[0], replace(report.designs[0], clearance=0.01, max_force=1e9)
+    assert crossing.crosses and not clear.crosses
+    assert sorted([crossing, clear], key=rank_key)[0] is clear  # a spring through a link ranks last

@@ -3,7 +3,7 @@
 Each spring is the segment between its ends A and B, thickened by its radius (half its
 coil's outer diameter, or the cable's); each moving link t is the segment from joint
 J_{t-1} to J_t, thickened by its radius (the arm file's ``radius`` per link, default
-:data:`LINK_RADIUS`); the ground link is the base column, the segment from the base joint
+:data:`springlab.model.armfile.LINK_RADIUS`); the ground link is the base column, the segment from the base joint
 down by the arm's reach. The clearance of a spring and a link is the smallest distance
 between the two segments over the workspace poses, less both radii: negative means the
 spring passes through the link somewhere in the workspace. A spring's own two links are
@@ -24,12 +24,10 @@ import numpy as np
 from springlab import _checks
 from springlab.energy.geometry import attachment_points
 from springlab.errors import SpringlabError
+from springlab.model.armfile import LINK_RADIUS
 from springlab.model.chain import UP, Chain
 from springlab.model.springs import check_springs
 from springlab.tables import Table
-
-LINK_RADIUS = 0.025
-"""m: a link's radius where the arm file gives none (a 50 mm tube or casting)."""
 
 
 def segment_distance(P0, P1, Q0, Q1) -> np.ndarray:
@@ -86,7 +84,7 @@ def clearance(chain: Chain, springs, X, *, link_radii=None, spring_radii=None,
               base_radius: float = LINK_RADIUS) -> Clearance:
     """The clearance of every spring from every other link over the poses X (N, n, 3).
 
-    :param link_radii: m, one per moving link (n - 1 values) or one for all; None: :data:`LINK_RADIUS`
+    :param link_radii: m, one per moving link (n - 1 values) or one for all; None: :data:`springlab.model.armfile.LINK_RADIUS`
     :param spring_radii: m, one per spring; None: 0 (the spring's line)
     :param base_radius: m, the base column's
     """

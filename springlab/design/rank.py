@@ -79,10 +79,27 @@ def random_poses(chain: Chain, samples: int, seed) -> np.ndarray:
 
 
 def workspace_poses(spec: ArmSpec, chain: Chain) -> np.ndarray:
-    """The poses that judge a design: the arm file's ``samples`` and ``seed``."""
+    """The poses that judge a design: the arm file's ``samples`` and ``seed``, within its joint
+    limits (:func:`springlab.model.chain.limited_poses`) where it gives any."""
     _checks.instance("spec", spec, ArmSpec, "ArmSpec (load_arm(path))")
     _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
+    if spec.limits:
+        from springlab.model.chain import limited_poses
+
+        return limited_poses(chain, spec.samples, _checks.rng("seed", spec.seed), spec.limits)
     return random_poses(chain, spec.samples, spec.seed)
+
+
+def workspace_note(spec: ArmSpec) -> str:
+    """Which workspace judges the designs, in words."""
+    _checks.instance("spec", spec, ArmSpec, "ArmSpec (load_arm(path))")
+    if not spec.limits:
+        return (f"workspace: {spec.samples} random poses (seed {spec.seed}), every link in any direction "
+                "(no joint limits in the arm file: folded poses included)")
+    parts = [f"joint {j}: " + (f"cone {np.degrees(lim):g} deg" if not isinstance(lim, tuple) else
+                               f"{np.degrees(lim[0]):g} to {np.degrees(lim[1]):g} deg")
+             for j, lim in enumerate(spec.limits, start=2) if lim is not None]
+    return f"workspace: {spec.samples} random poses (seed {spec.seed}) within the joint limits ({'; '.join(parts)})"
 
 
 @dataclass(frozen=True)
@@ -97,6 +114,12 @@ class RankedDesign:
     efficiency: float  # mean spatial e_sys over the workspace samples
     energy_variation: float  # route 2: max - min total energy / gravity range
     spans: int  # joints spanned, summed over the springs
+    clearance: float = float("inf")  # m: the smallest spring-link clearance over the workspace; < 0 crosses a link
+
+    @property
+    def crosses(self) -> bool:
+        """True when a spring passes through a link somewhere in the workspace."""
+        return self.clearance < 0
 
     @property
     def spring_count(self) -> int:
@@ -110,7 +133,8 @@ class RankedDesign:
                 "springs": [{"i": s.i, "j": s.j, "pattern": s.pattern, "a_m": s.a, "b_m": s.b, "k_N_per_m": s.k}
                             for s in self.springs],
                 "max_force_N": self.max_force, "stiffness_sum_N_per_m": self.stiffness_sum,
-                "efficiency": self.efficiency, "energy_variation": self.energy_variation}
+                "efficiency": self.efficiency, "energy_variation": self.energy_variation,
+                "clearance_m": self.clearance if np.isfinite(self.clearance) else None}
 
 
 @dataclass
@@ -136,9 +160,11 @@ class DesignReport:
 
     def table(self) -> Table:
         """The ranked designs as a table (shown as Markdown in a notebook)."""
-        return Table(["rank", "springs", "family", "configuration", "max force (N)", "sum of k (N/m)", "efficiency",
-                      "energy variation"],
-                     [(rank, d.spring_count, d.method, d.label(), f"{d.max_force:.1f}", f"{d.stiffness_sum:.0f}",
+        return Table(["rank", "springs", "family", "configuration", "max force (N)", "clearance (mm)", "sum of k (N/m)",
+                      "efficiency", "energy variation"],
+                     [(rank, d.spring_count, d.method, d.label(), f"{d.max_force:.1f}",
+                       (f"{d.clearance * 1e3:.0f}" + (" (crosses a link)" if d.crosses else "")
+                        if np.isfinite(d.clearance) else "no other link"), f"{d.stiffness_sum:.0f}",
                        f"{d.efficiency:.4f}", f"{d.energy_variation:.1e}")
                       for rank, d in enumerate(self.designs, start=1)])
 
@@ -174,21 +200,27 @@ def _gravity_moments(chain: Chain) -> list[float]:
     return [chain.m[j] * chain.d[j] + chain.r[j] * sum(chain.m[j + 1:]) for j in range(chain.n - 1)]
 
 
-def evaluate(method: str, chain: Chain, configuration, springs, X) -> RankedDesign:
-    """Verify ``springs`` by route 2 and measure them over the poses X."""
+def evaluate(method: str, chain: Chain, configuration, springs, X, *, link_radii=None) -> RankedDesign:
+    """Verify ``springs`` by route 2 and measure them over the poses X: the largest force, the efficiency,
+    and the clearance from the links (:func:`springlab.design.clearance.clearance`, links of ``link_radii``
+    m, None for the default, the springs as lines)."""
+    from springlab.design.clearance import clearance
+
     rel = verify(chain, springs, X)
     force = 0.0
     for s in springs:
         force = max(force, float(s.k * np.max(spring_length(chain, s, X))))
     eff = float(np.mean(spatial_system_efficiency(chain, springs, X)))
+    gap = clearance(chain, springs, X, link_radii=link_radii).smallest()
     return RankedDesign(method, tuple(configuration), tuple(springs), force, float(sum(s.k for s in springs)),
-                        eff, rel, sum(s.j - s.i for s in springs))
+                        eff, rel, sum(s.j - s.i for s in springs), float(gap))
 
 
 def rank_key(d: RankedDesign):
-    """The ranking order: fewest springs, then the smallest largest force, then the highest efficiency."""
+    """The ranking order: a design whose spring passes through a link last; then fewest springs, the
+    smallest largest force, the largest clearance, the highest efficiency."""
     _checks.instance("d", d, RankedDesign)
-    return (d.spring_count, d.max_force, -d.efficiency)
+    return (d.crosses, d.spring_count, d.max_force, -d.clearance, -d.efficiency)
 
 
 def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, max_configurations: int | None = None,
@@ -247,12 +279,12 @@ def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, ma
     finder = finder or find_design
     chain = spec.chain()
     X = workspace_poses(spec, chain)
-    report = DesignReport(spec)
+    report = DesignReport(spec, notes=[workspace_note(spec)])
     t0 = time.perf_counter()
     deadline = None if time_limit is None else t0 + time_limit
     core = balanced_core(chain)
     if core is None:  # the centre of mass is on the base joint: no spring to add
-        report.designs.append(evaluate(method, chain, (), (), X))
+        report.designs.append(evaluate(method, chain, (), (), X, link_radii=spec.link_radii))
         report.stopped = "the arm is balanced without springs (its centre of mass is on the base joint)"
         report.seconds = time.perf_counter() - t0
         return report
@@ -271,7 +303,7 @@ def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, ma
     else:
         configs = _fewest_first(core, report, rules, executor)
     report.stopped = "every configuration was tried"
-    limits = (spec.max_attachment, spec.max_stiffness)
+    limits = (spec.max_attachment, spec.max_stiffness, spec.link_radii)
 
     def done() -> bool:  # checked before each configuration is counted, as a serial search would
         if max_configurations is not None and report.configurations_tried >= max_configurations:
@@ -311,7 +343,7 @@ def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, ma
 
 def _attempt(core, chain, family, cfg, X, limits, finder, seed, restarts, minimise_force, force_starts):
     """One configuration of :func:`design_arm`: (RankedDesign, None), or (None, why it was rejected)."""
-    max_attachment, max_stiffness = limits
+    max_attachment, max_stiffness, link_radii = limits
     if relaxation_margin(core, cfg) <= 1e-9:
         return None, PROOF + ": 000 Eqs. (39) have no solution with these signs (linear relaxation)"
     try:
@@ -323,7 +355,7 @@ def _attempt(core, chain, family, cfg, X, limits, finder, seed, restarts, minimi
         if minimise_force:
             springs = least_force(core, cfg, springs, finder, seed, restarts, force_starts,
                                   max_extension=max_attachment, max_stiffness=max_stiffness)
-        return evaluate(family, chain, cfg, springs, X), None
+        return evaluate(family, chain, cfg, springs, X, link_radii=link_radii), None
     except (UnbalanceableError, SearchExhaustedError) as err:
         return None, str(err)
 

@@ -10,6 +10,9 @@ Every quantity is a number in SI units or a string "value unit"::
     com = "0.18 m"                   # from the link's proximal joint
     mass = "12 kg"
     joint = "spherical"              # optional; or a revolute axis [0, 0, 1] in the previous link's frame
+    cone = "75 deg"                  # optional, spherical joint: the link within this angle of the previous one
+    # range = ["-90 deg", "120 deg"] # optional, revolute joint: the angles it turns through
+    radius = "30 mm"                 # optional, the link's radius for clearance (default 25 mm)
 
     [payload]                        # optional, at the end link's centre of mass
     mass = "2 kg"
@@ -24,6 +27,10 @@ Every quantity is a number in SI units or a string "value unit"::
 
 Link numbering follows paper 000: the ground is link 1, so an arm file with k
 ``[[link]]`` tables describes n = k + 1 links. n above 8 needs ``allow_large``.
+
+Joint limits (``cone``, ``range``) shape the workspace the designs are judged over (their
+forces, efficiency and clearance: :func:`springlab.design.rank.workspace_poses`); without
+them every link points anywhere, folded poses included.
 """
 
 from __future__ import annotations
@@ -43,8 +50,12 @@ UNITS = {
     "mass": {"kg": 1.0, "g": 1e-3},
     "stiffness": {"N/m": 1.0, "kN/m": 1e3, "N/mm": 1e3},
     "acceleration": {"m/s^2": 1.0, "m/s2": 1.0, "m/s²": 1.0},
+    "angle": {"rad": 1.0, "deg": math.pi / 180, "°": math.pi / 180},
 }
 MAX_LINKS = 8
+
+LINK_RADIUS = 0.025
+"""m: a link's radius where the arm file gives none (a 50 mm tube or casting), for clearance."""
 
 
 def parse_quantity(value, kind: str, where: str) -> float:
@@ -102,6 +113,8 @@ class ArmSpec:
     samples: int = 2000
     seed: int = 0
     source: str = field(default="", compare=False)
+    radius: tuple = ()  # per moving link, m; () for LINK_RADIUS each
+    limits: tuple = ()  # per moving link: None, a cone half-angle (rad) or a (low, high) range (rad); () for none
 
     def __post_init__(self):
         if not isinstance(self.name, str):
@@ -124,12 +137,28 @@ class ArmSpec:
         _checks.memory(f"samples = {samples} workspace poses", 6.0 * samples * self.n * 3, hint="use fewer samples")
         object.__setattr__(self, "samples", samples)
         object.__setattr__(self, "seed", _checks.count("seed", self.seed))
-        self.chain()  # validates r, d, m, g and the joints, naming the link
+        for key in ("radius", "limits"):
+            value = getattr(self, key)
+            if isinstance(value, str) or not hasattr(value, "__len__") or len(value) not in (0, len(self.r)):
+                raise SpringlabError(f"{key} must have one entry per moving link ({len(self.r)}) or none, got {value!r}")
+            object.__setattr__(self, key, tuple(value))
+        for j, rad in enumerate(self.radius, start=2):
+            _checks.positive(f"link {j}: radius", rad, allow_zero=True, unit="m")
+        chain = self.chain()  # validates r, d, m, g and the joints, naming the link
+        if self.limits:
+            from springlab.model.chain import limited_poses
+
+            limited_poses(chain, 1, 0, self.limits)  # validates the limits against the joints
 
     @property
     def n(self) -> int:
         """Links, the ground included (paper 000's n)."""
         return len(self.r) + 1
+
+    @property
+    def link_radii(self) -> tuple:
+        """Each moving link's radius (m): the file's, or :data:`LINK_RADIUS`."""
+        return self.radius or (LINK_RADIUS,) * len(self.r)
 
     def chain(self, *, with_payload: bool = True):
         """The springlab :class:`~springlab.model.chain.Chain` (payload at the end link's COM)."""
@@ -177,14 +206,14 @@ def arm_from_dict(data: dict, *, source: str = "arm", allow_large: bool = False)
                              "combinatorially with n: pass allow_large=True (--allow-large) to try anyway")
     if n < 2:
         raise SpringlabError(f"{source}: need at least one moving link")
-    r, d, m, joints = [], [], [], []
+    r, d, m, joints, radii, joint_limits = [], [], [], [], [], []
     for idx, link in enumerate(links):
         where = f"{source}: link {idx + 2}"
         if not isinstance(link, dict):
             raise SpringlabError(f"{where}: expected a table with length, com, mass")
-        extra = sorted(set(link) - {"length", "com", "mass", "joint"})
+        extra = sorted(set(link) - {"length", "com", "mass", "joint", "cone", "range", "radius"})
         if extra:
-            raise SpringlabError(f"{where}: unknown field(s) {extra} (known: length, com, mass, joint)")
+            raise SpringlabError(f"{where}: unknown field(s) {extra} (known: length, com, mass, joint, cone, range, radius)")
         length = parse_quantity(_field(link, "length", where), "length", f"{where}: length")
         com = parse_quantity(_field(link, "com", where), "length", f"{where}: com")
         mass = parse_quantity(_field(link, "mass", where), "mass", f"{where}: mass")
@@ -203,6 +232,8 @@ def arm_from_dict(data: dict, *, source: str = "arm", allow_large: bool = False)
         d.append(com)
         m.append(mass)
         joints.append(joint)
+        radii.append(None if "radius" not in link else parse_quantity(link["radius"], "length", f"{where}: radius"))
+        joint_limits.append(_limit(link, joint, where))
     g = parse_quantity(data.get("g", 9.81), "acceleration", f"{source}: g")
     if g <= 0:
         raise SpringlabError(f"{source}: g = {g} m/s^2 must be > 0")
@@ -240,10 +271,36 @@ def arm_from_dict(data: dict, *, source: str = "arm", allow_large: bool = False)
         raise SpringlabError(f"{source}: workspace: seed = {seed!r} must be an integer")
     name = data.get("name", Path(source).stem)
     try:
+        radius = () if all(x is None for x in radii) else tuple(LINK_RADIUS if x is None else x for x in radii)
         return ArmSpec(str(name), tuple(r), tuple(d), tuple(m), tuple(joints), g, payload, k_max, reach, samples, seed,
-                       source)
+                       source, radius, () if all(x is None for x in joint_limits) else tuple(joint_limits))
     except SpringlabError as err:
         raise SpringlabError(f"{source}: {err}") from None
+
+
+def _limit(link: dict, joint, where: str):
+    """A link's joint limit from its table: a cone half-angle (rad) for a spherical joint, a range
+    (low, high) in rad for a revolute one, or None."""
+    if "cone" in link and "range" in link:
+        raise SpringlabError(f"{where}: give cone (a spherical joint) or range (a revolute joint), not both")
+    if "cone" in link:
+        if joint != "spherical":
+            raise SpringlabError(f"{where}: cone limits a spherical joint; this joint is revolute: give range = [low, high]")
+        cone = parse_quantity(link["cone"], "angle", f"{where}: cone")
+        if not 0 < cone <= math.pi:
+            raise SpringlabError(f"{where}: cone = {link['cone']!r} must be a half-angle in (0, 180] deg")
+        return cone
+    if "range" in link:
+        if joint == "spherical":
+            raise SpringlabError(f"{where}: range limits a revolute joint; this joint is spherical: give cone = '<angle>'")
+        value = link["range"]
+        if not (isinstance(value, list) and len(value) == 2):
+            raise SpringlabError(f"{where}: range = {value!r}: give [low, high], e.g. ['-90 deg', '90 deg']")
+        lo, hi = (parse_quantity(v, "angle", f"{where}: range") for v in value)
+        if not -math.pi <= lo < hi <= math.pi:
+            raise SpringlabError(f"{where}: range = {value!r} must satisfy -180 deg <= low < high <= 180 deg")
+        return (lo, hi)
+    return None
 
 
 def load_arm(path, *, allow_large: bool = False) -> ArmSpec:

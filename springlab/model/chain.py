@@ -337,3 +337,74 @@ def random_directions(n: int, size: int, rng=None) -> np.ndarray:
     out[:, 0] = UP
     out[:, 1:] = v
     return out
+
+
+def _cap(axis: np.ndarray, half_angle: float, rng) -> np.ndarray:
+    """Unit vectors uniform on the spherical cap of ``half_angle`` (rad) about each row of ``axis`` (N, 3)."""
+    N = axis.shape[0]
+    cos = rng.uniform(np.cos(half_angle), 1.0, N)
+    phi = rng.uniform(0.0, 2 * np.pi, N)
+    helper = np.where(np.abs(axis[:, :1]) < 0.9, np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+    e1 = np.cross(axis, helper)
+    e1 /= np.linalg.norm(e1, axis=1)[:, None]
+    e2 = np.cross(axis, e1)
+    sin = np.sqrt(1.0 - cos**2)
+    return cos[:, None] * axis + sin[:, None] * (np.cos(phi)[:, None] * e1 + np.sin(phi)[:, None] * e2)
+
+
+def bend_angles(X) -> np.ndarray:
+    """The angle (rad) between each link's direction and the previous link's (x_1 = UP for link 2):
+    (N, n - 1), a spherical joint's bend."""
+    X = _checks.real_array("X", X, shape=(None, None, 3))
+    cos = np.einsum("pjk,pjk->pj", X[:, 1:], X[:, :-1])
+    return np.arccos(np.clip(cos, -1.0, 1.0))
+
+
+def limited_poses(chain: Chain, size: int, rng, limits) -> np.ndarray:
+    """Random link directions (N, n, 3) within joint limits, one entry per moving link: None (free),
+    a cone half-angle (rad) for a spherical joint (the link within that angle of the previous link's
+    direction, uniform on the cap), or (low, high) (rad) for a revolute joint (uniform in the range).
+
+    An all-spherical chain is sampled link by link from the base; a chain with revolute joints by
+    joint angles, spherical joints' cones kept by rejection (raises if fewer than one draw in a
+    thousand is kept: the cones are too tight for random angles).
+    """
+    size = _checks.count("size", size, least=1)
+    rng = np.random.default_rng(rng)
+    limits = tuple(limits)
+    if len(limits) != chain.n - 1:
+        raise SpringlabError(f"limits must give one entry per moving link ({chain.n - 1}), got {len(limits)}")
+    for j, lim in enumerate(limits, start=2):
+        spherical = chain.joint(j) == SPHERICAL
+        if lim is None:
+            continue
+        if spherical and not (isinstance(lim, float | int) and 0 < lim <= np.pi):
+            raise SpringlabError(f"joint {j} is spherical: its limit is a cone half-angle in (0, pi] rad, got {lim!r}")
+        if not spherical and not (isinstance(lim, tuple) and len(lim) == 2 and -np.pi <= lim[0] < lim[1] <= np.pi):
+            raise SpringlabError(f"joint {j} is revolute: its limit is a range (low, high) within [-pi, pi] rad, "
+                                 f"low < high, got {lim!r}")
+    _checks.memory(f"{size} poses of a {chain.n}-link chain", 2.0 * size * chain.n * 3, hint="ask for fewer poses")
+    if chain.all_spherical:
+        X = random_directions(chain.n, size, rng)
+        for j, lim in enumerate(limits, start=2):
+            if lim is not None:
+                X[:, j - 1] = _cap(X[:, j - 2], float(lim), rng)
+        return X
+    kept, drawn = [], 0
+    while sum(len(k) for k in kept) < size:
+        angles = chain.random_angles(size, rng)
+        for j, lim in enumerate(limits, start=2):
+            if lim is not None and chain.joint(j) != SPHERICAL:
+                angles[:, j - 2, 0] = rng.uniform(lim[0], lim[1], size)
+        X = chain.directions(angles)
+        bends = bend_angles(X)
+        ok = np.ones(size, dtype=bool)
+        for j, lim in enumerate(limits, start=2):
+            if lim is not None and chain.joint(j) == SPHERICAL:
+                ok &= bends[:, j - 2] <= lim
+        kept.append(X[ok])
+        drawn += size
+        if drawn >= 1000 * size and sum(len(k) for k in kept) < size:
+            raise SpringlabError("the spherical joints' cones are too tight to sample by random joint angles "
+                                 "(fewer than one draw in a thousand falls within them): widen them")
+    return np.concatenate(kept)[:size]

@@ -117,18 +117,20 @@ def _write_sheet(args, spec, chosen, out: Path) -> None:
     X = workspace_poses(spec, chain)
     built = buildable.realise(chain, chosen.springs, X, material=args.material, pulley_radius=args.pulley_radius)
     loss = buildable.balance_loss(chain, built, X)
-    from springlab.design.clearance import LINK_RADIUS, clearance
+    from springlab.design.clearance import clearance
+    from springlab.design.rank import workspace_note
 
-    gaps = clearance(chain, [r.spring for r in built], X, spring_radii=buildable.line_radii(built))
+    gaps = clearance(chain, [r.spring for r in built], X, link_radii=spec.link_radii,
+                     spring_radii=buildable.line_radii(built))
     csv_path, md_path = _sheet_paths(out)
     notes = [f"- {r.spring.label}: {r.kind}" + (f" (no zero-length spring: {r.note})" if r.note else "") for r in built]
     md = (f"# Spring spec sheet: {spec.name}, design {args.pick} ({chosen.label()})\n\n"
-          f"Workspace: {spec.samples} poses (seed {spec.seed}). Lengths in mm, forces in N, stresses in MPa; "
+          f"{workspace_note(spec).replace('workspace', 'Workspace', 1)}. Lengths in mm, forces in N, stresses in MPa; "
           f"a, b locate each end on its link (springlab.model.springs).\n\n{buildable.spec_sheet(built).markdown()}\n\n"
           + "\n".join(notes) + "\n\n## Balance the built springs leave (route 2)\n\n"
           f"Gravity's own largest holding torque (no springs): {loss.gravity:.3g} N m.\n\n{loss.table().markdown()}\n"
-          f"\n## Clearance from the links\n\nOver the same poses, links {LINK_RADIUS * 1e3:g} mm in radius; "
-          "random poses over every direction include folded ones where the links cross each other.\n\n"
+          f"\n## Clearance from the links\n\nOver the same poses ({workspace_note(spec)}); links of radius "
+          f"{', '.join(f'{x * 1e3:g}' for x in spec.link_radii)} mm (links 2..n).\n\n"
           f"{gaps.table().markdown()}\n")
     try:
         csv_path.write_text(buildable.sheet_csv(built))
