@@ -253,3 +253,19 @@ def test_joint_limits_shape_the_workspace_and_crossing_designs_rank_last(tmp_pat
     crossing, clear = report.designs[0], replace(report.designs[0], clearance=0.01, max_force=1e9)
     assert crossing.crosses and not clear.crosses
     assert sorted([crossing, clear], key=rank_key)[0] is clear  # a spring through a link ranks last
+
+
+def test_a_cable_spring_longer_than_its_link_is_flagged():
+    spec = load_arm(PAPER_ARM)
+    chain = spec.chain()
+    X = workspace_poses(spec, chain)[:300]
+    springs = design_arm(spec, method="no auxiliary links", max_designs=1).designs[0].springs
+    built = bd.realise(chain, springs, X)
+    for r in built:
+        if r.spring.i == 1:
+            assert r.room is None and r.fits  # on the base column
+        else:
+            assert r.room == pytest.approx(chain.length(r.spring.i) + r.spring.a)
+            assert r.fits == (r.coil.max_length <= r.room)
+    assert not all(r.fits for r in built)  # the paper-000 arm's link-2 springs outgrow link 2
+    assert "too short" in bd.sheet_csv(built)

@@ -387,6 +387,8 @@ class Realisation:
     :ivar pulley_radius: m (cable kind), None for the zero-length kind
     :ivar lengths: (shortest, longest) distance between the ends over the workspace (m)
     :ivar note: why the zero-length kind was not used (cable kind)
+    :ivar room: m, the length of link i from A back to its proximal joint, along which a cable
+        spring lies (None: the base column, taken as long enough)
     """
 
     spring: Spring
@@ -395,6 +397,12 @@ class Realisation:
     pulley_radius: float | None
     lengths: tuple
     note: str = ""
+    room: float | None = None
+
+    @property
+    def fits(self) -> bool:
+        """False when a cable spring, stretched to its longest, is longer than its room along link i."""
+        return not self.cable or self.room is None or self.coil.max_length <= self.room
 
     @property
     def cable(self) -> bool:
@@ -446,12 +454,16 @@ def realise(chain: Chain, springs, X, *, material: str = "music wire", pulley_ra
             out.append(Realisation(s, "zero-length spring", coil, None, lengths))
             continue
         path, _ = cable_path(chain, s, X, pulley_radius)
-        coil, why_cable = cable_spring(s.k, (float(path.min()), float(path.max())), material)
+        room = None if s.i == 1 else chain.length(s.i) + s.a  # from A back to link i's proximal joint
+        span = (float(path.min()), float(path.max()))
+        coil, why_cable = cable_spring(s.k, span, material, room=room) if room and room > 0 else (None, "")
+        if coil is None:  # none fits the room: the shortest that carries it, flagged (Realisation.fits)
+            coil, why_cable = cable_spring(s.k, span, material)
         if coil is None:
             raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m, {lengths[0]:.3f}-{lengths[1]:.3f} m): no zero-length "
                                  f"spring ({why}) and no cable spring ({why_cable}); try material='stainless 302' "
                                  "or another design")
-        out.append(Realisation(s, "cable over a pulley", coil, pulley_radius, lengths, why))
+        out.append(Realisation(s, "cable over a pulley", coil, pulley_radius, lengths, why, room))
     return out
 
 
@@ -529,7 +541,7 @@ SHEET_COLUMNS = ("spring", "realisation", "material", "wire d (mm)", "mean coil 
                  "index C", "body coils", "active coils", "free length inside hooks (mm)", "initial tension (N)",
                  "windable initial tension (N)", "rate (N/mm)", "longest in service (mm)", "largest force (N)",
                  "stress at largest force (MPa)", "allowable stress (MPa)", "a (mm)", "b (mm)",
-                 "cable offset L0 - Fi/k (mm)", "pulley radius (mm)")
+                 "cable offset L0 - Fi/k (mm)", "pulley radius (mm)", "room along link i (mm)")
 
 
 def spec_sheet(realisations) -> Table:
@@ -545,7 +557,9 @@ def spec_sheet(realisations) -> Table:
                      f"{c.max_force:.1f}", f"{c.stress(c.max_force) / 1e6:.0f}", f"{c.allowable_stress / 1e6:.0f}",
                      f"{r.spring.a * 1e3:.1f}", f"{r.spring.b * 1e3:.1f}",
                      f"{r.cable_offset * 1e3:.1f}" if r.cable else "",
-                     f"{r.pulley_radius * 1e3:.1f}" if r.pulley_radius is not None else ""))
+                     f"{r.pulley_radius * 1e3:.1f}" if r.pulley_radius is not None else "",
+                     "" if not r.cable else "base column" if r.room is None else
+                     f"{r.room * 1e3:.0f}" + ("" if r.fits else " (too short: mount it past the joint)")))
     return Table(list(SHEET_COLUMNS), rows)
 
 
