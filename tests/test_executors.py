@@ -65,6 +65,11 @@ def test_a_process_pool_and_bad_executors():
     serial = rank.design_arm(spec, method="no auxiliary links", max_designs=2, max_configurations=5, restarts=4,
                              force_starts=1)
     _same_report(serial, spread)
+    chain = spec.chain()
+    with ProcessPoolExecutor(2) as pool:
+        spread = ground.fewer_springs(chain, 3, restarts=4, samples=200, executor=pool)
+    serial = ground.fewer_springs(chain, 3, restarts=4, samples=200)
+    assert [(d.configuration, d.springs) for d in spread] == [(d.configuration, d.springs) for d in serial] and serial
     assert map_ordered(None, divmod, [(7, 2), (9, 4)]) == [(3, 1), (2, 1)]
     with pytest.raises(SpringlabError, match="executor"):
         check_executor("four cores")

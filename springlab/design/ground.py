@@ -19,6 +19,7 @@ import numpy as np
 
 from springlab import _checks
 from springlab.design.rank import (
+    ANY_SIGNS,
     RankedDesign,
     design_arm,
     evaluate,
@@ -77,35 +78,42 @@ def any_sign_candidates(n: int, count: int) -> list[tuple[SpringSlot, ...]]:
 
 def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = None, restarts: int = 20,
                   seed: int = 0, samples: int = 2000, progress: bool = False,
-                  minimise_force: bool = True) -> list[RankedDesign]:
+                  minimise_force: bool = True, executor=None) -> list[RankedDesign]:
     """Verified designs with ``count`` springs of any sign pattern (000's criteria treated
     as the heuristics they are), ranked like :func:`springlab.design.rank.design_arm`.
 
     Every set of ``count`` slots that includes S(1,n) (the only spring with an entry
-    (1, n), which gravity's G_1n needs; (+,+) or (-,-)) is screened by the linear
-    relaxation of 000 Eqs. (39) (:func:`springlab.design.solve.relaxation_margin`), then solved
+    (1, n), which gravity's G_1n needs; (+,+) or (-,-)) is screened (:func:`screen`: the
+    exact sign test, then the linear relaxation of 000 Eqs. (39)), then solved
     by least squares (free choices spent on the smallest largest force if
     ``minimise_force``) and verified by route 2 over ``samples`` random poses. The
-    candidates number about C(2 n (n - 1), count - 1): practical to n = 5.
+    candidates number about C(2 n (n - 1), count - 1): practical to n = 5. ``executor``
+    (a concurrent.futures.Executor) runs the screen and the solves as tasks; the result is
+    the serial one.
     """
     from tqdm import tqdm
 
+    from springlab.executors import check_executor, map_ordered
+
     chain = _chain_of(spec_or_chain)
+    executor = check_executor(executor)
     X = random_poses(chain, samples, seed)
-    out = []
     candidates = any_sign_candidates(chain.n, count)
-    candidates = [cfg for cfg, ok in zip(candidates, sign_consistent(chain, candidates), strict=True) if ok]
-    for cfg in tqdm(candidates, disable=not progress, desc=f"{count} springs, all patterns", mininterval=1.0):
-        if relaxation_margin(chain, cfg) <= 1e-9:
-            continue
-        try:
-            springs = find_design(chain, cfg, seed=seed, restarts=restarts, max_extension=max_extension)
-            if minimise_force:
-                springs = minimise_largest_force(chain, cfg, springs, max_extension=max_extension)
-            out.append(evaluate("no auxiliary links, any signs", chain, tuple(sorted(cfg)), springs, X))
-        except (UnbalanceableError, SpringlabError):
-            continue
-    return sorted(out, key=rank_key)
+    passed = [cfg for cfg, ok in zip(candidates, screen(chain, candidates, executor=executor), strict=True) if ok]
+    tasks = [(chain, cfg, X, max_extension, seed, restarts, minimise_force)
+             for cfg in tqdm(passed, disable=not progress, desc=f"{count} springs, all patterns", mininterval=1.0)]
+    return sorted((d for d in map_ordered(executor, _solve_any_signs, tasks) if d is not None), key=rank_key)
+
+
+def _solve_any_signs(chain, cfg, X, max_extension, seed, restarts, minimise_force):
+    """One configuration of :func:`fewer_springs`: its verified design, or None."""
+    try:
+        springs = find_design(chain, cfg, seed=seed, restarts=restarts, max_extension=max_extension)
+        if minimise_force:
+            springs = minimise_largest_force(chain, cfg, springs, max_extension=max_extension)
+        return evaluate(ANY_SIGNS, chain, tuple(sorted(cfg)), springs, X)
+    except (UnbalanceableError, SpringlabError):
+        return None
 
 
 SCREEN_CHUNK = 2000
