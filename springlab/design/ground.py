@@ -124,11 +124,13 @@ def _passing(chain: Chain, candidates) -> list[bool]:
     return [relaxation_margin(chain, cfg) > 1e-9 for cfg in candidates]
 
 
-def screen(chain: Chain, candidates, *, executor=None, progress: bool = False, desc: str = "screen") -> list[bool]:
-    """Per candidate set of springs: True when the linear relaxation of 000 Eqs. (39) admits it
-    (:func:`springlab.design.solve.relaxation_margin`; False is a proof that it cannot balance).
-    The exact sign test (:func:`springlab.design.solve.sign_consistent`) refutes most without a
-    programme; the rest run in tasks of :data:`SCREEN_CHUNK` on ``executor`` (None: here)."""
+def screen_verdicts(chain: Chain, candidates, *, executor=None, progress: bool = False,
+                    desc: str = "screen") -> list[str]:
+    """Per candidate set of springs: 'signs' (refuted by the exact sign test,
+    :func:`springlab.design.solve.sign_consistent`), 'relaxation' (refuted by the linear relaxation
+    of 000 Eqs. (39), :func:`springlab.design.solve.relaxation_margin`) or 'pass'. Both refutations
+    are proofs that the set cannot balance. The programmes run in tasks of :data:`SCREEN_CHUNK`
+    on ``executor`` (None: here)."""
     from tqdm import tqdm
 
     from springlab.executors import check_executor, map_ordered
@@ -144,7 +146,13 @@ def screen(chain: Chain, candidates, *, executor=None, progress: bool = False, d
                        desc=desc, mininterval=1.0):
         out += passed
     verdicts = iter(out)
-    return [bool(ok) and next(verdicts) for ok in allowed]
+    return ["signs" if not ok else "pass" if next(verdicts) else "relaxation" for ok in allowed]
+
+
+def screen(chain: Chain, candidates, *, executor=None, progress: bool = False, desc: str = "screen") -> list[bool]:
+    """Per candidate set of springs: True when the exact sign test and the linear relaxation of
+    000 Eqs. (39) both admit it (:func:`screen_verdicts`; False is a proof that it cannot balance)."""
+    return [v == "pass" for v in screen_verdicts(chain, candidates, executor=executor, progress=progress, desc=desc)]
 
 
 def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False, executor=None) -> tuple[int, int]:

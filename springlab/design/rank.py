@@ -36,7 +36,6 @@ from springlab.design.solve import (
     largest_force_bound,
     minimise_largest_force,
     relaxation_margin,
-    sign_consistent,
 )
 from springlab.energy.geometry import energies, spring_length
 from springlab.errors import SearchExhaustedError, SpringlabError, UnbalanceableError
@@ -366,7 +365,7 @@ def _fewest_first(core: Chain, report: DesignReport, rules, executor=None):
     (paper 000's); a configuration met twice is tried once. Notes what the screen did."""
     import math
 
-    from springlab.design.ground import all_pattern_slots, any_sign_candidates, screen
+    from springlab.design.ground import all_pattern_slots, any_sign_candidates, screen_verdicts
 
     n, count = core.n, core.n - 2
     seen = set()
@@ -378,11 +377,11 @@ def _fewest_first(core: Chain, report: DesignReport, rules, executor=None):
                                 f"more than {SCREEN_BUDGET:,}): fewer than n - 1 springs were not sought")
         else:
             candidates = any_sign_candidates(n, count)
-            signs = int(np.sum(sign_consistent(core, candidates)))
-            passed = [cfg for cfg, ok in zip(candidates, screen(core, candidates, executor=executor), strict=True) if ok]
+            verdicts = screen_verdicts(core, candidates, executor=executor)
+            passed = [cfg for cfg, v in zip(candidates, verdicts, strict=True) if v == "pass"]
             report.notes.append(f"sets of {count} springs of any signs: {len(candidates):,} candidates, "
-                                f"{len(candidates) - signs:,} refuted by their signs, "
-                                f"{signs - len(passed):,} by the linear relaxation (proofs); "
+                                f"{verdicts.count('signs'):,} refuted by their signs, "
+                                f"{verdicts.count('relaxation'):,} by the linear relaxation (proofs); "
                                 f"{len(passed)} left to solve")
             for cfg in passed:
                 seen.add(tuple(sorted(cfg)))
