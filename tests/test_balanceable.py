@@ -69,3 +69,65 @@ def test_the_warm_started_phase_one_gives_the_fresh_solves_value():
         values.append(fresh)
         assert abs(warm([c]) - fresh) <= 1e-9 * max(1.0, fresh)
     assert max(values) > 1e-3 and min(values) < max(values)  # the coefficient matters
+
+
+FORMERLY_UNDECIDED = ["S(1,2)(+,+) S(1,4) S(1,5) S(2,4)(-,-) S(2,5)(+,+) S(2,5)(+,-)",
+                      "S(1,2)(-,-) S(1,4) S(1,5) S(2,4)(-,-) S(2,5)(+,+) S(3,5)(-,-)"]
+
+
+@pytest.mark.parametrize("config", FORMERLY_UNDECIDED)
+def test_the_ratio_bounds_refute_what_the_tightening_cannot(config):
+    # entry (2,4) with (2,3) needs b_S(1,4) above r_4; entries (1,3), (1,4) keep P/A = b below it
+    from springlab.design.feasibility import RATIO_PRECISION, _RatioProgramme
+
+    config = [slot(s) for s in config.split()]
+    for seed in range(3):
+        arm = bal.random_arm(5, seed)
+        assert bal.relaxation_feasible(arm, config) and not bal.tightened_infeasible(arm, config)
+        assert bal.coupling_refuted(arm, config)
+        ratios = _RatioProgramme(arm, config)
+        box = list(ratios.box)  # ratio 1 is b of S(1,4), in the mean link length
+        r4 = arm.r[2] / np.mean(arm.r)
+        assert ratios.lowest(box, 1, RATIO_PRECISION) >= r4 * (1 - 2 * RATIO_PRECISION)
+        assert ratios.highest(box, 1, RATIO_PRECISION) < r4
+    assert bal.is_balanceable(bal.random_arm(5, 0), config) == "no"
+
+
+BALANCEABLE_N5 = ["S(1,3) S(1,5) S(2,4)(+,+) S(2,4)(-,-) S(2,5)(-,-)",
+                  "S(1,2)(+,+) S(1,4) S(1,5) S(2,4)(+,-) S(2,5)(+,+) S(2,5)(+,-)",
+                  "S(1,3) S(1,4) S(1,5) S(2,5)(+,-) S(2,5)(-,-) S(3,4)(+,+)",
+                  "S(1,2)(-,-) S(1,4) S(1,5) S(2,3)(-,-) S(2,4)(-,-) S(2,5)(-,-)"]
+
+
+@pytest.mark.parametrize("config", BALANCEABLE_N5)
+def test_the_ratio_bounds_never_refute_a_balanceable_multiset(config):
+    arm = bal.random_arm(5, 0)
+    config = [slot(s) for s in config.split()]
+    assert bal.confirm(arm, config) is not None  # a design, checked entry by entry
+    assert not bal.coupling_refuted(arm, config)
+
+
+def test_the_ratio_bounds_never_refute_the_papers_example():
+    assert not bal.coupling_refuted(paper.example_arm(), paper.EXAMPLE_CONFIGURATION)
+
+
+def test_counts_in_one_warm_model_give_the_multisets_own_phase_one():
+    from springlab.design.feasibility import _phase_one, _programme, _WarmCounts
+
+    arm = bal.random_arm(5, 2)
+    kinds = sorted(set(bal.alphabet(5)))
+    warm = _WarmCounts(_programme(arm, kinds))
+    rng = np.random.default_rng(0)
+    values = []
+    balanced = [np.array([[slot(x) for x in c.split()].count(k) for k in kinds]) for c in BALANCEABLE_N5]
+    for t in range(30):  # random multisets, and balanceable ones with a random spring added
+        counts = rng.integers(0, 3, len(kinds)) * (rng.random(len(kinds)) < 0.25)
+        if t % 3 == 0:
+            counts = balanced[t % len(balanced)] + (np.arange(len(kinds)) == rng.integers(len(kinds)))
+        if not counts.any():
+            continue
+        cfg = [k for k, c in zip(kinds, counts, strict=True) for _ in range(c)]
+        fresh = _phase_one(_programme(arm, cfg))[0]
+        values.append(fresh)
+        assert abs(warm(counts)[0] - fresh) <= 1e-9 * max(1.0, fresh)
+    assert max(values) > 1e-3 and min(values) <= 1e-9  # both feasible and infeasible multisets met

@@ -203,6 +203,131 @@ def tightened_infeasible(chain: Chain, slots) -> bool:
     return _phase_one(_Programme(prog.items, prog.owner, prog.signs, A, rhs))[0] > 1e-9
 
 
+class _RatioProgramme:
+    """The phase-one programme of a multiset with, per spring spanning three or more joints,
+    bounds on its two ratios a = A/k = P/B and b = B/k = P/A (in the programme's units),
+    written linearly: for b in [l, h], l k <= |B| <= h k and l |A| <= |P| <= h |A| (each
+    quantity carries its sign, so |X| is linear). Every design with the multiset's signs and
+    ratios within the bounds satisfies these rows, so an infeasible programme is a proof that
+    no design has its ratios there. One HiGHS model; a change of bounds changes coefficients
+    and re-solves from the last basis."""
+
+    def __init__(self, chain: Chain, slots):
+        import highspy
+
+        prog = _programme(chain, slots)
+        self.highs = _new_highs()
+        self.highs.passModel(_phase_one_lp(prog))
+        self.widest = (EPS / BOUND, BOUND / EPS)  # |A| / k and the rest: quantities in [EPS, BOUND]
+        sign = prog.signs
+        row = prog.A_eq.shape[0]
+        self.cells: list[list[tuple[int, int, bool, float]]] = []  # per ratio: (row, column, lower?, sign)
+        for P, A, B, K in _long_columns(prog, slots):
+            for pairs in (((A, K), (P, B)), ((B, K), (P, A))):  # a = |A|/k = |P|/|B|, b = |B|/k = |P|/|A|
+                cells = []
+                for num, den in pairs:
+                    for lower, bound in ((True, self.widest[0]), (False, self.widest[1])):
+                        # lower: |num| - l |den| >= 0; upper: h |den| - |num| >= 0
+                        flip = 1.0 if lower else -1.0
+                        self.highs.addRow(0.0, highspy.kHighsInf, 2, np.array([num, den], dtype=np.int32),
+                                          np.array([flip * sign[num], -flip * bound * sign[den]]))
+                        cells.append((row, den, lower, float(sign[den])))
+                        row += 1
+                self.cells.append(cells)
+        self.box = [self.widest] * len(self.cells)
+
+    def feasible(self, box) -> bool:
+        """True when some point of the relaxation has every ratio within ``box``: [(low, high)] per ratio."""
+        for t, bounds in enumerate(box):
+            if bounds != self.box[t]:
+                for row, den, lower, sign in self.cells[t]:
+                    self.highs.changeCoeff(row, den, -bounds[0] * sign if lower else bounds[1] * sign)
+                self.box[t] = bounds
+        import highspy
+
+        for _ in range(2):
+            self.highs.run()
+            status = self.highs.getModelStatus()
+            if status == highspy.HighsModelStatus.kInfeasible:
+                return False
+            if status == highspy.HighsModelStatus.kOptimal:
+                return float(self.highs.getInfo().objective_function_value) <= 1e-9
+            self.highs.clearSolver()  # numerical trouble from the warm basis: once more from scratch
+        return True  # undecided by the solver: claim nothing
+
+    def lowest(self, box, t: int, precision: float) -> float:
+        """A lower bound on ratio t: the largest c (to ``precision`` in log) for which no point of
+        the relaxation has the ratio in [low, c]."""
+        low, high = box[t]
+        trial = list(box)
+        trial[t] = (low, low)
+        if self.feasible(trial):
+            return low
+        while np.log(high / low) > precision:  # [box low, low] infeasible, [box low, high] feasible
+            mid = float(np.sqrt(low * high))
+            trial[t] = (box[t][0], mid)
+            low, high = (low, mid) if self.feasible(trial) else (mid, high)
+        return low
+
+    def highest(self, box, t: int, precision: float) -> float:
+        """An upper bound on ratio t: the smallest c for which no point has the ratio in [c, high]."""
+        low, high = box[t]
+        trial = list(box)
+        trial[t] = (high, high)
+        if self.feasible(trial):
+            return high
+        while np.log(high / low) > precision:  # [low, box high] feasible, [high, box high] infeasible
+            mid = float(np.sqrt(low * high))
+            trial[t] = (mid, box[t][1])
+            low, high = (mid, high) if self.feasible(trial) else (low, mid)
+        return high
+
+
+RATIO_PRECISION = 1e-3
+"""Bisection precision of :func:`coupling_refuted`'s ratio bounds, in log (0.1 %): the bounds
+are proved whatever it is; a finer one only refutes multisets whose infeasibility gap is
+narrower."""
+
+
+def coupling_refuted(chain: Chain, slots, *, passes: int = 10) -> bool:
+    """True when 000 Eqs. (39) with P k = A B provably have no solution with the stated signs,
+    by bounds on the ratios of the springs spanning three or more joints.
+
+    P k = A B says P / A = B / k (= b) and P / B = A / k (= a). Each ratio starts within what
+    the quantities' boxes allow and is tightened in turn: its lower bound rises to the largest c
+    for which the linear programme with the ratio in [low, c] has no solution (bisection in log,
+    :data:`RATIO_PRECISION`), its upper bound likewise; a ratio whose bounds cross is a proof.
+    Passes repeat while some bound moves by more than ten times the precision (at most
+    ``passes``). False proves nothing.
+
+    Example (n = 5, a random arm): S(1,2) S(1,4) S(1,5) S(2,4)(-,-) and two springs on (2,5).
+    Entry (2,4) with (2,3) needs b of S(1,4) above r_4; entries (1,3) and (1,4) give
+    b = P / A = (G_1,4 - r_4 A_S(1,5)) / (G_1,3 / r_3 - A_S(1,5)), below r_4 whenever
+    G_1,4 r_3 < G_1,3 r_4 (every arm with d_4 < r_4).
+    """
+    _checks.instance("chain", chain, Chain)
+    slots = list(as_slots(slots))
+    passes = _checks.count("passes", passes, least=1)
+    if not any(s.j - s.i >= 3 for s in slots):
+        return False  # no coupling binds: the relaxation decides
+    ratios = _RatioProgramme(chain, slots)
+    box = list(ratios.box)
+    if not ratios.feasible(box):
+        return True
+    for _ in range(passes):
+        moved = False
+        for t in range(len(box)):
+            low = ratios.lowest(box, t, RATIO_PRECISION)
+            high = ratios.highest(box, t, RATIO_PRECISION)
+            if low >= high:
+                return True
+            moved |= np.log(box[t][1] / box[t][0]) - np.log(high / low) > 10 * RATIO_PRECISION
+            box[t] = (low, high)
+        if not moved:
+            return False
+    return False
+
+
 _HIGHS = None
 
 
@@ -279,6 +404,28 @@ class _WarmPhaseOne:
         return _solved(self.highs)
 
 
+class _WarmCounts:
+    """:func:`_phase_one` of a multiset over the kinds of ``full`` (one copy of each kind's columns),
+    kept in one HiGHS model: c copies of a kind are one copy with its quantities' sign box scaled
+    by c ([c EPS, c BOUND]: the copies enter the equations only through their sum), an absent kind
+    is fixed at 0, and each call changes the column bounds and solves again from the last basis
+    (about 3 times faster than building and solving the multiset's own programme)."""
+
+    def __init__(self, full: _Programme):
+        self.highs = _new_highs()
+        self.highs.passModel(_phase_one_lp(full))
+        self.owner = full.owner
+        self.lower = np.where(full.signs > 0, EPS, -BOUND)
+        self.upper = np.where(full.signs > 0, BOUND, -EPS)
+        self.columns = np.arange(len(full.owner), dtype=np.int32)
+
+    def __call__(self, counts: np.ndarray):
+        c = np.asarray(counts, dtype=float)[self.owner]
+        self.highs.changeColsBounds(len(self.columns), self.columns, self.lower * c, self.upper * c)
+        self.highs.run()
+        return _solved(self.highs), np.array(self.highs.getSolution().row_dual)
+
+
 def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list[tuple[SpringSlot, ...]]:
     """Every inclusion-minimal multiset over :func:`alphabet` whose linear relaxation of
     000 Eqs. (39) is feasible, fewest springs first, then in label order.
@@ -309,6 +456,7 @@ def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list
     level: set[tuple[int, ...]] = {tuple([0] * len(kinds))}
     found: list[np.ndarray] = []
     nodes = 0
+    warm = _WarmCounts(full)
     while level:
         nxt: set[tuple[int, ...]] = set()
         F = np.array(found) if found else np.zeros((0, len(kinds)), dtype=int)
@@ -328,8 +476,7 @@ def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list
                 e = one_signed[0]
                 wanted = np.flatnonzero(neg[:, e] if has_pos[e] else pos[:, e])
             else:
-                cfg = [kinds[idx] for idx in np.flatnonzero(c) for _ in range(c[idx])]
-                value, y = _phase_one(_programme(chain, cfg, quantities))
+                value, y = warm(c)
                 if value <= 1e-9:
                     found.append(c)
                     F = np.array(found)
@@ -364,8 +511,17 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
     """
     _checks.instance("chain", chain, Chain)
     slots = as_slots(slots)
+    for found in _searches(chain, slots, starts=starts, seed=seed):
+        if found is not None:
+            return found
+    return None
+
+
+def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
+    """:func:`confirm`'s two searches as a generator: yields the springs found, or None, after
+    the vertex starts and again after the fixed-a starts (a caller may try a proof between them)."""
     if not slots:
-        return None  # no spring balances an arm with G_1,j > 0
+        return  # no spring balances an arm with G_1,j > 0
     from scipy.optimize import least_squares, linprog, minimize
 
     from springlab.energy.quadratic import balance_residual, gravity_entries
@@ -460,12 +616,14 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
     for _ in range(starts):
         lp = linprog(rng.normal(size=m), A_eq=prog.A_eq, b_eq=prog.b_eq, bounds=list(zip(lo, hi, strict=True)), method="highs")
         if lp.status != 0:
-            return None
+            return
         found = polish(lp.x)
         if found is not None:
-            return found
+            yield found
+            return
+    yield None
     if not longs:
-        return None
+        return
     base_rows = prog.A_eq.shape[0]
     cells = [(base_rows + 2 * q + t, y) for q, (Pc, Ac, Bc, Kc) in enumerate(longs) for t, y in enumerate((Kc, Bc))]
     warm = _WarmPhaseOne(with_a(np.zeros(len(longs))), cells)  # rows A - a k = 0, P - a B = 0 per long spring
@@ -479,20 +637,27 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
                      b_eq=fixed.b_eq, bounds=list(zip(lo, hi, strict=True)) + [(0, None)] * (2 * rows), method="highs")
         found = polish(lp.x[:m])
         if found is not None:
-            return found
-    return None
+            yield found
+            return
+    yield None
 
 
 def is_balanceable(chain: Chain, slots) -> str:
-    """'yes' (a design was found and checked), 'no' (proved: the linear relaxation, or the
-    relaxation tightened by the coupling's exact consequences, has no solution) or
-    'undecided' (neither)."""
+    """'yes' (a design was found and checked), 'no' (proved: the linear relaxation, the
+    relaxation tightened by the coupling's exact consequences, or the bounds on the
+    coupled ratios (:func:`coupling_refuted`) leave no solution) or 'undecided' (neither).
+    The cheap searches for a design run first, the ratio bounds next, the costly search last."""
     _checks.instance("chain", chain, Chain)
     slots = as_slots(slots)
     slots = list(slots)
     if not relaxation_feasible(chain, slots) or tightened_infeasible(chain, slots):
         return "no"
-    return "yes" if confirm(chain, slots) is not None else "undecided"
+    searches = _searches(chain, slots)
+    if next(searches, None) is not None:  # the vertex starts: most balanceable multisets end here
+        return "yes"
+    if coupling_refuted(chain, slots):
+        return "no"
+    return "yes" if any(found is not None for found in searches) else "undecided"
 
 
 def random_arm(n: int, rng) -> Chain:
@@ -551,10 +716,12 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
     """Test R1-R6 both ways on ``arms`` random n-link arms (:func:`random_arm`).
 
     On the first arm: the relaxation-minimal multisets (:func:`minimal_relaxed_multisets`),
-    each confirmed by a design, refuted by :func:`tightened_infeasible`, or undecided; the
-    rules' configurations (:func:`springlab.design.rules.enumerate_configurations`), each
-    decided (:func:`is_balanceable`) with both minimality notions. On every arm the
-    relaxation-minimal lists and their refutations must agree (``same_on_every_arm``).
+    each confirmed by a design, refuted (:func:`tightened_infeasible`, :func:`coupling_refuted`),
+    or undecided (:func:`is_balanceable`); the rules' configurations
+    (:func:`springlab.design.rules.enumerate_configurations`), each decided likewise with both
+    minimality notions. On every arm the relaxation-minimal lists and their refutations by
+    :func:`tightened_infeasible` must agree, and every multiset refuted on the first arm must be
+    refuted on the others (``same_on_every_arm``).
 
     A balanceable multiset that contains a refuted one is not relaxation-minimal and is not
     enumerated: with refutations the minimal count is a lower bound (:attr:`exact`).
@@ -585,15 +752,7 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
 
     minimal, refuted, undecided = [], [], []
     for cfg in tqdm(first_relaxed, disable=not progress, desc=f"n = {n}, minimal multisets", mininterval=2.0):
-        if tightened_infeasible(first, cfg):
-            refuted.append(cfg)
-            decided[tuple(sorted(cfg))] = "no"
-        elif confirm(first, cfg) is not None:
-            minimal.append(cfg)
-            decided[tuple(sorted(cfg))] = "yes"
-        else:
-            undecided.append(cfg)
-            decided[tuple(sorted(cfg))] = "undecided"
+        {"yes": minimal, "no": refuted, "undecided": undecided}[decide(cfg)].append(cfg)
     admitted = enumerate_configurations(n)
     status, single, inclusion = {}, 0, 0
     for cfg in tqdm(admitted, disable=not progress, desc=f"n = {n}, R1-R6 configurations", mininterval=2.0):
@@ -606,7 +765,8 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
         if any(sorted(cfg) == sorted(m) for m in minimal):
             inclusion += 1
     rejected = {_label(cfg): [str(x) for x in rule_violations(n, cfg)] for cfg in minimal if rule_violations(n, cfg)}
-    same = all(sig == signature[0] for sig in signature[1:])
+    same = all(sig == signature[0] for sig in signature[1:]) and all(
+        tightened_infeasible(c, cfg) or coupling_refuted(c, cfg) for c in chains[1:] for cfg in refuted)
     return RulesAgainstPhysics(n, arms, minimal, refuted, undecided, admitted, status, single, inclusion,
                                rejected, same)
 
