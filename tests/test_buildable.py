@@ -244,7 +244,7 @@ def test_joint_limits_shape_the_workspace_and_crossing_designs_rank_last(tmp_pat
     assert angles[:, 0].max() <= 45 + 1e-9  # planar: the bend is the joint angle's size
     for bad, match in (({"cone": "60 deg", "joint": [0, 0, 1]}, "cone limits a spherical joint"),
                        ({"range": ["0 deg", "10 deg"]}, "range limits a revolute joint"),
-                       ({"cone": "200 deg"}, "half-angle"), ({"cone": "60 kg"}, "unknown unit"),
+                       ({"cone": "200 deg"}, "half-angle"), ({"cone": "60 kg"}, "is a mass, not an angle"),
                        ({"joint": [0, 0, 1], "range": ["10 deg", "0 deg"]}, "low < high")):
         with pytest.raises(SpringlabError, match=match):
             arm_from_dict({"link": [link | bad, link]})

@@ -169,7 +169,7 @@ CASES = {
     "spec name": (lambda: spec(name=None), SpringlabError, "name"),
     "file samples one": (lambda: arm_from_dict(arm_file(workspace={"samples": 1})), SpringlabError, "samples"),
     "file samples float": (lambda: arm_from_dict(arm_file(workspace={"samples": 2.5})), SpringlabError, "samples"),
-    "file unit": (lambda: arm_from_dict(arm_file(link_length="30 furlongs")), SpringlabError, "link 2: length"),
+    "file unit": (lambda: arm_from_dict(arm_file(link_length="30 smoots")), SpringlabError, "link 2: length"),
     "file unit of wrong kind": (lambda: arm_from_dict(arm_file(link_mass="2 m")), SpringlabError, "link 2: mass"),
     "file missing mass": (lambda: arm_from_dict({"link": [{"length": 0.3, "com": 0.1}]}), SpringlabError, "mass"),
     "file extra field": (lambda: arm_from_dict(arm_file(colour="red")), SpringlabError, "colour"),

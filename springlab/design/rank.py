@@ -168,6 +168,33 @@ class DesignReport:
                       for rank, d in enumerate(self.designs, start=1)])
 
 
+    def csv(self) -> str:
+        """Every ranked design as CSV for a spreadsheet: one row a design (rank, family, largest
+        force N, clearance m, sum of k N/m, efficiency, energy variation), then one column group
+        per spring (slot, pattern, a m, b m, k N/m), empty where a design has fewer springs.
+        Numbers at full precision."""
+        import csv
+        import io
+
+        width = max((d.spring_count for d in self.designs), default=0)
+        head = ["rank", "springs", "family", "configuration", "max_force_N", "clearance_m", "stiffness_sum_N_per_m",
+                "efficiency", "energy_variation"]
+        for idx in range(1, width + 1):
+            head += [f"spring{idx}_slot", f"spring{idx}_pattern", f"spring{idx}_a_m", f"spring{idx}_b_m",
+                     f"spring{idx}_k_N_per_m"]
+        out = io.StringIO()
+        writer = csv.writer(out, lineterminator="\n")
+        writer.writerow(head)
+        for rank, d in enumerate(self.designs, start=1):
+            row = [rank, d.spring_count, d.method, d.label(), repr(d.max_force),
+                   repr(d.clearance) if np.isfinite(d.clearance) else "", repr(d.stiffness_sum), repr(d.efficiency),
+                   repr(d.energy_variation)]
+            for sp in d.springs:
+                row += [sp.label, sp.pattern, repr(sp.a), repr(sp.b), repr(sp.k)]
+            writer.writerow(row + [""] * (len(head) - len(row)))
+        return out.getvalue()
+
+
 def _reason_kind(why: str) -> str:
     return re.sub(r"S\(\d+,\d+\)(\([+-],[+-]\))?|[-+]?\d[\d.e+-]*", "#", why)
 

@@ -45,33 +45,74 @@ from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.tables import Table
 
-UNITS = {
-    "length": {"m": 1.0, "cm": 1e-2, "mm": 1e-3},
-    "mass": {"kg": 1.0, "g": 1e-3},
-    "stiffness": {"N/m": 1.0, "kN/m": 1e3, "N/mm": 1e3},
-    "acceleration": {"m/s^2": 1.0, "m/s2": 1.0, "m/s²": 1.0},
-    "angle": {"rad": 1.0, "deg": math.pi / 180, "°": math.pi / 180},
+KINDS = {  # kind: (pint dimensionality, SI unit, units to suggest)
+    "length": ("[length]", "m", "m, mm, in"),
+    "mass": ("[mass]", "kg", "kg, g, lb"),
+    "stiffness": ("[mass] / [time] ** 2", "N/m", "N/m, N/mm, lbf/in"),
+    "acceleration": ("[length] / [time] ** 2", "m/s^2", "m/s^2, g0"),
+    "angle": ("", "rad", "deg, rad"),
 }
+"""The quantities an arm file holds. A string's unit is read by pint, so any unit pint knows of the
+right dimension is accepted ('16 in', '2.2 lbf/in', '1 g0'); a bare number is SI."""
 MAX_LINKS = 8
 
 LINK_RADIUS = 0.025
 """m: a link's radius where the arm file gives none (a 50 mm tube or casting), for clearance."""
 
 
+_UNITS = None
+
+
+def unit_registry():
+    """pint's unit registry, made on first use (about 0.3 s; later runs read pint's cache), so that
+    an arm file of bare SI numbers, and the CLI's start, do not pay for it."""
+    global _UNITS
+    if _UNITS is None:
+        import pint
+
+        try:
+            _UNITS = pint.UnitRegistry(cache_folder=":auto:")
+        except OSError:  # no writable cache folder: parse the definitions each time
+            _UNITS = pint.UnitRegistry()
+    return _UNITS
+
+
+_OTHER_KINDS = {"force": "[mass] * [length] / [time] ** 2", "speed": "[length] / [time]", "time": "[time]",
+                "torque or energy": "[mass] * [length] ** 2 / [time] ** 2"}
+
+
+def _article(word: str) -> str:
+    return f"an {word}" if word[0] in "aeiou" else f"a {word}"
+
+
+def _kind_of(dimensionality) -> str:
+    """'a length', 'a force', ... for a pint dimensionality, or its pint spelling."""
+    ureg = unit_registry()
+    if dimensionality == ureg.Quantity(1).dimensionality:
+        return "a number without dimension"
+    for name, dim in [(k, v[0]) for k, v in KINDS.items() if v[0]] + list(_OTHER_KINDS.items()):
+        if dimensionality == ureg.get_dimensionality(dim):
+            return _article(name)
+    return f"a quantity of dimension {dimensionality}"
+
+
 def parse_quantity(value, kind: str, where: str) -> float:
-    """A number (SI) or a string "value unit" of ``kind`` ('length', 'mass', 'stiffness',
-    'acceleration') in SI units. ``where`` names the field in error messages.
+    """A number (SI) or a string "value unit" of ``kind`` (a key of :data:`KINDS`: 'length' m,
+    'mass' kg, 'stiffness' N/m, 'acceleration' m/s^2, 'angle' rad), returned in SI units.
+    The unit is read by pint; its dimension must match ``kind``. ``where`` names the field in
+    error messages.
 
     >>> parse_quantity("400 mm", "length", "link 2: length")
     0.4
     >>> parse_quantity("20 kN/m", "stiffness", "limits: max_stiffness")
     20000.0
     """
-    if kind not in UNITS:
-        raise SpringlabError(f"kind must be one of {tuple(UNITS)}, got {kind!r}")
-    units = UNITS[kind]
+    if kind not in KINDS:
+        raise SpringlabError(f"kind must be one of {tuple(KINDS)}, got {kind!r}")
+    dim, si, suggest = KINDS[kind]
+    example = f"'1.5 {suggest.split(', ')[0]}'"
     if isinstance(value, bool):
-        raise SpringlabError(f"{where} = {value!r}: expected a number or a string like '1.5 {next(iter(units))}'")
+        raise SpringlabError(f"{where} = {value!r}: expected a number or a string like {example}")
     if isinstance(value, int | float):
         try:
             number = float(value)
@@ -80,17 +121,36 @@ def parse_quantity(value, kind: str, where: str) -> float:
     elif isinstance(value, str):
         match = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\s\d].*?)?\s*", value)
         if not match:
-            raise SpringlabError(f"{where} = {value!r} does not parse: write a number and a unit, e.g. '1.5 {next(iter(units))}'")
+            raise SpringlabError(f"{where} = {value!r} does not parse: write a number and a unit, e.g. {example}")
         number, unit = float(match.group(1)), match.group(2)
         if unit is not None:
-            if unit not in units:
-                raise SpringlabError(f"{where} = {value!r}: unknown unit {unit!r} for a {kind} (use {', '.join(units)})")
-            number *= units[unit]
+            number = _convert(number, unit, kind, where, value)
     else:
-        raise SpringlabError(f"{where} = {value!r}: expected a number or a string like '1.5 {next(iter(units))}'")
+        raise SpringlabError(f"{where} = {value!r}: expected a number or a string like {example}")
     if not math.isfinite(number):
         raise SpringlabError(f"{where} = {value!r} is not finite")
     return number
+
+
+def _convert(number: float, unit: str, kind: str, where: str, value: str) -> float:
+    """``number`` ``unit`` in the SI unit of ``kind``, by pint."""
+    import pint
+
+    ureg = unit_registry()
+    dim, si, suggest = KINDS[kind]
+    spelled = unit.replace("²", "^2").replace("³", "^3").replace("°", "deg")
+    try:
+        parsed = ureg.parse_units(spelled)
+    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError, AttributeError, TypeError,
+            ValueError, SyntaxError, KeyError, AssertionError) as err:
+        name = getattr(err, "unit_names", None) or unit
+        name = name[0] if isinstance(name, list | tuple) and name else name
+        raise SpringlabError(f"{where} = {value!r}: unknown unit {name!r} for a {kind} (use e.g. {suggest})") from None
+    wanted = ureg.get_dimensionality(dim) if dim else ureg.Quantity(1).dimensionality
+    if parsed.dimensionality != wanted or (kind == "angle" and ureg.get_root_units(parsed)[1] != ureg.radian):
+        raise SpringlabError(f"{where} = {value!r} is {_kind_of(parsed.dimensionality)}, not {_article(kind)}: "
+                             f"use a unit such as {suggest}")
+    return float(ureg.Quantity(number, parsed).to(si).magnitude)
 
 
 @dataclass(frozen=True)

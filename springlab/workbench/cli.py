@@ -4,7 +4,8 @@ Prints the ranked designs of :func:`springlab.design.rank.design_arm` as a table
 and writes the chosen one (rank 1 unless ``--pick``) as JSON. With ``--sheet`` it also
 realises the chosen design's springs (:mod:`springlab.design.buildable`) and writes their
 spec sheet beside the JSON, as CSV (``<name>.sheet.csv``) and Markdown (``<name>.sheet.md``,
-with the balance the built springs leave).
+with the balance the built springs leave). With ``--csv ranked.csv`` it writes every ranked
+design, one row each, for a spreadsheet.
 
 Every argument, the arm file and the output path are checked before the search
 starts. An error prints one line, ``springlab: <what is wrong and what to do>``,
@@ -70,6 +71,8 @@ def _design(args) -> int:
     if args.sheet:
         for path in _sheet_paths(out):
             _writable(path, "--sheet")
+    if args.csv:
+        _writable(Path(args.csv), "--csv")
     report = design_arm(spec, method=args.method, max_designs=args.max_designs,
                         max_configurations=args.max_configurations, seed=args.seed, progress=not args.quiet,
                         time_limit=args.time_limit)
@@ -89,6 +92,12 @@ def _design(args) -> int:
             print("  raise --time-limit, or try --method 'ground springs' (one design for any n)", file=sys.stderr)
         return 1
     print(report.table())
+    if args.csv:
+        try:
+            Path(args.csv).write_text(report.csv())
+        except OSError as err:
+            raise SpringlabError(f"--csv {args.csv} cannot be written ({err.strerror})") from None
+        print(f"\nevery ranked design written to {args.csv}")
     if args.pick > len(report.designs):
         raise SpringlabError(f"--pick = {args.pick} but only {len(report.designs)} designs were found: "
                              f"pick one of 1..{len(report.designs)}")
@@ -156,6 +165,7 @@ def main(argv=None) -> int:
     p.add_argument("--seed", type=int, default=0, help="seed of the random starts (default 0)")
     p.add_argument("--time-limit", type=float, default=TIME_LIMIT,
                    help=f"stop the search after this many seconds (default {TIME_LIMIT:g})")
+    p.add_argument("--csv", help="also write every ranked design to this CSV file (one row a design)")
     p.add_argument("--sheet", action="store_true",
                    help="also write the built springs' spec sheet beside the JSON (.sheet.csv, .sheet.md)")
     p.add_argument("--material", default="music wire", choices=("music wire", "stainless 302"),
