@@ -85,7 +85,7 @@ def test_large_arm_with_the_flag_and_bad_files(tmp_path):
     bad.write_text("name = 'x'\n[[link]\n")
     with pytest.raises(SpringlabError, match="not valid TOML"):
         load_arm(bad)
-    with pytest.raises(SpringlabError, match=r"\.toml or \.json"):
+    with pytest.raises(SpringlabError, match=r"\.toml, \.json or \.urdf"):
         load_arm(tmp_path / "arm.yaml") if (tmp_path / "arm.yaml").write_text("x") else None
     with pytest.raises(SpringlabError, match="does not exist"):
         load_arm(tmp_path / "missing.toml")

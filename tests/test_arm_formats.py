@@ -87,3 +87,113 @@ def test_the_cli_starts_in_under_a_second_of_units():
     subprocess.run([sys.executable, "-c", code], check=True, capture_output=True)  # fills pint's cache
     seconds = float(subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout)
     assert seconds < 1.0
+
+
+URDF = (ARMS / "example_arm.urdf").read_text()
+
+
+def test_the_example_urdf_and_its_toml_twin_give_the_same_chain_and_best_design():
+    a, b = load_arm(ARMS / "example_arm.urdf"), load_arm(ARMS / "example_arm.toml")
+    for key in ("r", "d", "m"):
+        assert np.abs(np.subtract(getattr(a, key), getattr(b, key))).max() <= 1e-12
+    assert a.joints == b.joints and a.limits == b.limits and a.g == b.g
+    assert any("not turned into a cone" in note for note in a.notes)  # the wrist's limits
+    da, db = (design_arm(s, max_designs=1).designs[0] for s in (a, b))
+    assert da.configuration == db.configuration and da.max_force == pytest.approx(db.max_force, rel=1e-6)
+    # a URDF whose arm stands along +y (a y-up export) gives the same chain with --up 0,1,0
+    y_up = URDF.replace('<origin xyz="0 0 0.10" rpy="0 0 0"/>', '<origin xyz="0 0 0.10" rpy="-1.5707963267948966 0 0"/>')
+    from springlab.model.armfile import _from_urdf
+
+    c = _from_urdf(y_up, "y_up.urdf", False, [0, 1, 0])
+    assert np.abs(np.subtract(c.r, b.r)).max() <= 1e-12 and np.abs(np.subtract(c.d, b.d)).max() <= 1e-12
+    assert np.allclose(c.joints[0], (1, 0, 0), atol=1e-12)  # the base joint about up
+    assert np.allclose(c.joints[1], c.joints[2], atol=1e-12) and abs(c.joints[1][0]) < 1e-12  # parallel, level
+    with pytest.raises(SpringlabError, match="same angle"):  # the default up leaves this arm lying down
+        _from_urdf(y_up, "y_up.urdf", False, None)
+
+
+def _revolute_arm(offset_mm: float) -> str:
+    """A three-link arm on horizontal axes whose forearm's centre of mass is offset_mm off its line."""
+    link = ('<link name="{n}"><inertial><origin xyz="{x} 0 {z}"/><mass value="{m}"/>'
+            '<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>')
+    joint = ('<joint name="{n}" type="revolute"><parent link="{p}"/><child link="{c}"/><origin xyz="0 0 {z}"/>'
+             '<axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="1" velocity="1"/></joint>')
+    return ('<robot name="offset arm"><link name="base"/>'
+            + joint.format(n="j2", p="base", c="l2", z=0.1) + link.format(n="l2", x=0, z=0.15, m=3.0)
+            + joint.format(n="j3", p="l2", c="l3", z=0.4) + link.format(n="l3", x=offset_mm / 1e3, z=0.12, m=2.0)
+            + joint.format(n="j4", p="l3", c="l4", z=0.3) + link.format(n="l4", x=0, z=0.05, m=0.5)
+            + '<joint name="tool" type="fixed"><parent link="l4"/><child link="tool0"/><origin xyz="0 0 0.1"/></joint>'
+            + '<link name="tool0"/></robot>')
+
+
+def test_a_centre_of_mass_off_the_line_is_refused_with_its_offset():
+    from springlab.model.armfile import _from_urdf
+
+    with pytest.raises(SpringlabError, match=r"link 3 \(after joint\(s\) 'j3'\).* 20\.0 mm off the line.*paper 001"):
+        _from_urdf(_revolute_arm(20.0), "off.urdf", False, None)
+
+
+def test_a_small_offset_is_projected_and_its_balance_error_confirmed_by_the_urdfs_own_kinematics():
+    import re
+
+    from springlab.design.rank import workspace_angles
+    from springlab.model.armfile import _from_urdf
+
+    spec = _from_urdf(_revolute_arm(3.0), "small.urdf", False, None)  # 3 mm on a 300 mm forearm: 1 %
+    assert spec.com_offsets[1] == pytest.approx((0.0, 0.0, -0.003), abs=1e-12)  # URDF x is springlab -z
+    report = design_arm(spec, method="ground springs", max_designs=1)
+    share = float(re.search(r"varying by ([\d.]+)% of gravity's range", report.notes[-1]).group(1)) / 100
+    # independent: the URDF's own forward kinematics (z up), every joint turning about y by q = theta
+    chain = spec.chain()
+    angles = workspace_angles(spec, chain)
+    X, q = chain.directions(angles), angles[:, :, 0]
+
+    def rot_y(t):
+        c, s = np.cos(t), np.sin(t)
+        return np.array([[c, np.zeros_like(t), s], [np.zeros_like(t), np.ones_like(t), np.zeros_like(t)],
+                         [-s, np.zeros_like(t), c]]).transpose(2, 0, 1)
+
+    R, p, height = np.broadcast_to(np.eye(3), (len(q), 3, 3)), np.zeros((len(q), 3)), 0.0
+    for k, (z, com, mass) in enumerate([(0.1, (0, 0, 0.15), 3.0), (0.4, (0.003, 0, 0.12), 2.0), (0.3, (0, 0, 0.05), 0.5)]):
+        p = p + R @ np.array([0, 0, z])
+        R = R @ rot_y(q[:, k])
+        height = height + mass * (p + R @ np.array(com))[:, 2]
+    gravity = chain.g * height
+    springs = report.designs[0].springs
+    total = gravity + geometry.spring_energy(chain, springs, X)
+    assert np.ptp(total) / np.ptp(gravity) == pytest.approx(share, abs=1e-4)  # the note, to its rounding
+    assert share > 1e-3  # the offset costs something ...
+    projected = geometry.total_energy(chain, springs, X)
+    assert np.ptp(projected) < 1e-8 * np.ptp(gravity)  # ... and nothing on the projected arm
+
+
+@pytest.mark.parametrize("edit, match", [
+    (lambda t: t.replace('type="revolute">\n    <parent link="column"/>', 'type="prismatic">\n    <parent link="column"/>'),
+     r"joint 'shoulder' is prismatic"),
+    (lambda t: t.replace('<link name="tool0"/>', '<link name="tool0"/><joint name="extra" type="revolute"><parent link='
+                         '"upper_arm"/><child link="gripper"/><axis xyz="0 1 0"/></joint><link name="gripper"/>'),
+     r"link 'upper_arm' branches into joints 'elbow', 'extra'"),
+    (lambda t: t.replace('<link name="tool0"/>', '<link name="tool0"/><joint name="loop" type="fixed"><parent link='
+                         '"tool0"/><child link="column"/></joint>'), r"link 'column' is the child of joints .*closed loop"),
+    (lambda t: t.replace('<link name="hand">\n    <inertial>', '<link name="hand">\n    <visual>').replace(
+        '<inertia ixx="0.002" ixy="0" ixz="0" iyy="0.002" iyz="0" izz="0.001"/>\n    </inertial>',
+        '<inertia ixx="0.002" ixy="0" ixz="0" iyy="0.002" iyz="0" izz="0.001"/>\n    </visual>'),
+     r"link 5 \(URDF links .*'hand', 'tool0', after joint\(s\) 'wrist_1'.*has no mass: give its <inertial>"),
+    (lambda t: t.replace('<mass value="3.0"/>', '<mass/>'), r"link 'upper_arm': <inertial> has no <mass value"),
+    (lambda t: "<robot><link name='a'/>", r"not valid XML"),
+    (lambda t: "<sdf version='1.6'/>", r"not a URDF file \(its root element is <sdf>"),
+])
+def test_bad_urdfs_are_refused_naming_the_element(edit, match):
+    from springlab.model.armfile import _from_urdf
+
+    with pytest.raises(SpringlabError, match=match):
+        _from_urdf(edit(URDF), "bad.urdf", False, None)
+
+
+def test_cli_designs_a_urdf(tmp_path, capsys):
+    code = main(["design", str(ARMS / "example_arm.urdf"), "--json", str(tmp_path / "d.json"), "--method",
+                 "ground springs", "--quiet"])
+    assert code == 0, capsys.readouterr().err
+    assert "not turned into a cone" in capsys.readouterr().out
+    code = main(["design", str(ARMS / "example_arm.urdf"), "--up", "0,1", "--quiet"])
+    assert code == 2 and "--up = '0,1'" in capsys.readouterr().err

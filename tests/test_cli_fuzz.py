@@ -135,7 +135,7 @@ def test_bad_command_lines_exit_2_with_one_line(tmp_path, args, fragment):
     (lambda p: p, "is not a file"),
     (lambda p: p / "missing.toml", "does not exist"),
     (lambda p: (p / "arm.toml").write_bytes(b"\xff\xfe\x00binary") and p / "arm.toml", "not a text file"),
-    (lambda p: (p / "arm.yaml").write_text("link: []") and p / "arm.yaml", "arm files are .toml or .json"),
+    (lambda p: (p / "arm.yaml").write_text("link: []") and p / "arm.yaml", "arm files are .toml, .json or .urdf"),
     (lambda p: (p / "arm.toml").write_text("[[link]]\nlength = ") and p / "arm.toml", "not valid TOML"),
 ])
 def test_bad_arm_paths_exit_2_with_one_line(tmp_path, make, fragment, capsys):

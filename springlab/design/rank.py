@@ -305,7 +305,7 @@ def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, ma
     finder = finder or find_design
     chain = spec.chain()
     X = workspace_poses(spec, chain)
-    report = DesignReport(spec, notes=[workspace_note(spec)])
+    report = DesignReport(spec, notes=[workspace_note(spec), *spec.notes])
     t0 = time.perf_counter()
     deadline = None if time_limit is None else t0 + time_limit
     core = balanced_core(chain)
@@ -363,8 +363,44 @@ def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, ma
         report.stopped = f"the time limit of {time_limit:g} s was reached"
     bar.close()
     report.designs.sort(key=rank_key)
+    if spec.com_offsets and report.designs:
+        report.notes.append(offset_note(spec, chain, report.designs[0].springs))
     report.seconds = time.perf_counter() - t0
     return report
+
+
+def workspace_angles(spec: ArmSpec, chain: Chain) -> np.ndarray:
+    """Joint angles (N, n-1, 3), rad: the arm file's ``samples`` random poses (seed ``seed``),
+    each revolute joint uniform in its range where the file gives one (a spherical joint's cone
+    is not applied). Angles, unlike link directions, fix each link's spin about its own line."""
+    _checks.instance("spec", spec, ArmSpec, "ArmSpec (load_arm(path))")
+    _checks.instance("chain", chain, Chain, "springlab Chain (spec.chain())")
+    rng = _checks.rng("seed", spec.seed)
+    angles = chain.random_angles(spec.samples, rng)
+    for j, lim in enumerate(spec.limits, start=2):
+        if isinstance(lim, tuple):
+            angles[:, j - 2, 0] = rng.uniform(lim[0], lim[1], spec.samples)
+    return angles
+
+
+def offset_note(spec: ArmSpec, chain: Chain, springs) -> str:
+    """What projecting the centres of mass onto the link lines (``spec.com_offsets``) costs a
+    design, by route 2: the total energy's variation with the true centres
+    (:func:`springlab.energy.geometry.com_offset_energy`) over :func:`workspace_angles`, relative
+    to gravity's range."""
+    from springlab.energy import geometry
+
+    _checks.instance("spec", spec, ArmSpec, "ArmSpec (load_arm(path))")
+    _checks.instance("chain", chain, Chain, "springlab Chain (spec.chain())")
+    springs = check_springs(chain, springs)
+    angles = workspace_angles(spec, chain)
+    X = chain.directions(angles)
+    gravity = geometry.gravity_energy(chain, X) + geometry.com_offset_energy(chain, spec.com_offsets, angles)
+    share = float(np.ptp(gravity + geometry.spring_energy(chain, springs, X)) / np.ptp(gravity))
+    return (f"with the true centres of mass (off the lines by up to "
+            f"{max(float(np.linalg.norm(o)) for o in spec.com_offsets) * 1e3:.2f} mm), the best design leaves "
+            f"the total energy varying by {share:.2%} of gravity's range over {spec.samples} poses (route 2)")
+
 
 
 def _attempt(core, chain, family, cfg, X, limits, finder, seed, restarts, minimise_force, force_starts):

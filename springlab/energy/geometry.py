@@ -121,6 +121,20 @@ def energies(chain: Chain, springs, X, *, chunk: int = DEFAULT_CHUNK) -> dict[st
     return {"gravity": gravity, "springs": elastic, "total": gravity + elastic}
 
 
+def com_offset_energy(chain: Chain, offsets, poses) -> np.ndarray:
+    """Gravity energy (J) at each pose of centres of mass off the link lines, beyond what
+    :func:`gravity_energy` counts: sum_j m_j g (R_j delta_j) . UP, ndarray(N,).
+
+    :param offsets: per moving link, the COM's offset from its line in the link's frame (m), (n-1, 3)
+    :param poses: joint angles (N, n-1, 3) or, for an all-spherical chain, directions (N, n, 3)
+        (then each link's spin about its own axis is :func:`frames_from_directions`' choice)
+    """
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
+    delta = _checks.real_array("offsets", offsets, shape=(chain.n - 1, 3))
+    R = chain.pose_frames(poses)
+    return chain.g * np.einsum("j,nji,ji->n", np.asarray(chain.m), R[:, 1:, 0, :], delta)  # UP . R d = R[0, :] . d
+
+
 def rotation_order_spread(chain: Chain, springs, angles) -> dict[str, float]:
     """How much each energy depends on the order of a joint's three turns: the largest
     |E_order - E_xyz| (J) over the six orders (:data:`springlab.model.rotations.ORDERS`) and

@@ -175,6 +175,8 @@ class ArmSpec:
     source: str = field(default="", compare=False)
     radius: tuple = ()  # per moving link, m; () for LINK_RADIUS each
     limits: tuple = ()  # per moving link: None, a cone half-angle (rad) or a (low, high) range (rad); () for none
+    com_offsets: tuple = ()  # per moving link: its COM's offset from the line, (3,) in its frame (m), projected; () none
+    notes: tuple = field(default=(), compare=False)  # what reading the file assumed (a URDF's import)
 
     def __post_init__(self):
         if not isinstance(self.name, str):
@@ -197,7 +199,7 @@ class ArmSpec:
         _checks.memory(f"samples = {samples} workspace poses", 6.0 * samples * self.n * 3, hint="use fewer samples")
         object.__setattr__(self, "samples", samples)
         object.__setattr__(self, "seed", _checks.count("seed", self.seed))
-        for key in ("radius", "limits"):
+        for key in ("radius", "limits", "com_offsets"):
             value = getattr(self, key)
             if isinstance(value, str) or not hasattr(value, "__len__") or len(value) not in (0, len(self.r)):
                 raise SpringlabError(f"{key} must have one entry per moving link ({len(self.r)}) or none, got {value!r}")
@@ -363,8 +365,10 @@ def _limit(link: dict, joint, where: str):
     return None
 
 
-def load_arm(path, *, allow_large: bool = False) -> ArmSpec:
-    """Read an arm file (.toml or .json) into an :class:`ArmSpec`."""
+def load_arm(path, *, allow_large: bool = False, up=None) -> ArmSpec:
+    """Read an arm file (.toml or .json, or a URDF robot description, .urdf: see
+    :mod:`springlab.model.urdf`) into an :class:`ArmSpec`. ``up``: a URDF's up direction in its
+    root link's frame (default +z, against URDF's gravity)."""
     if not isinstance(path, str | Path):
         raise SpringlabError(f"arm file must be a path, got {path!r}")
     path = Path(path)
@@ -372,14 +376,18 @@ def load_arm(path, *, allow_large: bool = False) -> ArmSpec:
         raise SpringlabError(f"arm file {path} does not exist")
     if not path.is_file():
         raise SpringlabError(f"arm file {path} is not a file (a directory?): give the path of a .toml or .json file")
-    if path.suffix not in (".toml", ".json"):
-        raise SpringlabError(f"{path}: arm files are .toml or .json, got {path.suffix!r}")
+    if path.suffix not in (".toml", ".json", ".urdf"):
+        raise SpringlabError(f"{path}: arm files are .toml, .json or .urdf, got {path.suffix!r}")
+    if up is not None and path.suffix != ".urdf":
+        raise SpringlabError(f"up = {up!r} applies to URDF files only: an arm file's up is its ground link's x_1")
     try:
         text = path.read_text(encoding="utf-8")
     except UnicodeDecodeError:
         raise SpringlabError(f"{path}: not a text file (UTF-8): an arm file is TOML or JSON text") from None
     except OSError as err:
         raise SpringlabError(f"{path}: cannot be read ({err.strerror})") from None
+    if path.suffix == ".urdf":
+        return _from_urdf(text, str(path), allow_large, up)
     if path.suffix == ".toml":
         try:
             import tomllib
@@ -396,3 +404,19 @@ def load_arm(path, *, allow_large: bool = False) -> ArmSpec:
         except (json.JSONDecodeError, RecursionError) as err:
             raise SpringlabError(f"{path}: not valid JSON: {err}") from None
     return arm_from_dict(data, source=str(path), allow_large=allow_large)
+
+
+def _from_urdf(text: str, source: str, allow_large: bool, up) -> ArmSpec:
+    import dataclasses
+
+    from springlab.model.urdf import urdf_to_dict
+
+    data, arm = urdf_to_dict(text, source=source, up=up)
+    spec = arm_from_dict(data, source=source, allow_large=allow_large)
+    offsets = tuple(arm.offsets) if any(max(map(abs, o)) > 1e-12 for o in arm.offsets) else ()
+    notes = list(arm.notes)
+    if offsets:
+        worst = max(range(len(offsets)), key=lambda k: math.hypot(*offsets[k]))
+        notes.append(f"centres of mass projected onto their links' lines: the largest offset is "
+                     f"{math.hypot(*offsets[worst]) * 1e3:.2f} mm (link {worst + 2})")
+    return dataclasses.replace(spec, com_offsets=offsets, notes=tuple(notes))

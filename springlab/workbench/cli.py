@@ -1,4 +1,4 @@
-"""The command line: ``springlab design my_arm.toml``.
+"""The command line: ``springlab design my_arm.toml`` (or ``my_arm.json``, or a URDF: ``my_arm.urdf``).
 
 Prints the ranked designs of :func:`springlab.design.rank.design_arm` as a table
 and writes the chosen one (rank 1 unless ``--pick``) as JSON. With ``--sheet`` it also
@@ -61,12 +61,26 @@ def _check_arguments(args) -> None:
                              "raise --max-designs or pick a lower rank")
 
 
+def _up(text):
+    """--up 'x,y,z' as three numbers, or None."""
+    if text is None:
+        return None
+    try:
+        up = [float(v) for v in text.replace(",", " ").split()]
+    except ValueError:
+        up = []
+    if len(up) != 3:
+        raise SpringlabError(f"--up = {text!r}: give three numbers, the up direction in the URDF's base link "
+                             "frame, e.g. --up 0,0,1")
+    return up
+
+
 def _design(args) -> int:
     from springlab.design.rank import design_arm
     from springlab.model.armfile import load_arm
 
     _check_arguments(args)
-    spec = load_arm(args.arm_file, allow_large=args.allow_large)
+    spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up))
     out = _writable(Path(args.json or Path(args.arm_file).with_suffix(".design.json").name), "--json")
     if args.sheet:
         for path in _sheet_paths(out):
@@ -172,6 +186,8 @@ def main(argv=None) -> int:
                    help="spring wire for --sheet (default music wire)")
     p.add_argument("--pulley-radius", type=float, default=0.01,
                    help="m, the pulley of a spring realised as a cable over a pulley (--sheet; default 0.01)")
+    p.add_argument("--up", help="a URDF arm's up direction in its base link's frame, e.g. 0,1,0 (default 0,0,1: "
+                                "URDF's gravity acts along -z)")
     p.add_argument("--allow-large", action="store_true", help="allow arms of more than 8 links")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--debug", action="store_true", help="show the traceback of an unexpected error")

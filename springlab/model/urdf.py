@@ -1,0 +1,408 @@
+"""An arm read from URDF, the ROS robot description that CAD tools export: ``load_arm("arm.urdf")``.
+
+Read with the standard library's XML parser: springlab needs six URDF elements (``link``,
+``joint``, ``origin``, ``axis``, ``limit``, ``inertial``) and no meshes, so a URDF library
+(yourdfpy brings trimesh and lxml for meshes) is not worth its weight here. Python's expat
+refuses entity-expansion bombs.
+
+What becomes of the URDF (all at the zero configuration, every joint at 0):
+
+* the **root link** (with everything fixed to it) is the ground, link 1; its mass is not used;
+* **links joined by fixed joints are merged**: their masses added, their centres of mass combined;
+* **three consecutive revolute joints whose axes meet in one point and span three directions**
+  become one spherical joint (a wrist); the bodies between them, which turn with part of the
+  wrist only, must have their centres of mass on that point (within :data:`COM_TOLERANCE` of the
+  next link's length) and are counted at it, on the link before;
+* every other revolute (or continuous) joint stays a revolute joint, its axis given in the
+  previous link's springlab frame (:func:`springlab.model.chain.serial_chain`); springlab's
+  revolute chains have all links on one line at zero angles, so the axis must make the same
+  angle with the link before and the link after (a planar elbow, a vertical base joint under a
+  vertical column), else the file is refused;
+* a link runs from its joint to the next joint; the last link to the origin of the deepest frame
+  fixed to it (a ``tool0`` or flange), else to its own centre of mass;
+* **up** is +z of the root link (URDF's gravity acts along -z), unless ``up`` is given;
+* a revolute joint's **limits** become the joint's range in the arm file's sense (shifted by
+  the angle between springlab's zero and the URDF's); a spherical group's limits are not
+  turned into a cone (noted);
+* a **centre of mass off the line** between a link's joints (paper 000's method assumes it on
+  the line) is projected onto the line when the offset is at most :data:`COM_TOLERANCE` of
+  the link's length, and kept as ``ArmSpec.com_offsets`` so that the designer reports what the
+  projection costs (route 2); a larger offset is refused, pointing to paper 001's method.
+
+Refused with the element named: a file that is not URDF, a branching tree, a closed loop, a
+prismatic, planar or floating joint, a link without ``<inertial>`` that would leave a moving
+link massless, two revolute joints at one point that are not a wrist, a zero-length link.
+"""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from springlab.errors import SpringlabError
+
+COM_TOLERANCE = 0.02
+"""Largest distance of a link's centre of mass from the line between its joints that is
+projected onto the line, as a fraction of the link's length (2 %); a farther one is refused."""
+
+MEET_TOLERANCE = 1e-6
+"""m: how close three revolute axes must pass to one point to be one spherical joint."""
+
+
+@dataclass
+class _Joint:
+    name: str
+    kind: str
+    parent: str
+    child: str
+    origin: np.ndarray  # 4x4, parent link frame -> joint (child link) frame
+    axis: np.ndarray
+    limit: tuple | None
+
+
+@dataclass
+class UrdfArm:
+    """What :func:`read_urdf` found: the arm's fields (SI units) and what it assumed."""
+
+    name: str
+    r: list = field(default_factory=list)
+    d: list = field(default_factory=list)
+    m: list = field(default_factory=list)
+    joints: list = field(default_factory=list)
+    limits: list = field(default_factory=list)
+    offsets: list = field(default_factory=list)  # per moving link: the COM's offset from its line, link frame (m)
+    notes: list = field(default_factory=list)
+
+
+def _floats(text, count: int, where: str, default=None) -> np.ndarray:
+    if text is None:
+        if default is None:
+            raise SpringlabError(f"{where}: missing")
+        return np.array(default, dtype=float)
+    try:
+        values = [float(x) for x in text.split()]
+    except ValueError:
+        raise SpringlabError(f"{where} = {text!r}: expected {count} numbers") from None
+    if len(values) != count or not all(math.isfinite(v) for v in values):
+        raise SpringlabError(f"{where} = {text!r}: expected {count} finite numbers")
+    return np.array(values)
+
+
+def _rpy(r: float, p: float, y: float) -> np.ndarray:
+    """URDF's fixed-axis roll, pitch, yaw: Rz(y) Ry(p) Rx(r)."""
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
+
+
+def _origin(element, where: str) -> np.ndarray:
+    T = np.eye(4)
+    origin = element.find("origin")
+    if origin is not None:
+        T[:3, 3] = _floats(origin.get("xyz"), 3, f"{where}: <origin xyz>", (0, 0, 0))
+        T[:3, :3] = _rpy(*_floats(origin.get("rpy"), 3, f"{where}: <origin rpy>", (0, 0, 0)))
+    return T
+
+
+def _parse(text: str, source: str):
+    try:
+        root = ET.fromstring(text)
+    except ET.ParseError as err:
+        raise SpringlabError(f"{source}: not valid XML: {err}") from None
+    if root.tag != "robot":
+        raise SpringlabError(f"{source}: not a URDF file (its root element is <{root.tag}>, not <robot>)")
+    links = {}
+    for el in root.findall("link"):
+        name = el.get("name")
+        if not name:
+            raise SpringlabError(f"{source}: a <link> without a name")
+        if name in links:
+            raise SpringlabError(f"{source}: link {name!r} is defined twice")
+        inertial = el.find("inertial")
+        if inertial is None:
+            links[name] = None
+            continue
+        where = f"{source}: link {name!r}: <inertial>"
+        mass_el = inertial.find("mass")
+        if mass_el is None or mass_el.get("value") is None:
+            raise SpringlabError(f"{where} has no <mass value=...>: give the link's mass in kg")
+        mass = _floats(mass_el.get("value"), 1, f"{where} <mass value>")[0]
+        if mass < 0:
+            raise SpringlabError(f"{where} <mass value> = {mass:g} kg must be >= 0")
+        links[name] = (mass, _origin(inertial, where)[:3, 3])
+    joints = []
+    for el in root.findall("joint"):
+        name = el.get("name") or "?"
+        where = f"{source}: joint {name!r}"
+        kind = el.get("type")
+        parent, child = el.find("parent"), el.find("child")
+        if parent is None or child is None or parent.get("link") is None or child.get("link") is None:
+            raise SpringlabError(f"{where}: needs <parent link=...> and <child link=...>")
+        for end in (parent.get("link"), child.get("link")):
+            if end not in links:
+                raise SpringlabError(f"{where} names link {end!r}, which the file does not define")
+        if kind in ("prismatic", "planar", "floating"):
+            raise SpringlabError(f"{where} is {kind}: springlab balances arms of revolute and spherical joints "
+                                 "only (a sliding joint moves the centre of mass along a line no spring set here "
+                                 "is designed for)")
+        if kind not in ("revolute", "continuous", "fixed"):
+            raise SpringlabError(f"{where}: unknown joint type {kind!r} (URDF: revolute, continuous, fixed, ...)")
+        axis_el = el.find("axis")
+        axis = _floats(axis_el.get("xyz") if axis_el is not None else None, 3, f"{where}: <axis xyz>", (1, 0, 0))
+        if kind != "fixed":
+            if np.linalg.norm(axis) < 1e-12:
+                raise SpringlabError(f"{where}: <axis xyz> is zero: give the joint's axis")
+            axis = axis / np.linalg.norm(axis)
+        limit = None
+        limit_el = el.find("limit")
+        if kind == "revolute" and limit_el is not None and limit_el.get("lower") is not None \
+                and limit_el.get("upper") is not None:
+            lo = _floats(limit_el.get("lower"), 1, f"{where}: <limit lower>")[0]
+            hi = _floats(limit_el.get("upper"), 1, f"{where}: <limit upper>")[0]
+            if not lo < hi:
+                raise SpringlabError(f"{where}: <limit lower={lo:g} upper={hi:g}> must have lower < upper (rad)")
+            limit = (lo, hi)
+        joints.append(_Joint(name, kind, parent.get("link"), child.get("link"), _origin(el, where), axis, limit))
+    return root.get("name") or Path(source).stem, links, joints
+
+
+def _serial(links: dict, joints: list, source: str) -> tuple[str, list, str]:
+    """The root link, the joints in order from it outward (the arm's path, with the subtrees
+    fixed to it), and the last link of the path; checks that the movable joints form one chain."""
+    by_parent: dict[str, list] = {}
+    by_child: dict[str, list] = {}
+    for j in joints:
+        by_parent.setdefault(j.parent, []).append(j)
+        by_child.setdefault(j.child, []).append(j)
+    for child, into in by_child.items():
+        if len(into) > 1:
+            raise SpringlabError(f"{source}: link {child!r} is the child of joints "
+                                 f"{', '.join(repr(j.name) for j in into)}: a closed loop; springlab designs "
+                                 "serial chains (open kinematic trees of one branch)")
+    roots = [name for name in links if name not in by_child]
+    if len(roots) != 1:
+        if not roots:
+            raise SpringlabError(f"{source}: every link is some joint's child: the joints close a loop")
+        raise SpringlabError(f"{source}: {len(roots)} root links ({', '.join(map(repr, roots))}): "
+                             "a URDF arm has one base link")
+    moves: dict[str, bool] = {}
+
+    def carries(link: str, depth: int = 0) -> bool:  # a movable joint somewhere below the link
+        if link not in moves:
+            if depth > len(links):
+                raise SpringlabError(f"{source}: the joints below link {link!r} close a loop")
+            moves[link] = any(j.kind != "fixed" or carries(j.child, depth + 1) for j in by_parent.get(link, []))
+        return moves[link]
+
+    order, reached, name, last = [], {roots[0]}, roots[0], roots[0]
+    while True:
+        out = by_parent.get(name, [])
+        main = [j for j in out if carries(j.child) or j.kind != "fixed"]
+        if len(main) > 1:
+            raise SpringlabError(f"{source}: link {name!r} branches into joints "
+                                 f"{', '.join(repr(j.name) for j in main)}, each carrying movable joints: springlab "
+                                 "designs serial chains; remove the branches that do not carry the arm")
+        side = [j for j in out if j not in main]
+        if not main and len(side) == 1:  # the end: one frame fixed beyond the last link (a tool0)
+            main, side = side, []
+        stack = list(side)
+        while stack:  # bodies fixed to this link: merged into it
+            j = stack.pop()
+            order.append(j)
+            reached.add(j.child)
+            stack += by_parent.get(j.child, [])
+        if not main:
+            break
+        order.append(main[0])
+        reached.add(main[0].child)
+        name = last = main[0].child
+    lost = sorted(set(links) - reached)
+    if lost:
+        raise SpringlabError(f"{source}: links {', '.join(map(repr, lost))} are not joined to the base link "
+                             f"{roots[0]!r} (a closed loop or a second tree)")
+    return roots[0], order, last
+
+
+def _frame_to(u: np.ndarray) -> np.ndarray:
+    """A rotation taking [1, 0, 0] to the unit vector u (the smallest one)."""
+    e = np.array([1.0, 0.0, 0.0])
+    v = np.cross(e, u)
+    c = float(e @ u)
+    if np.linalg.norm(v) < 1e-12:
+        return np.eye(3) if c > 0 else np.diag([-1.0, -1.0, 1.0])
+    K = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
+    return np.eye(3) + K + K @ K / (1 + c)
+
+
+def _meet(points, axes) -> np.ndarray | None:
+    """The point where the lines p + t w all pass (least squares), or None if they miss it."""
+    A = sum(np.eye(3) - np.outer(w, w) for w in axes)
+    b = sum((np.eye(3) - np.outer(w, w)) @ p for p, w in zip(points, axes, strict=True))
+    if np.linalg.matrix_rank(A, tol=1e-9) < 3:
+        return None
+    x = np.linalg.solve(A, b)
+    far = max(np.linalg.norm((np.eye(3) - np.outer(w, w)) @ (x - p)) for p, w in zip(points, axes, strict=True))
+    return x if far <= MEET_TOLERANCE else None
+
+
+def read_urdf(text: str, *, source: str = "arm.urdf", up=None) -> UrdfArm:
+    """The arm in a URDF text, as the fields of an arm file (see the module docstring).
+
+    :param up: the up direction in the root link's frame (default +z: URDF's gravity is -z)
+    """
+    if not isinstance(text, str):
+        raise SpringlabError(f"{source}: expected URDF text, got {type(text).__name__}")
+    name, links, joints = _parse(text, source)
+    root, chain, last_link = _serial(links, joints, source)
+    up = np.array([0.0, 0.0, 1.0]) if up is None else np.asarray(up, dtype=float)
+    if up.shape != (3,) or not np.all(np.isfinite(up)) or np.linalg.norm(up) < 1e-12:
+        raise SpringlabError(f"up = {up!r}: give a nonzero 3-vector in the root link's frame, e.g. [0, 0, 1]")
+    W = _frame_to(up / np.linalg.norm(up)).T  # URDF world -> springlab world (up -> [1, 0, 0])
+    # world poses at the zero configuration; bodies grouped by the movable joint they follow
+    pose = {root: np.eye(4)}
+    moving = []  # (joint, its world origin, world axis)
+    owner = {root: -1}  # link -> index into moving of the joint it follows (-1: the ground)
+    for j in chain:
+        pose[j.child] = pose[j.parent] @ j.origin
+        if j.kind == "fixed":
+            owner[j.child] = owner[j.parent]
+            continue
+        moving.append((j, W @ pose[j.child][:3, 3], W @ pose[j.child][:3, :3] @ j.axis))
+        owner[j.child] = len(moving) - 1
+    if not moving:
+        raise SpringlabError(f"{source}: no revolute joint: nothing moves, nothing to balance")
+    # group revolute joints into springlab joints: a wrist (three axes through one point) or one revolute
+    groups, k = [], 0
+    while k < len(moving):
+        if k + 2 < len(moving):
+            trio = moving[k:k + 3]
+            axes = [w for _, _, w in trio]
+            centre = _meet([p for _, p, _ in trio], axes)
+            if centre is not None and abs(np.linalg.det(np.array(axes))) > 1e-3:
+                groups.append(("spherical", trio, centre))
+                k += 3
+                continue
+        groups.append(("revolute", [moving[k]], moving[k][1]))
+        k += 1
+    centres = [g[2] for g in groups]
+    end = W @ pose[last_link][:3, 3]
+    out = UrdfArm(str(name))
+    # each body's mass and world COM, assigned to a springlab link (index into groups; -1 ground)
+    group_of_joint = {}
+    for gi, (_, members, _) in enumerate(groups):
+        for pos, (j, _, _) in enumerate(members):
+            group_of_joint[j.name] = (gi, pos, len(members))
+    mass = np.zeros(len(groups))
+    moment = np.zeros((len(groups), 3))
+    movers = {idx: j for idx, (j, _, _) in enumerate(moving)}
+    for link, idx in owner.items():
+        if idx < 0 or links.get(link) is None:
+            continue
+        m, com = links[link]
+        c = W @ (pose[link][:3, :3] @ com + pose[link][:3, 3])
+        gi, pos, size = group_of_joint[movers[idx].name]
+        if pos < size - 1:  # inside a wrist: counted at its centre, on the link before
+            reach = np.linalg.norm(c - centres[gi])
+            lim = COM_TOLERANCE * (np.linalg.norm((centres[gi + 1] if gi + 1 < len(groups) else end) - centres[gi]))
+            if m > 0 and reach > max(lim, MEET_TOLERANCE):
+                raise SpringlabError(f"{source}: link {link!r} turns with part of the wrist at joints "
+                                     f"{', '.join(repr(j.name) for j, _, _ in groups[gi][1])} and its centre of mass is "
+                                     f"{reach * 1e3:.1f} mm from the wrist's centre: springlab models the wrist as a "
+                                     "spherical joint, exact only with such bodies' masses at its centre")
+            if gi == 0:
+                continue  # a wrist at the base: on the ground
+            gi, c = gi - 1, centres[gi]
+        mass[gi] += m
+        moment[gi] += m * c
+    R_prev = np.eye(3)
+    for gi, (kind, members, centre) in enumerate(groups):
+        link_no = gi + 2
+        far = centres[gi + 1] if gi + 1 < len(groups) else end
+        if gi + 1 == len(groups) and np.linalg.norm(far - centre) < 1e-9:
+            if mass[gi] <= 0:
+                raise SpringlabError(f"{source}: the last link has no mass and no frame beyond its joint")
+            far = moment[gi] / mass[gi]
+            out.notes.append(f"link {link_no} (the last) runs to its centre of mass: no frame is fixed beyond its joint")
+        length = float(np.linalg.norm(far - centre))
+        names = ", ".join(repr(j.name) for j, _, _ in members)
+        if length < 1e-9:
+            raise SpringlabError(f"{source}: joints {names} and the next meet at one point (a link of zero length): "
+                                 "springlab models spherical joints (three axes through one point) and revolute "
+                                 "joints joined by links of nonzero length")
+        if mass[gi] <= 0:
+            bodies = [lk for lk, idx in owner.items() if idx >= 0 and group_of_joint[movers[idx].name][0] == gi]
+            raise SpringlabError(f"{source}: link {link_no} (URDF links {', '.join(map(repr, bodies))}, after joint(s) "
+                                 f"{names}) has no mass: give its <inertial> with <mass> and <origin>")
+        u = (far - centre) / length
+        c = moment[gi] / mass[gi]
+        t = float((c - centre) @ u)
+        off = c - centre - t * u
+        if np.linalg.norm(off) > COM_TOLERANCE * length or not -1e-12 <= t <= length + 1e-12:
+            raise SpringlabError(
+                f"{source}: link {link_no} (after joint(s) {names}): its centre of mass is "
+                f"{np.linalg.norm(off) * 1e3:.1f} mm off the line between its joints and {t * 1e3:.1f} mm along it "
+                f"(length {length * 1e3:.1f} mm); paper 000's method needs it on the line (offsets up to "
+                f"{COM_TOLERANCE:.0%} of the length are projected): paper 001's pseudobase method "
+                "(springlab.mechanisms.pseudobase) balances centres of mass off the line")
+        if kind == "spherical":
+            R = R_prev @ _frame_to(R_prev.T @ u)  # the wrist at zero: the smallest turn onto u
+            out.joints.append("spherical")
+            out.limits.append(None)
+            if any(j.limit for j, _, _ in members):
+                out.notes.append(f"joints {names}: their limits are not turned into a cone (link {link_no} "
+                                 "is taken free to point anywhere)")
+        else:
+            j, _, w = members[0]
+            a = R_prev.T @ w
+            v = R_prev.T @ u
+            e = np.array([1.0, 0.0, 0.0])
+            if abs(a @ e - a @ v) > 1e-6:
+                raise SpringlabError(
+                    f"{source}: joint {j.name!r}: its axis makes {math.degrees(math.acos(np.clip(a @ e, -1, 1))):.1f} deg "
+                    f"with link {link_no - 1} and {math.degrees(math.acos(np.clip(a @ v, -1, 1))):.1f} deg with link "
+                    f"{link_no}; springlab's revolute chains line every link up at zero angles, which needs the "
+                    "same angle (an offset shoulder or elbow is not such a chain)")
+            e_p, v_p = e - (a @ e) * a, v - (a @ v) * a
+            theta0 = 0.0 if np.linalg.norm(e_p) < 1e-12 else math.atan2(float(a @ np.cross(e_p, v_p)), float(e_p @ v_p))
+            K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+            R = R_prev @ (np.eye(3) + math.sin(theta0) * K + (1 - math.cos(theta0)) * K @ K)
+            out.joints.append(tuple(float(x) for x in a))
+            out.limits.append(_range(j, theta0, out.notes))
+        out.r.append(length)
+        out.d.append(min(max(t, 0.0), length))
+        out.m.append(float(mass[gi]))
+        out.offsets.append(tuple(float(x) for x in R.T @ off))
+        R_prev = R
+    return out
+
+
+def _range(joint, theta0: float, notes: list):
+    """A URDF joint's limits in springlab's angle (theta0 + q), within [-pi, pi], or None."""
+    if joint.limit is None:
+        return None
+    lo, hi = theta0 + joint.limit[0], theta0 + joint.limit[1]
+    if hi - lo >= 2 * math.pi - 1e-12:
+        return None
+    for shift in (0.0, 2 * math.pi, -2 * math.pi):
+        if -math.pi <= lo + shift and hi + shift <= math.pi:
+            return (lo + shift, hi + shift)
+    notes.append(f"joint {joint.name!r}: its range straddles the half turn from springlab's zero; taken as unlimited")
+    return None
+
+
+def urdf_to_dict(text: str, *, source: str = "arm.urdf", up=None) -> tuple[dict, UrdfArm]:
+    """The arm file's fields (as :func:`springlab.model.armfile.arm_from_dict` takes them, SI
+    numbers) for a URDF text, and what :func:`read_urdf` found."""
+    arm = read_urdf(text, source=source, up=up)
+    links = []
+    for r, d, m, joint, lim in zip(arm.r, arm.d, arm.m, arm.joints, arm.limits, strict=True):
+        link = {"length": r, "com": d, "mass": m, "joint": joint if joint == "spherical" else list(joint)}
+        if lim is not None:
+            link["range"] = [lim[0], lim[1]]  # rad
+        links.append(link)
+    return {"name": arm.name, "link": links}, arm
