@@ -197,3 +197,62 @@ def test_cli_designs_a_urdf(tmp_path, capsys):
     assert "not turned into a cone" in capsys.readouterr().out
     code = main(["design", str(ARMS / "example_arm.urdf"), "--up", "0,1", "--quiet"])
     assert code == 2 and "--up = '0,1'" in capsys.readouterr().err
+
+
+def test_the_paper001_arm_loads_from_its_dh_file_and_designs_as_the_notebook():
+    from springlab.mechanisms.pseudobase import geometry as pbgeo
+    from springlab.mechanisms.pseudobase.armfile import load_dh_arm
+    from springlab.mechanisms.pseudobase.subsystems import design_equilibrators
+    from springlab.papers import lin2010 as paper
+
+    dh, ref = load_dh_arm(ARMS / "paper001_arm.toml"), paper.arm()
+    for key in ("m", "s", "m_hat", "s_hat", "m_star", "c", "aux_offset"):
+        assert np.abs(np.asarray(getattr(dh.arm, key)) - np.asarray(getattr(ref, key))).max() <= 1e-12, key
+    for key in ("d", "a", "alpha"):
+        assert np.abs(getattr(dh.arm.dh, key) - getattr(ref.dh, key)).max() <= 1e-12, key
+    assert dh.arm.modules == ref.modules and dh.arm.g == ref.g and dh.K == tuple(paper.K)
+    ours, notebook = dh.design(), design_equilibrators(ref, paper.K, paper.L_CA)  # the notebook's call
+    for a, b in zip(ours, notebook, strict=True):
+        assert a.link == b.link and abs(a.l_CB - b.l_CB) <= 1e-12 and np.abs(a.b - b.b).max() <= 1e-12
+    q = np.random.default_rng(0).uniform(-np.pi, np.pi, (300, 6))
+    energy = pbgeo.energies(dh.arm, ours, q)
+    assert np.ptp(energy["total"]) < 1e-9 * np.ptp(energy["gravity"])  # route 2: balanced
+    spoiled = pbgeo.energies(dh.arm, [s.scaled(0.9) for s in ours], q)
+    assert np.ptp(spoiled["total"]) > 1e-3 * np.ptp(spoiled["gravity"])
+
+
+def _dh_data():
+    import tomllib
+
+    return tomllib.loads((ARMS / "paper001_arm.toml").read_text())
+
+
+@pytest.mark.parametrize("edit, match", [
+    (lambda d: d.pop("auxiliary_d1"), r"missing field 'auxiliary_d1'"),
+    (lambda d: d["frame"][2]["module"].pop("stiffness"), r"frame 3: module: missing field\(s\) \['stiffness'\]"),
+    (lambda d: d["frame"][3].pop("module"), r"modules must be the links k..6"),
+    (lambda d: d["frame"][1].update(com=[0.1, 0.2]), r"frame 2: com = \[0.1, 0.2\]: give three lengths"),
+    (lambda d: d["frame"][1].update(alpha="90 m"), r"frame 2: alpha = '90 m' is a length, not an angle"),
+    (lambda d: d["frame"][1]["module"].update(stiffness="-2 kN/m"), r"frame 2: module: stiffness = -2000 N/m must be > 0"),
+])
+def test_bad_dh_arm_files_name_the_field(edit, match):
+    from springlab.mechanisms.pseudobase.armfile import dh_arm_from_dict
+
+    data = _dh_data()
+    edit(data)
+    with pytest.raises(SpringlabError, match=match):
+        dh_arm_from_dict(data, source="dh.toml")
+
+
+def test_cli_designs_a_dh_arm_and_load_arm_points_to_it(tmp_path, capsys):
+    import json
+
+    out = tmp_path / "p1.json"
+    code = main(["design", str(ARMS / "paper001_arm.toml"), "--json", str(out), "--quiet"])
+    assert code == 0, capsys.readouterr().err
+    record = json.loads(out.read_text())
+    assert len(record["springs"]) == 5 and record["energy_variation"] < 1e-9
+    code = main(["design", str(ARMS / "paper001_arm.toml"), "--sheet"])
+    assert code == 2 and "--sheet applies to arms for paper 000's method" in capsys.readouterr().err
+    with pytest.raises(SpringlabError, match="describes its arm by DH frames"):
+        load_arm(ARMS / "paper001_arm.toml")

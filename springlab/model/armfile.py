@@ -365,10 +365,9 @@ def _limit(link: dict, joint, where: str):
     return None
 
 
-def load_arm(path, *, allow_large: bool = False, up=None) -> ArmSpec:
-    """Read an arm file (.toml or .json, or a URDF robot description, .urdf: see
-    :mod:`springlab.model.urdf`) into an :class:`ArmSpec`. ``up``: a URDF's up direction in its
-    root link's frame (default +z, against URDF's gravity)."""
+def read_arm_data(path) -> tuple[Path, dict | str]:
+    """The checked path of an arm file and its contents: the parsed table of a .toml or .json
+    file, the text of a .urdf file."""
     if not isinstance(path, str | Path):
         raise SpringlabError(f"arm file must be a path, got {path!r}")
     path = Path(path)
@@ -378,8 +377,6 @@ def load_arm(path, *, allow_large: bool = False, up=None) -> ArmSpec:
         raise SpringlabError(f"arm file {path} is not a file (a directory?): give the path of a .toml or .json file")
     if path.suffix not in (".toml", ".json", ".urdf"):
         raise SpringlabError(f"{path}: arm files are .toml, .json or .urdf, got {path.suffix!r}")
-    if up is not None and path.suffix != ".urdf":
-        raise SpringlabError(f"up = {up!r} applies to URDF files only: an arm file's up is its ground link's x_1")
     try:
         text = path.read_text(encoding="utf-8")
     except UnicodeDecodeError:
@@ -387,7 +384,7 @@ def load_arm(path, *, allow_large: bool = False, up=None) -> ArmSpec:
     except OSError as err:
         raise SpringlabError(f"{path}: cannot be read ({err.strerror})") from None
     if path.suffix == ".urdf":
-        return _from_urdf(text, str(path), allow_large, up)
+        return path, text
     if path.suffix == ".toml":
         try:
             import tomllib
@@ -395,14 +392,34 @@ def load_arm(path, *, allow_large: bool = False, up=None) -> ArmSpec:
             import tomli as tomllib
 
         try:
-            data = tomllib.loads(text)
+            return path, tomllib.loads(text)
         except tomllib.TOMLDecodeError as err:
             raise SpringlabError(f"{path}: not valid TOML: {err}") from None
-    elif path.suffix == ".json":
-        try:
-            data = json.loads(text)
-        except (json.JSONDecodeError, RecursionError) as err:
-            raise SpringlabError(f"{path}: not valid JSON: {err}") from None
+    try:
+        return path, json.loads(text)
+    except (json.JSONDecodeError, RecursionError) as err:
+        raise SpringlabError(f"{path}: not valid JSON: {err}") from None
+
+
+def is_dh_arm(data) -> bool:
+    """True for an arm file that describes its arm by DH frames (``[[frame]]``), the form of paper
+    001's Table 1, read by :func:`springlab.mechanisms.pseudobase.armfile.load_dh_arm`."""
+    return isinstance(data, dict) and "frame" in data
+
+
+def load_arm(path, *, allow_large: bool = False, up=None) -> ArmSpec:
+    """Read an arm file (.toml or .json, or a URDF robot description, .urdf: see
+    :mod:`springlab.model.urdf`) into an :class:`ArmSpec`. ``up``: a URDF's up direction in its
+    root link's frame (default +z, against URDF's gravity)."""
+    path, data = read_arm_data(path)
+    if up is not None and path.suffix != ".urdf":
+        raise SpringlabError(f"up = {up!r} applies to URDF files only: an arm file's up is its ground link's x_1")
+    if path.suffix == ".urdf":
+        return _from_urdf(data, str(path), allow_large, up)
+    if is_dh_arm(data):
+        raise SpringlabError(f"{path} describes its arm by DH frames ([[frame]]), for paper 001's pseudobase "
+                             "method: `springlab design` designs it, or load it with "
+                             "springlab.mechanisms.pseudobase.armfile.load_dh_arm")
     return arm_from_dict(data, source=str(path), allow_large=allow_large)
 
 

@@ -80,6 +80,11 @@ def _design(args) -> int:
     from springlab.model.armfile import load_arm
 
     _check_arguments(args)
+    from springlab.model.armfile import is_dh_arm, read_arm_data
+
+    path, data = read_arm_data(args.arm_file)
+    if is_dh_arm(data):
+        return _design_dh(args, path)
     spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up))
     out = _writable(Path(args.json or Path(args.arm_file).with_suffix(".design.json").name), "--json")
     if args.sheet:
@@ -124,6 +129,49 @@ def _design(args) -> int:
     print(f"\ndesign {args.pick} written to {out}")
     if args.sheet:
         _write_sheet(args, spec, chosen, out)
+    return 0
+
+
+def _design_dh(args, path: Path) -> int:
+    """A DH arm file: paper 001's pseudobase design (one spring per module, l_CB from its equilibrium condition),
+    checked by route 2 over random joint angles, printed and written as JSON (and --csv)."""
+    import numpy as np
+
+    from springlab.mechanisms.pseudobase import geometry
+    from springlab.mechanisms.pseudobase.armfile import load_dh_arm
+    from springlab.tables import Table
+
+    for flag, given in (("--sheet", args.sheet), ("--up", args.up), ("--method", args.method != "fewest springs")):
+        if given:
+            raise SpringlabError(f"{flag} applies to arms for paper 000's method; {path} describes its arm by DH "
+                                 "frames, designed by paper 001's pseudobase method")
+    dh = load_dh_arm(path)
+    out = _writable(Path(args.json or path.with_suffix(".design.json").name), "--json")
+    if args.csv:
+        _writable(Path(args.csv), "--csv")
+    springs = dh.design()
+    q = np.random.default_rng(args.seed).uniform(-np.pi, np.pi, (2000, dh.arm.n))
+    energy = geometry.energies(dh.arm, springs, q)
+    share = float(np.ptp(energy["total"]) / np.ptp(energy["gravity"]))
+    print(f"# {dh.name}: {dh.arm.n} DH frames, modules on links {', '.join(map(str, dh.arm.modules))} "
+          f"(paper 001's pseudobase method)")
+    print(f"route 2: the total energy varies by {share:.1e} of gravity's range over 2000 random poses\n")
+    rows = [(sp.link, f"{sp.K:g}", f"{sp.l_CA:g}", f"{sp.l_CB:.4f}", np.round(sp.b, 4).tolist(), np.round(sp.c, 4).tolist())
+            for sp in springs]
+    print(Table(["spring (link)", "K (N/m)", "l_CA (m)", "l_CB (m)", "b_i in frame i (m)", "c_i in frame i (m)"], rows))
+    record = {"arm": dh.name, "source": str(path), "method": "pseudobases (paper 001)", "energy_variation": share,
+              "springs": [{"link": sp.link, "K_N_per_m": sp.K, "l_CA_m": sp.l_CA, "l_CB_m": sp.l_CB,
+                           "b_m": sp.b.tolist(), "c_m": sp.c.tolist()} for sp in springs]}
+    try:
+        out.write_text(json.dumps(record, indent=1) + "\n")
+        if args.csv:
+            head = [f"spring{k}_{x}" for k in range(1, len(springs) + 1)
+                    for x in ("link", "K_N_per_m", "l_CA_m", "l_CB_m", "bx_m", "by_m", "bz_m")]
+            row = [v for sp in springs for v in (sp.link, repr(sp.K), repr(sp.l_CA), repr(sp.l_CB), *map(repr, sp.b))]
+            Path(args.csv).write_text(",".join(["energy_variation", *head]) + "\n" + ",".join([repr(share), *map(str, row)]) + "\n")
+    except OSError as err:
+        raise SpringlabError(f"{out} or {args.csv} cannot be written ({err.strerror})") from None
+    print(f"\nthe design written to {out}" + (f" and {args.csv}" if args.csv else ""))
     return 0
 
 
