@@ -104,7 +104,9 @@ def test_spatial_efficiency_reduces_to_003_in_the_plane():
 
 
 def test_paper000_arm_ranks_table3():
-    report = ad.design_arm(ARMS / "paper000_arm.toml", method="no auxiliary links")
+    # the forces are not minimised here (the design notebook does, on the same search): which
+    # configurations verify does not depend on it
+    report = ad.design_arm(ARMS / "paper000_arm.toml", method="no auxiliary links", minimise_force=False)
     configs = [d.configuration for d in report.designs]
     assert tuple(sorted(juang2023.EXAMPLE_CONFIGURATION)) in configs
     assert all(d.energy_variation < ad.VERIFY_TOLERANCE for d in report.designs)
@@ -123,7 +125,7 @@ def test_planar_three_link_arm_contains_003s_configurations():
     data = {"g": arm.g, "link": [{"length": float(r), "com": float(s), "mass": float(m), "joint": [0, 0, 1]}
                                  for r, s, m in zip(arm.r[1:], arm.s[1:], arm.m[1:], strict=True)]}
     report = ad.design_arm(arm_from_dict(data, source="planar"), method="no auxiliary links", max_designs=100,
-                           max_configurations=12, restarts=4)
+                           max_configurations=12, restarts=4, minimise_force=False)
     configs = {d.configuration for d in report.designs}
     for name in ("Λ3-1", "Λ3-2"):
         _, springs = pl.to_spatial(arm, plsyn.design(arm, name, {"Λ3-1": juang2022.FREE_CHOICES,
