@@ -44,6 +44,7 @@ from pathlib import Path
 import numpy as np
 
 from springlab.errors import SpringlabError
+from springlab.model.rotations import rot_axis
 
 COM_TOLERANCE = 0.02
 """Largest distance of a link's centre of mass from the line between its joints that is
@@ -369,8 +370,7 @@ def read_urdf(text: str, *, source: str = "arm.urdf", up=None) -> UrdfArm:
                     "same angle (an offset shoulder or elbow is not such a chain)")
             e_p, v_p = e - (a @ e) * a, v - (a @ v) * a
             theta0 = 0.0 if np.linalg.norm(e_p) < 1e-12 else math.atan2(float(a @ np.cross(e_p, v_p)), float(e_p @ v_p))
-            K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-            R = R_prev @ (np.eye(3) + math.sin(theta0) * K + (1 - math.cos(theta0)) * K @ K)
+            R = R_prev @ rot_axis(a, theta0)
             out.joints.append(tuple(float(x) for x in a))
             out.limits.append(_range(j, theta0, out.notes))
         out.r.append(length)
