@@ -503,11 +503,16 @@ def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = 
     if not (np.all(np.isfinite(res.x)) and np.all(K > 0) and res.x[-1] < start):
         return springs
     candidate = _springs_from_linear(slots, A, B, K, scale_k, length)
-    try:  # polish the balance (SLSQP meets its constraints to about 1e-8) within the same limits
-        out = find_design(chain, slots, start=candidate, restarts=0, tol=tol, max_extension=reach,
-                          max_stiffness=max_stiffness)
-    except (UnbalanceableError, SearchExhaustedError):
-        out = None
+    # polish the balance (SLSQP meets its constraints to about 1e-8): Newton steps at the optimum first,
+    # then, where they do not hold the limits, least squares in log(k), log|a|, log|b|
+    out = _polish_newton(chain, slots, res.x[:-1], bounds[:-1], M * units / scale_u, g_keys / scale_u, scale_k,
+                         length, reach, max_stiffness, tol, scale_u, (reach_a, reach_b, sa, sb))
+    if out is None:
+        try:
+            out = find_design(chain, slots, start=candidate, restarts=0, tol=tol, max_extension=reach,
+                              max_stiffness=max_stiffness)
+        except (UnbalanceableError, SearchExhaustedError):
+            out = None
     if out is None or largest_force_bound(chain, out) > 1.01 * largest_force_bound(chain, candidate):
         # the search in log(k), log|a|, log|b| can leave the optimum's neighbourhood (seen with one
         # BLAS thread): polish in the linear unknowns instead, from the optimum, in its sign boxes
@@ -517,6 +522,59 @@ def _force_round(chain: Chain, slots, springs, *, max_extension: float | None = 
             return springs
     force = largest_force_bound(chain, out) / (scale_k * length)
     return out if force < start else springs
+
+
+def _polish_newton(chain, slots, x0, bounds, M, g, scale_k, length, reach, max_stiffness, tol, scale_u, limits):
+    """Newton steps from the force optimum x0 (scaled P, A, B, k per spring) onto 000 Eqs. (39)
+    with P = A B / k, moving only the unknowns off their bounds and keeping the attachment limits
+    active at x0 (|a| = reach there stays so): the minimum-norm step, a few times. Springs balanced
+    to ``tol`` within the limits, or None (the caller then polishes by least squares)."""
+    reach_a, reach_b, sa, sb = limits
+    m = len(slots)
+    y = np.array(x0, dtype=float).reshape(m, 4)
+    lo = np.array([-np.inf if b[0] is None else b[0] for b in bounds]).reshape(m, 4)
+    hi = np.array([np.inf if b[1] is None else b[1] for b in bounds]).reshape(m, 4)
+    free = np.ones((m, 3), dtype=bool)  # A, B, k
+    for c, col in enumerate((1, 2, 3)):
+        gap = np.minimum(np.abs(y[:, col] - lo[:, col]), np.abs(hi[:, col] - y[:, col]))
+        free[:, c] = gap > 1e-7 * np.maximum(1.0, np.abs(y[:, col]))
+    at_reach = [(idx, r, s_, c) for idx in range(m) for r, s_, c in ((reach_a[idx], sa[idx], 1), (reach_b[idx], sb[idx], 2))
+                if abs(r * y[idx, 3] - s_ * y[idx, c]) <= 1e-7 * max(1.0, abs(y[idx, 3]))]
+    abk = y[:, 1:].copy()
+    for _ in range(8):
+        A, B, K = abk.T
+        P = A * B / K
+        v = np.stack([P, A, B, K], axis=1).ravel()
+        rows = [M @ v + g] + [np.array([r * abk[idx, 2] - s_ * abk[idx, c - 1]]) for idx, r, s_, c in at_reach]
+        F = np.concatenate(rows)
+        if np.max(np.abs(F)) <= 0.01 * tol:
+            break
+        dv = np.zeros((4 * m, 3 * m))  # d(P, A, B, k) / d(A, B, k)
+        for idx in range(m):
+            dv[4 * idx, 3 * idx:3 * idx + 3] = B[idx] / K[idx], A[idx] / K[idx], -P[idx] / K[idx]
+            dv[4 * idx + 1, 3 * idx] = dv[4 * idx + 2, 3 * idx + 1] = dv[4 * idx + 3, 3 * idx + 2] = 1.0
+        J = [M @ dv]
+        for idx, r, s_, c in at_reach:
+            row = np.zeros(3 * m)
+            row[3 * idx + 2], row[3 * idx + c - 1] = r, -s_
+            J.append(row[None])
+        J = np.vstack(J)[:, free.ravel()]
+        step = np.zeros(3 * m)
+        step[free.ravel()] = np.linalg.lstsq(J, -F, rcond=None)[0]
+        abk = abk + step.reshape(m, 3)
+    A, B, K = abk.T
+    if not (np.all(np.isfinite(abk)) and np.all(K > 0) and np.all(np.sign(A) == sa) and np.all(np.sign(B) == sb)):
+        return None
+    springs = _springs_from_linear(slots, A, B, K, scale_k, length)
+    if np.max(np.abs(M @ _linear_values(springs, scale_u, scale_k, length) + g)) > tol:
+        return None
+    if max_stiffness is not None and max(s.k for s in springs) > max_stiffness * (1 + 1e-9):
+        return None
+    try:
+        check_attachments(chain, springs, max_extension=reach * (1 + 1e-9))
+    except SpringlabError:
+        return None
+    return springs
 
 
 def _polish_linear(chain, slots, x0, bounds, M, g, scale_k, length, reach, max_stiffness, tol, scale_u):
