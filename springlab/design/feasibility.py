@@ -580,6 +580,18 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
         if worst <= 1e-13:  # in units of the largest G_1,j: springs_of's check (1e-9) then passes
             raise StopIteration
 
+    def newton(v0):  # minimum-norm Newton steps on the equations and couplings, unknowns at a bound held
+        v = np.clip(v0, lo, hi)
+        free = np.minimum(v - lo, hi - v) > 1e-9 * np.maximum(1.0, np.abs(v))
+        for _ in range(8):
+            F = residual(v)
+            if np.abs(F).max() <= 1e-15:
+                break
+            step = np.zeros(m)
+            step[free] = np.linalg.lstsq(residual_jacobian(v)[:, free], -F, rcond=None)[0]
+            v = v + step
+        return v if np.all((v >= lo) & (v <= hi)) else v0
+
     def polish(v0):
         v0 = np.clip(v0, lo, hi)
         if len(P):  # SLSQP on the coupling within the equations: fast when it converges
@@ -588,6 +600,8 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
                                         "jac": lambda x: prog.A_eq}], options={"maxiter": 300, "ftol": 1e-30},
                           callback=solved).x
         found = springs_of(v0)
+        if found is None:
+            found = springs_of(newton(v0))
         if found is not None:
             return found
         sol = least_squares(residual, np.clip(v0, lo, hi), jac=residual_jacobian, bounds=(lo, hi), xtol=1e-15,
