@@ -182,6 +182,10 @@ def test_a_small_offset_is_projected_and_its_balance_error_confirmed_by_the_urdf
     (lambda t: t.replace('<mass value="3.0"/>', '<mass/>'), r"link 'upper_arm': <inertial> has no <mass value"),
     (lambda t: "<robot><link name='a'/>", r"not valid XML"),
     (lambda t: "<sdf version='1.6'/>", r"not a URDF file \(its root element is <sdf>"),
+    (lambda t: t.replace('<origin xyz="0 0 0.25"/>', '<origin xyz="0 0 nan"/>'), r"joint 'shoulder': <origin xyz> = '0 0 nan'"),
+    (lambda t: '<?xml version="1.0"?><!DOCTYPE b [<!ENTITY a "aaaaaaaaaa">' + "".join(
+        f'<!ENTITY a{k} "{("&a;" if k == 1 else f"&a{k - 1};") * 10}">' for k in range(1, 9))
+        + ']><robot name="&a8;"><link name="x"/></robot>', r"not valid XML: limit on input amplification"),
 ])
 def test_bad_urdfs_are_refused_naming_the_element(edit, match):
     from springlab.model.armfile import _from_urdf
