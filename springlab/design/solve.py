@@ -566,15 +566,7 @@ def _polish_newton(chain, slots, x0, bounds, M, g, scale_k, length, reach, max_s
     if not (np.all(np.isfinite(abk)) and np.all(K > 0) and np.all(np.sign(A) == sa) and np.all(np.sign(B) == sb)):
         return None
     springs = _springs_from_linear(slots, A, B, K, scale_k, length)
-    if np.max(np.abs(M @ _linear_values(springs, scale_u, scale_k, length) + g)) > tol:
-        return None
-    if max_stiffness is not None and max(s.k for s in springs) > max_stiffness * (1 + 1e-9):
-        return None
-    try:
-        check_attachments(chain, springs, max_extension=reach * (1 + 1e-9))
-    except SpringlabError:
-        return None
-    return springs
+    return _balanced_within_limits(chain, springs, M, g, scale_u, scale_k, length, reach, max_stiffness, tol)
 
 
 def _polish_linear(chain, slots, x0, bounds, M, g, scale_k, length, reach, max_stiffness, tol, scale_u):
@@ -594,6 +586,12 @@ def _polish_linear(chain, slots, x0, bounds, M, g, scale_k, length, reach, max_s
                         max_nfev=2000)
     y = sol.x.reshape(m, 4)
     springs = _springs_from_linear(slots, y[:, 1], y[:, 2], y[:, 3], scale_k, length)
+    return _balanced_within_limits(chain, springs, M, g, scale_u, scale_k, length, reach, max_stiffness, tol)
+
+
+def _balanced_within_limits(chain, springs, M, g, scale_u, scale_k, length, reach, max_stiffness, tol):
+    """``springs`` if they satisfy 000 Eqs. (39) (M x + g = 0, scaled) to ``tol`` with k within
+    ``max_stiffness`` and every end within its link or ``reach``, else None."""
     if np.max(np.abs(M @ _linear_values(springs, scale_u, scale_k, length) + g)) > tol:
         return None
     if max_stiffness is not None and max(s.k for s in springs) > max_stiffness * (1 + 1e-9):
