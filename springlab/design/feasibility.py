@@ -106,9 +106,8 @@ class _Programme:
     b_eq: np.ndarray
 
 
-def _programme(chain: Chain, items, quantities: dict | None = None) -> _Programme:
-    """The linear relaxation's equations for ``items``; ``quantities``: {slot: _quantities(chain, slot)},
-    computed once by a caller that builds many programmes on one chain."""
+def _programme(chain: Chain, items) -> _Programme:
+    """The linear relaxation's equations for ``items``."""
     from springlab.energy.quadratic import gravity_entries
 
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
@@ -119,7 +118,7 @@ def _programme(chain: Chain, items, quantities: dict | None = None) -> _Programm
     row = {k: idx for idx, k in enumerate(keys)}
     cols, owner, signs = [], [], []
     for idx, s in enumerate(items):
-        for sign, entries in (quantities[s] if quantities is not None else _quantities(chain, s)):
+        for sign, entries in _quantities(chain, s):
             cols.append(entries)
             owner.append(idx)
             signs.append(sign)
@@ -238,13 +237,13 @@ class _RatioProgramme:
 
     def feasible(self, box) -> bool:
         """True when some point of the relaxation has every ratio within ``box``: [(low, high)] per ratio."""
+        import highspy
+
         for t, bounds in enumerate(box):
             if bounds != self.box[t]:
                 for row, den, lower, sign in self.cells[t]:
                     self.highs.changeCoeff(row, den, -bounds[0] * sign if lower else bounds[1] * sign)
                 self.box[t] = bounds
-        import highspy
-
         for _ in range(2):
             self.highs.run()
             status = self.highs.getModelStatus()
@@ -409,7 +408,8 @@ class _WarmCounts:
     kept in one HiGHS model: c copies of a kind are one copy with its quantities' sign box scaled
     by c ([c EPS, c BOUND]: the copies enter the equations only through their sum), an absent kind
     is fixed at 0, and each call changes the column bounds and solves again from the last basis
-    (about 3 times faster than building and solving the multiset's own programme)."""
+    (the n = 5 search on one arm: 4.5 s instead of 5.7 s building and solving each multiset's own
+    programme)."""
 
     def __init__(self, full: _Programme):
         self.highs = _new_highs()
@@ -446,8 +446,7 @@ def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list
     items = alphabet(chain.n)
     kinds = sorted(set(items))
     most = np.array([items.count(k) for k in kinds])
-    quantities = {k: _quantities(chain, k) for k in kinds}  # each spring's columns, computed once
-    full = _programme(chain, kinds, quantities)
+    full = _programme(chain, kinds)
     keys, pos, neg = term_signs(chain, kinds)  # per kind and entry: a positive (pos) / negative (neg) term there
     from springlab.energy.quadratic import gravity_entries
 

@@ -294,19 +294,15 @@ def read_urdf(text: str, *, source: str = "arm.urdf", up=None) -> UrdfArm:
     end = W @ pose[last_link][:3, 3]
     out = UrdfArm(str(name))
     # each body's mass and world COM, assigned to a springlab link (index into groups; -1 ground)
-    group_of_joint = {}
-    for gi, (_, members, _) in enumerate(groups):
-        for pos, (j, _, _) in enumerate(members):
-            group_of_joint[j.name] = (gi, pos, len(members))
+    place = [(gi, pos, len(members)) for gi, (_, members, _) in enumerate(groups) for pos in range(len(members))]
     mass = np.zeros(len(groups))
     moment = np.zeros((len(groups), 3))
-    movers = {idx: j for idx, (j, _, _) in enumerate(moving)}
     for link, idx in owner.items():
         if idx < 0 or links.get(link) is None:
             continue
         m, com = links[link]
         c = W @ (pose[link][:3, :3] @ com + pose[link][:3, 3])
-        gi, pos, size = group_of_joint[movers[idx].name]
+        gi, pos, size = place[idx]  # the groups take the movable joints in order
         if pos < size - 1:  # inside a wrist: counted at its centre, on the link before
             reach = np.linalg.norm(c - centres[gi])
             lim = COM_TOLERANCE * (np.linalg.norm((centres[gi + 1] if gi + 1 < len(groups) else end) - centres[gi]))
@@ -336,7 +332,7 @@ def read_urdf(text: str, *, source: str = "arm.urdf", up=None) -> UrdfArm:
                                  "springlab models spherical joints (three axes through one point) and revolute "
                                  "joints joined by links of nonzero length")
         if mass[gi] <= 0:
-            bodies = [lk for lk, idx in owner.items() if idx >= 0 and group_of_joint[movers[idx].name][0] == gi]
+            bodies = [lk for lk, idx in owner.items() if idx >= 0 and place[idx][0] == gi]
             raise SpringlabError(f"{source}: link {link_no} (URDF links {', '.join(map(repr, bodies))}, after joint(s) "
                                  f"{names}) has no mass: give its <inertial> with <mass> and <origin>")
         u = (far - centre) / length
