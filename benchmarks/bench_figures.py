@@ -41,7 +41,7 @@ def run_figures(clone: Path) -> tuple[float, dict[str, float], str]:
                MKL_NUM_THREADS="1", PYTHONDONTWRITEBYTECODE="")
     t0 = time.perf_counter()
     out = ""
-    for args in (["-m", "springlab.workbench.notebooks", "--out", "build/notebooks"],
+    for args in (["-m", "springlab.workbench.notebooks", "--out", "build/notebooks", "--site", "build/site"],
                  ["-m", "springlab.workbench.site", "--notebooks", "build/notebooks", "--site", "build/site",
                   "--figures", "figures"]):
         done = subprocess.run([sys.executable, *args], cwd=clone, env=env, capture_output=True, text=True)

@@ -28,7 +28,7 @@ def built_site():
     run_notebook(ROOT / "notebooks" / f"{stem}.ipynb", notebooks / f"{stem}.ipynb",
                  {"quick": True, "figures_dir": str(figures / stem)})
     assert site.executed_errors(notebooks / f"{stem}.ipynb") == []
-    index = site.build_site(notebooks, out / "site", figures)
+    index = site.build_site(notebooks, out / "site", figures, out / "cache")
     return index, out / "site" / f"{stem}.html"
 
 

@@ -56,11 +56,25 @@ def test_site_pages_resolve_and_load_nothing_from_the_internet(tmp_path):
     notebooks.mkdir()
     _executed_notebook(notebooks / "juang2023_spatial_balance.ipynb")
     shutil.copytree(ROOT / "figures" / "juang2023_spatial_balance", figures / "juang2023_spatial_balance")
-    index = site.build_site(notebooks, tmp_path / "site", figures)
+    index = site.build_site(notebooks, tmp_path / "site", figures, tmp_path / "cache")
     page = tmp_path / "site" / "juang2023_spatial_balance.html"
     assert site.check_links(index) == [] and site.check_links(page) == []
     assert "mathjax/MathJax.js" in page.read_text()
     assert "<img" in index.read_text() and "1.5 s" in index.read_text()
+
+
+def test_a_page_is_rendered_again_only_when_its_notebook_changed(tmp_path):
+    notebooks, cache = tmp_path / "nb", tmp_path / "cache"
+    notebooks.mkdir()
+    executed = notebooks / "juang2023_spatial_balance.ipynb"
+    _executed_notebook(executed)
+    page = site.render_page(executed, tmp_path / "site", cache)
+    page.write_text("rendered before")  # a fresh key: the page is reused as it is
+    assert site.render_page(executed, tmp_path / "site", cache).read_text() == "rendered before"
+    executed.write_text(executed.read_text().replace("A page", "Another page"))  # the notebook changed
+    assert "Another page" in site.render_page(executed, tmp_path / "site", cache).read_text()
+    page.unlink()  # a missing page is rendered whatever the key says
+    assert "Another page" in site.render_page(executed, tmp_path / "site", cache).read_text()
 
 
 def test_a_broken_page_is_caught(tmp_path):

@@ -83,9 +83,14 @@ def write_report_page(figures_dir, site_dir) -> Path:
 
 
 def _mathjax_dir() -> Path:
-    import jupyter_server_mathjax
+    """MathJax's folder in the ``jupyter-server-mathjax`` package, found without importing
+    it (its import loads Jupyter Server, 4 s)."""
+    import importlib.util
 
-    return Path(jupyter_server_mathjax.__file__).parent / "static"
+    spec = importlib.util.find_spec("jupyter_server_mathjax")
+    if spec is None or not spec.submodule_search_locations:
+        raise SolverError("jupyter-server-mathjax is not installed: run `make` to build the environment")
+    return Path(list(spec.submodule_search_locations)[0]) / "static"
 
 
 def render_notebook(executed: Path, site_dir: Path) -> Path:
@@ -102,21 +107,59 @@ def render_notebook(executed: Path, site_dir: Path) -> Path:
     return out
 
 
+def page_key(executed: Path) -> str:
+    """The key of a rendered page: the executed notebook and the modules that render it."""
+    return digest([executed, *module_closure(["springlab.workbench.site"])])
+
+
+def render_page(executed, site_dir, cache_folder="build/cache") -> Path:
+    """:func:`render_notebook`, unless the page was rendered from this executed notebook by
+    this code before (its :func:`page_key` under ``cache_folder``): the notebook runner renders
+    each page as its notebook finishes, and the site reuses it."""
+    executed, site_dir = Path(executed), Path(site_dir)
+    page, cache, key = site_dir / f"{executed.stem}.html", Cache(cache_folder), page_key(executed)
+    if cache.fresh(f"page-{executed.stem}", key, [page]):
+        return page
+    site_dir.mkdir(parents=True, exist_ok=True)
+    page = render_notebook(executed, site_dir)
+    cache.store(f"page-{executed.stem}", key)
+    return page
+
+
+def _render_all(executed: list[Path], site_dir: Path, cache_folder) -> list[Path]:
+    """:func:`render_page` for each notebook, on every core (nbconvert is pure Python: one
+    process per core), the pages in the notebooks' order."""
+    import os
+    from concurrent.futures import ProcessPoolExecutor
+    from multiprocessing import get_context
+
+    stale = [nb for nb in executed
+             if not Cache(cache_folder).fresh(f"page-{nb.stem}", page_key(nb), [site_dir / f"{nb.stem}.html"])]
+    workers = min(len(stale), os.cpu_count() or 1)
+    if workers > 1:
+        # spawned, not forked: page_key has run grimp's threads here, which a fork can deadlock
+        with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
+            list(pool.map(render_page, stale, [site_dir] * len(stale), [cache_folder] * len(stale)))
+    return [render_page(nb, site_dir, cache_folder) for nb in executed]
+
+
 def _run_time(executed: Path) -> float | None:
     meta = json.loads(executed.read_text()).get("metadata", {}).get("papermill", {})
     return meta.get("duration")
 
 
-def build_site(notebooks_dir="build/notebooks", site_dir="build/site", figures_dir="figures") -> Path:
-    """Render the executed notebooks and write the index; returns index.html's path."""
+def build_site(notebooks_dir="build/notebooks", site_dir="build/site", figures_dir="figures",
+               cache_folder="build/cache") -> Path:
+    """Render the executed notebooks (those not rendered already, :func:`render_page`) and
+    write the index; returns index.html's path."""
     notebooks_dir, site_dir, figures_dir = Path(notebooks_dir), Path(site_dir), Path(figures_dir)
     site_dir.mkdir(parents=True, exist_ok=True)
     shutil.copytree(_mathjax_dir(), site_dir / "mathjax", dirs_exist_ok=True)
     claims = load_claims(figures_dir)
     rows = []
-    for executed in sorted(notebooks_dir.glob("*.ipynb")):
+    executed_notebooks = sorted(notebooks_dir.glob("*.ipynb"))
+    for executed, page in zip(executed_notebooks, _render_all(executed_notebooks, site_dir, cache_folder), strict=True):
         stem = executed.stem
-        page = render_notebook(executed, site_dir)
         if (figures_dir / stem).is_dir():
             shutil.copytree(figures_dir / stem, site_dir / "figures" / stem, dirs_exist_ok=True)
         paper = PAPERS.get(stem, {"authors": "", "year": "", "title": stem, "venue": "", "doi": None,
@@ -187,7 +230,7 @@ def main(argv=None) -> int:
         print(f"unchanged: report {report}; site {Path(args.site) / 'index.html'}")
         return 0
     cache.forget("site")
-    index = build_site(args.notebooks, args.site, args.figures)
+    index = build_site(args.notebooks, args.site, args.figures, args.cache)
     problems = [f"{p.name}: {issue}" for p in sorted(Path(args.site).glob("*.html")) for issue in check_links(p)]
     for line in problems:
         print(line, file=sys.stderr)
