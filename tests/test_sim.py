@@ -5,6 +5,7 @@ import pytest
 
 from springlab import Spring, SpringlabError, UnbalanceableError, random_directions, serial_chain
 from springlab.energy import simulation as sim
+from springlab.energy.multibody import SimSettings
 from springlab.model.trajectories import Sweep
 from springlab.papers import juang2023 as paper
 
@@ -31,6 +32,18 @@ def test_holding_torques_equal_route_2(arm, exact_springs, poses, scale):
         assert np.abs(result.simulated).max() < 1e-9
     else:
         assert np.abs(result.simulated).max() > 0.1
+
+
+def test_dense_and_sparse_linear_solvers_agree(arm, exact_springs, poses):
+    """The dense LU (the default, faster on springlab's small models) and exudyn's sparse one
+    give the same torques and the same drift, to the Newton tolerance; the control falls in both."""
+    springs = [s.scaled(0.9) for s in exact_springs]
+    dense = sim.holding_torques(arm, springs, poses[:5])
+    sparse = sim.holding_torques(arm, springs, poses[:5], settings=SimSettings(dense=False))
+    assert np.abs(dense.simulated - sparse.simulated).max() < 1e-9 < np.abs(dense.simulated).max()
+    held = [sim.hold_test(arm, exact_springs, poses[:2], duration=0.5, settings=SimSettings(dense=d)) for d in (True, False)]
+    assert all(h.balanced.max_tip_drift < 1e-9 and h.control.max_tip_drift > 1e-3 for h in held)
+    assert abs(held[0].control.max_tip_drift - held[1].control.max_tip_drift) < 1e-8
 
 
 def test_holding_torque_sign_against_a_known_load():

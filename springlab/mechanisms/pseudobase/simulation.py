@@ -29,6 +29,7 @@ serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from dataclasses import dataclass
 
@@ -211,8 +212,7 @@ def follow(arm: PseudobaseArm, springs, trajectory, duration: float, *, model: s
     m.mbs.Assemble()
     period = duration / (samples - 1)
     per = max(1, int(np.ceil(period / step)))
-    run = SimSettings(step=period / per, relative_tolerance=settings.relative_tolerance,
-                      absolute_tolerance=settings.absolute_tolerance, damping=settings.damping)
+    run = dataclasses.replace(settings, step=period / per)
     t0 = time.process_time()
     m.mbs.SolveDynamic(solver_settings(run, duration, write_period=period))
     cpu = time.process_time() - t0
