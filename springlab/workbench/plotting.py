@@ -2,7 +2,9 @@
 
 ``save_figure`` writes ``<directory>/<name>.png`` and ``.svg``: the PNG without
 the 'Software' metadata, the SVG with a fixed hash salt and no date, so that
-re-running the notebooks on the pinned versions leaves ``git status`` clean.
+re-running the notebooks on the pinned versions leaves ``git status`` clean. In a
+notebook it also shows the saved PNG as the cell's figure, so the reader sees the file
+itself and the figure is drawn twice (PNG, SVG), not a third time for the notebook.
 
 References
 ----------
@@ -26,14 +28,38 @@ def use_style() -> None:
 
 
 def save_figure(fig, name: str, directory) -> list[Path]:
-    """Save ``fig`` as ``directory/name.png`` and ``directory/name.svg``; returns the paths."""
+    """Save ``fig`` as ``directory/name.png`` and ``directory/name.svg``; returns the paths.
+
+    In a Jupyter kernel the PNG just written is displayed (at the size the notebook would
+    draw the figure, ``figure.dpi``) and the figure closed, so a ``plt.show()`` after it
+    draws nothing more."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     png, svg = directory / f"{name}.png", directory / f"{name}.svg"
     with mpl.rc_context({"svg.hashsalt": "springlab", "svg.fonttype": "path"}):
         fig.savefig(png, format="png", metadata={"Software": None})
         fig.savefig(svg, format="svg", metadata={"Date": None})
+    if _in_kernel():
+        from IPython.display import Image, display
+        from PIL import Image as PILImage
+
+        saved_dpi = mpl.rcParams["savefig.dpi"]
+        saved_dpi = fig.dpi if saved_dpi == "figure" else saved_dpi
+        with PILImage.open(png) as im:
+            width = round(im.width * mpl.rcParams["figure.dpi"] / saved_dpi)
+        display(Image(data=png.read_bytes(), format="png", width=width))
+        plt.close(fig)
     return [png, svg]
+
+
+def _in_kernel() -> bool:
+    """True inside a Jupyter kernel (a notebook), False in a script or the tests."""
+    try:
+        from IPython import get_ipython
+    except ImportError:
+        return False
+    shell = get_ipython()
+    return shell is not None and hasattr(shell, "kernel")
 
 
 def energy_figure(t, gravity, springs, total, *, title: str, reference=None, reference_label=None,
