@@ -102,3 +102,21 @@ def test_the_longest_notebook_is_expected_first(tmp_path):
     assert expected_seconds(paths["lenzo2017_two_spring_arm"], tmp_path) == 500.0
     (tmp_path / "durations.json").write_text("not json")
     assert expected_seconds(paths["lenzo2017_two_spring_arm"], tmp_path) < 500.0  # a broken record: the hint
+
+
+def test_notebooks_validate_without_the_iri_format_checker():
+    """The runner keeps jsonschema from loading rfc3987_syntax (0.9 s per process); nbformat
+    still validates a notebook, and still refuses a broken one."""
+    import subprocess
+    import sys
+
+    code = ("from springlab.workbench.notebooks import skip_unused_format_checker\n"
+            "skip_unused_format_checker()\n"
+            "import sys, nbformat\n"
+            f"nb = nbformat.read({str(ROOT / 'notebooks' / 'lenzo2017_two_spring_arm.ipynb')!r}, as_version=4)\n"
+            "nbformat.validate(nb)\n"
+            "nb.cells[0]['cell_type'] = 'no such type'\n"
+            "try:\n    nbformat.validate(nb)\nexcept nbformat.ValidationError:\n    print('refused')\n"
+            "print('rfc3987_syntax' in sys.modules and sys.modules['rfc3987_syntax'] is not None)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
+    assert out == ["refused", "False"]

@@ -95,6 +95,9 @@ def _mathjax_dir() -> Path:
 
 def render_notebook(executed: Path, site_dir: Path) -> Path:
     """One executed notebook to ``site_dir/<stem>.html``, with local MathJax."""
+    from springlab.workbench.notebooks import skip_unused_format_checker
+
+    skip_unused_format_checker()
     import nbformat
     from nbconvert import HTMLExporter
 
