@@ -5,10 +5,13 @@ virtual environment's Python, as `make figures` runs it: every notebook executed
 papermill in parallel (one kernel per core), then the site. Cold: nothing cached (no
 notebook keys, no compiled numba kernels). Warm: the same two commands again, nothing
 changed. Then `git status` in the clone must be clean (the figures and claims it wrote
-are the committed ones, byte for byte).
+are the committed ones, byte for byte). Before that, an earlier commit (``--before``) is
+cloned and run cold the same way, with the commands of its own Makefile, so that before
+and after are measured on one machine on one day.
 
     make bench
-    python benchmarks/bench_figures.py            # about 3 minutes on 2 cores
+    python benchmarks/bench_figures.py            # about 4 minutes on 2 cores
+    python benchmarks/bench_figures.py --before ''  # without the earlier commit's run
     python benchmarks/bench_figures.py --skip     # print only the earlier figures
 """
 
@@ -26,14 +29,30 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 EARLIER = {  # s per notebook: (commit 0abe5ae, one after another, papermill's cell timings;
-    #              commit 4d58831, in parallel on 2 cores, the runner's own lines), the same machine
+    #              commit 4d58831, in parallel on 2 cores, the runner's own lines), on the machine of their day
     "juang2022_spring_efficiency": (96, 121), "juang2023_spatial_balance": (21, 217),
     "lenzo2017_two_spring_arm": (4, 9), "lin2010_pseudobases": (60, 155),
     "springlab_design_your_arm": (205, 214), "zhang2023_dyad": (25, 43),
 }
 """0abe5ae tested the rules against physics to n = 4 in the 000 notebook; from 4d58831 on, to n = 5."""
+BEFORE = "c73f122"
+"""The commit before the last round of speed-ups (91-148 s cold on the machines it was measured on),
+run again here so that before and after share a machine and a day."""
 EARLIER_COLD = (430, 440)  # s, the whole of `make figures` from a fresh clone
 EARLIER_WARM = (430, 0.6)  # s, again with nothing changed (0abe5ae had no cache: it ran everything again)
+
+
+def figures_commands(clone: Path) -> list[list[str]]:
+    """The commands of the clone's own ``make figures`` recipe, with this venv's Python: an
+    earlier commit runs as it ran then."""
+    lines = (clone / "Makefile").read_text().splitlines()
+    start = lines.index(next(line for line in lines if line.startswith("figures:")))
+    out = []
+    for line in lines[start + 1:]:
+        if not line.startswith("\t"):
+            break
+        out.append(line.strip().replace("$(BIN)/python", sys.executable).split()[1:])
+    return out
 
 
 def run_figures(clone: Path) -> tuple[float, dict[str, float], str]:
@@ -41,9 +60,7 @@ def run_figures(clone: Path) -> tuple[float, dict[str, float], str]:
                MKL_NUM_THREADS="1", PYTHONDONTWRITEBYTECODE="")
     t0 = time.perf_counter()
     out = ""
-    for args in (["-m", "springlab.workbench.notebooks", "--out", "build/notebooks", "--site", "build/site"],
-                 ["-m", "springlab.workbench.site", "--notebooks", "build/notebooks", "--site", "build/site",
-                  "--figures", "figures"]):
+    for args in figures_commands(clone):
         done = subprocess.run([sys.executable, *args], cwd=clone, env=env, capture_output=True, text=True)
         out += done.stdout + done.stderr
         if done.returncode:
@@ -56,15 +73,25 @@ def run_figures(clone: Path) -> tuple[float, dict[str, float], str]:
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--skip", action="store_true", help="do not run: print the earlier figures only")
+    parser.add_argument("--before", default=BEFORE,
+                        help=f"an earlier commit run cold in the same run, as its own Makefile ran it "
+                             f"(default {BEFORE}; '' for none)")
     args = parser.parse_args(argv)
     head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True).stdout.strip()
-    print(f"make figures: a fresh clone of HEAD {head or '?'} on {os.cpu_count()} cores with this venv, "
-          "beside two earlier commits on the same machine")
-    cold = warm = None
+    print(f"make figures: a fresh clone of HEAD {head or '?'} on {os.cpu_count()} cores with this venv"
+          + (f", and of {args.before} before it, in this run" if args.before and not args.skip else "")
+          + "; beside two earlier commits measured on an earlier machine")
+    cold = warm = before = None
     per: dict[str, float] = {}
+    per_before: dict[str, float] = {}
     clean = "not run"
     if not args.skip:
         with tempfile.TemporaryDirectory(prefix="springlab-bench-") as tmp:
+            if args.before:
+                old = Path(tmp) / "before"
+                subprocess.run(["git", "clone", "-q", str(ROOT), str(old)], check=True)
+                subprocess.run(["git", "checkout", "-q", args.before], cwd=old, check=True)
+                before, per_before, _ = run_figures(old)
             clone = Path(tmp) / "springlab"
             subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
             cold, per, _ = run_figures(clone)
@@ -74,16 +101,16 @@ def main(argv=None) -> None:
             if "running " in warm_out:
                 clean += " (the warm run re-ran a notebook)"
     width = len("make figures, warm (nothing changed)")
-    print(f"  {'notebook (s)':<{width}}  {'0abe5ae':>8}  {'4d58831':>8}  {'now':>8}")
-    for name, (first, second) in EARLIER.items():
-        now = f"{per[name]:8.0f}" if name in per else f"{'-':>8}"
-        print(f"  {name:<{width}}  {first:8.0f}  {second:8.0f}  {now}")
+    label = (args.before or "before")[:8]
+    print(f"  {'notebook (s)':<{width}}  {'0abe5ae':>8}  {'4d58831':>8}  {label:>8}  {'now':>8}")
     fmt = lambda x: f"{x:8.1f}" if x is not None else f"{'-':>8}"  # noqa: E731
+    for name, (first, second) in EARLIER.items():
+        print(f"  {name:<{width}}  {first:8.0f}  {second:8.0f}  {fmt(per_before.get(name))}  {fmt(per.get(name))}")
     print(f"  {'make figures, cold (fresh clone)':<{width}}  {EARLIER_COLD[0]:8.0f}  {EARLIER_COLD[1]:8.0f}  "
-          f"{fmt(cold)}   (target 60)")
+          f"{fmt(before)}  {fmt(cold)}   (target 60)")
     print(f"  {'make figures, warm (nothing changed)':<{width}}  {EARLIER_WARM[0]:8.0f}  {EARLIER_WARM[1]:8.1f}  "
-          f"{fmt(warm)}   (target 5)")
-    print(f"  git status after both runs: {clean}")
+          f"{'':>8}  {fmt(warm)}   (target 5)")
+    print(f"  git status after both runs of HEAD: {clean}")
 
 
 if __name__ == "__main__":
