@@ -144,6 +144,22 @@ def test_indices_in_one_pass_equal_the_plain_means():
         ef.efficiency_indices(ARM, {"a": TABLE4}, WS, step=step, readings=("average",))
 
 
+def test_one_more_reading_of_one_design_in_the_same_pass():
+    """``also`` adds a (design, reading) pair to the pass: its index is the one efficiency_index
+    gives alone, to the last bit, and the others' are unchanged; unknown labels are refused."""
+    after = plsyn.design(ARM, "Λ3-1", paper.FREE_CHOICES | {"A_S14": 0.4})
+    designs, step = {"table 4": TABLE4, "after": after}, 10
+    plain = ef.efficiency_indices(ARM, designs, WS, step=step)
+    got = ef.efficiency_indices(ARM, designs, WS, step=step, also=[("table 4", "literal")])
+    assert set(got) == set(plain) | {("table 4", "literal")} and all(got[k] == plain[k] for k in plain)
+    assert got[("table 4", "literal")] == ef.efficiency_index(ARM, TABLE4, WS, step=step, reading="literal")
+    assert got[("table 4", "literal")] != got[("table 4", "magnitudes")]
+    with pytest.raises(SpringlabError, match="also must hold"):
+        ef.efficiency_indices(ARM, designs, WS, step=step, also=[("before", "literal")])
+    with pytest.raises(SpringlabError, match="reading"):
+        ef.efficiency_indices(ARM, designs, WS, step=step, also=[("after", "average")])
+
+
 def test_grid_index_equals_the_plain_mean():
     step = 20
     axes = WS.grid(step)

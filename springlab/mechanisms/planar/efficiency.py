@@ -143,22 +143,32 @@ def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: flo
 
 
 def efficiency_indices(arm: PlanarArm, designs: dict, workspace: Workspace, *, step: float,
-                       readings=("magnitudes",), progress: bool = False) -> dict[tuple[str, str], float]:
+                       readings=("magnitudes",), also=(), progress: bool = False) -> dict[tuple[str, str], float]:
     """:func:`efficiency_index` on the grid of ``step`` (deg) for several designs and readings in one
-    pass: {(design label, reading): index}. ``designs``: {label: springs}. Terms shared by the
-    designs (gravity's, and those of springs two designs have in common) are evaluated once per pose;
-    each design and reading is the same mean over the same grid as :func:`efficiency_index` gives."""
+    pass: {(design label, reading): index}. ``designs``: {label: springs}; every design under every
+    one of ``readings``, and the further (label, reading) pairs of ``also`` (one design under
+    another reading, without the others). Terms shared by the designs (gravity's, and those of
+    springs two designs have in common) are evaluated once per pose; each design and reading is
+    the same mean over the same grid as :func:`efficiency_index` gives, to the last bit."""
     _checks.instance("designs", designs, dict, "a dict {label: springs}")
     if not designs:
         raise SpringlabError("designs is empty: give at least one {label: springs}")
     readings = [_checks.choice("reading", r, READINGS) for r in readings]
     if not readings:
         raise SpringlabError("readings is empty: give at least one of " + ", ".join(READINGS))
+    pairs = [(label, reading) for label in designs for reading in readings]
+    for pair in also:
+        if not (isinstance(pair, tuple) and len(pair) == 2 and pair[0] in designs):
+            raise SpringlabError(f"also must hold (design label, reading) pairs with labels of designs "
+                                 f"({', '.join(map(str, designs))}), got {pair!r}")
+        pair = (pair[0], _checks.choice("reading", pair[1], READINGS))
+        if pair not in pairs:
+            pairs.append(pair)
     _check_workspace(arm, workspace)
-    _checks.poses(f"the index over a grid of step = {step:g} deg", workspace.grid_size(step) * len(designs) * len(readings),
+    _checks.poses(f"the index over a grid of step = {step:g} deg", workspace.grid_size(step) * len(pairs),
                   rate=GRID_RATE, hint="use a larger step")
-    jobs = [(label, reading, terms(arm, check_springs(arm, springs))) for label, springs in designs.items()
-            for reading in readings]
+    springs_of = {label: check_springs(arm, springs) for label, springs in designs.items()}
+    jobs = [(label, reading, terms(arm, springs_of[label])) for label, reading in pairs]
     means = _grid_means(workspace, step, [(tl, reading) for _, reading, tl in jobs], progress)
     return {(label, reading): mean for (label, reading, _), mean in zip(jobs, means, strict=True)}
 
