@@ -131,3 +131,16 @@ def test_counts_in_one_warm_model_give_the_multisets_own_phase_one():
         values.append(fresh)
         assert abs(warm(counts)[0] - fresh) <= 1e-9 * max(1.0, fresh)
     assert max(values) > 1e-3 and min(values) <= 1e-9  # both feasible and infeasible multisets met
+
+
+def test_highs_prints_no_banner():
+    """HiGHS prints a banner when a process makes its first model; springlab's models are made
+    silently, so a notebook's output shows only what springlab says (the control: highspy itself prints)."""
+    import subprocess
+    import sys
+
+    quiet = subprocess.run([sys.executable, "-c", "from springlab.design import feasibility as f; f._new_highs(); "
+                            "f._new_highs(); print('done')"], capture_output=True, text=True, check=True)
+    assert quiet.stdout == "done\n"
+    loud = subprocess.run([sys.executable, "-c", "import highspy; highspy.Highs()"], capture_output=True, text=True, check=True)
+    assert "HiGHS" in loud.stdout

@@ -40,6 +40,7 @@ spatial articulated manipulators without auxiliary links. Mechanism and Machine 
 
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -350,10 +351,31 @@ def _phase_one_lp(prog: _Programme):
     return lp
 
 
+_BANNER_SHOWN = False
+
+
 def _new_highs():
+    """A silent HiGHS model. The first one of a process is made with the C library's standard
+    output sent to /dev/null: HiGHS prints its banner there when the first model is made, before
+    any option can turn output off (in a notebook it landed in the cell's output)."""
+    import os
+
     import highspy
 
-    h = highspy.Highs()
+    global _BANNER_SHOWN
+    if _BANNER_SHOWN:
+        h = highspy.Highs()
+    else:
+        sys.stdout.flush()
+        saved, null = os.dup(1), os.open(os.devnull, os.O_WRONLY)
+        try:
+            os.dup2(null, 1)
+            h = highspy.Highs()
+        finally:
+            os.dup2(saved, 1)
+            os.close(saved)
+            os.close(null)
+        _BANNER_SHOWN = True
     h.setOptionValue("output_flag", False)
     h.setOptionValue("threads", 1)  # thousands of tiny programmes: no thread pool (n = 5's search 2.23 -> 2.03 s an arm)
     return h
