@@ -16,6 +16,7 @@
 from __future__ import annotations
 
 import argparse
+import functools
 import html
 import json
 import re
@@ -110,9 +111,15 @@ def render_notebook(executed: Path, site_dir: Path) -> Path:
     return out
 
 
+@functools.cache
+def _site_sources() -> tuple[Path, ...]:
+    """The files of the modules that build the site (the import graph is read once a process)."""
+    return tuple(sorted(module_closure(["springlab.workbench.site"])))
+
+
 def page_key(executed: Path) -> str:
     """The key of a rendered page: the executed notebook and the modules that render it."""
-    return digest([executed, *module_closure(["springlab.workbench.site"])])
+    return digest([executed, *_site_sources()])
 
 
 def render_page(executed, site_dir, cache_folder="build/cache") -> Path:
@@ -249,7 +256,7 @@ def _site_key(args) -> str:
     writes), the modules that build it, and where it goes."""
     inputs = [p for p in Path(args.notebooks).glob("*.ipynb")]
     inputs += [p for p in Path(args.figures).rglob("*") if p.is_file() and p.name != "REPRODUCTION.md"]
-    inputs += module_closure(["springlab.workbench.site"])
+    inputs += _site_sources()
     return digest(inputs, {"site": str(Path(args.site).resolve()), "figures": str(Path(args.figures).resolve())})
 
 
