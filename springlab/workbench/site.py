@@ -127,13 +127,19 @@ def render_page(executed, site_dir, cache_folder="build/cache") -> Path:
     this code before (its :func:`page_key` under ``cache_folder``): the notebook runner renders
     each page as its notebook finishes, and the site reuses it."""
     executed, site_dir = Path(executed), Path(site_dir)
-    page, cache, key = site_dir / f"{executed.stem}.html", Cache(cache_folder), page_key(executed)
-    if cache.fresh(f"page-{executed.stem}", key, [page]):
-        return page
+    key = page_key(executed)
+    if _page_fresh(executed, site_dir, cache_folder, key):
+        return site_dir / f"{executed.stem}.html"
     site_dir.mkdir(parents=True, exist_ok=True)
     page = render_notebook(executed, site_dir)
-    cache.store(f"page-{executed.stem}", key)
+    Cache(cache_folder).store(f"page-{executed.stem}", key)
     return page
+
+
+def _page_fresh(executed: Path, site_dir: Path, cache_folder, key: str | None = None) -> bool:
+    """True when ``executed``'s page exists and was rendered from it by this code."""
+    key = page_key(executed) if key is None else key
+    return Cache(cache_folder).fresh(f"page-{executed.stem}", key, [site_dir / f"{executed.stem}.html"])
 
 
 def _render_all(executed: list[Path], site_dir: Path, cache_folder) -> list[Path]:
@@ -143,14 +149,16 @@ def _render_all(executed: list[Path], site_dir: Path, cache_folder) -> list[Path
     from concurrent.futures import ProcessPoolExecutor
     from multiprocessing import get_context
 
-    stale = [nb for nb in executed
-             if not Cache(cache_folder).fresh(f"page-{nb.stem}", page_key(nb), [site_dir / f"{nb.stem}.html"])]
+    stale = [nb for nb in executed if not _page_fresh(nb, site_dir, cache_folder)]
     workers = min(len(stale), os.cpu_count() or 1)
     if workers > 1:
         # spawned, not forked: page_key has run grimp's threads here, which a fork can deadlock
         with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
             list(pool.map(render_page, stale, [site_dir] * len(stale), [cache_folder] * len(stale)))
-    return [render_page(nb, site_dir, cache_folder) for nb in executed]
+    else:
+        for nb in stale:
+            render_page(nb, site_dir, cache_folder)
+    return [site_dir / f"{nb.stem}.html" for nb in executed]
 
 
 def _run_time(executed: Path) -> float | None:
