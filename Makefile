@@ -17,7 +17,7 @@ $(STAMP): pyproject.toml constraints.txt
 	touch $@
 
 figures: $(STAMP)
-	$(BIN)/python -m springlab.workbench.notebooks --out build/notebooks --site build/site
+	$(BIN)/python -m springlab.workbench.notebooks --out build/notebooks
 	$(BIN)/python -m springlab.workbench.site --notebooks build/notebooks --site build/site --figures figures
 
 test: $(STAMP)

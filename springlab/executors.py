@@ -22,7 +22,7 @@ def check_executor(executor):
 
 
 def map_ordered(executor, fn, tasks) -> list:
-    """[fn(*task) for task in tasks], the tasks submitted to ``executor`` at once (None: run here);
+    """``[fn(*task) for task in tasks]``, the tasks submitted to ``executor`` at once (None: run here);
     results in the tasks' order. ``fn`` must be a module-level function (picklable)."""
     tasks = list(tasks)
     if executor is None:

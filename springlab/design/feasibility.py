@@ -760,7 +760,7 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
     refuted on the others (``same_on_every_arm``).
 
     A balanceable multiset that contains a refuted one is not relaxation-minimal and is not
-    enumerated: with refutations the minimal count is a lower bound (:attr:`exact`).
+    enumerated: with refutations the minimal count is a lower bound (the result's ``exact``).
     """
     n = _checks.links(n, "n")
     arms = _checks.count("arms", arms, least=1)

@@ -2,7 +2,7 @@
 relaxation of 000 Eqs. (39) (:func:`relaxation_screen`, a proof where it fails), solved and
 verified by route 2 (:func:`fewer_springs`); the n - 1 springs from the base column
 (:func:`ground_spring_design`), which 000 Eq. (41) forbids; and what each n needs
-(:func:`springs_per_n`).
+(:func:`springlab.design.ground.springs_per_n`).
 
 References
 ----------
@@ -202,9 +202,11 @@ def ground_spring_design(spec_or_chain, *, max_extension: float | None = None, m
 
 
 FAMILY_LENGTHS = (0.30, 0.24, 0.20, 0.15, 0.12, 0.10, 0.08)  # m, links 2..8
+"""The example family's link lengths (m), links 2..8: a shoulder-to-wrist arm shrinking outwards."""
 
 
 FAMILY_MASSES = (4.0, 3.2, 2.8, 1.5, 1.2, 1.0, 0.8)  # kg
+"""The example family's link masses (kg), links 2..8."""
 
 
 def example_family(ns, *, max_attachment: float = 0.3, samples: int = 1000) -> dict[int, ArmSpec]:

@@ -57,6 +57,7 @@ by their signs in 0.4 s; n = 7 has about 3.5 million): above it the report says 
 
 
 VERIFY_TOLERANCE = 1e-10
+"""The largest relative variation of the total energy (of the gravity range) a verified design may show."""
 PROOF = "proof"
 """Prefix of a rejection that is proved (the linear relaxation): any other reason is a search
 that ran out of starts or limits, not a proof."""

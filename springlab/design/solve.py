@@ -398,8 +398,8 @@ def largest_force_bound(chain: Chain, springs) -> float:
 def minimise_largest_force(chain: Chain, slots, springs, *, max_extension: float | None = None,
                            max_stiffness: float | None = None, tol: float = 1e-12, rounds: int = 3) -> tuple[Spring, ...]:
     """Spend a configuration's free choices on the smallest largest spring force: up to
-    ``rounds`` rounds of :func:`_force_round`, each from the last one's polished design,
-    while a round gains more than 1 %. See :func:`_force_round` for the formulation."""
+    ``rounds`` rounds of ``_force_round``, each from the last one's polished design,
+    while a round gains more than 1 %. See ``_force_round`` for the formulation."""
     _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     slots = _slots_on(chain, slots)
     springs = check_springs(chain, springs)
@@ -604,14 +604,14 @@ def _balanced_within_limits(chain, springs, M, g, scale_u, scale_k, length, reac
 
 
 def _springs_from_linear(slots, A, B, K, scale_k, length) -> tuple[Spring, ...]:
-    """Springs from the scaled A = k a, B = k b and k of :func:`_force_round`: a = A / k, b = B / k (m)."""
+    """Springs from the scaled A = k a, B = k b and k of ``_force_round``: a = A / k, b = B / k (m)."""
     k = np.asarray(K) * scale_k
     return tuple(Spring(s.i, s.j, float(a * scale_k * length / kk), float(b * scale_k * length / kk), float(kk))
                  for s, a, b, kk in zip(slots, A, B, k, strict=True))
 
 
 def _linear_values(springs, scale_u, scale_k, length) -> np.ndarray:
-    """(P, A, B, k) per spring in the scaled units of :func:`_force_round`."""
+    """(P, A, B, k) per spring in the scaled units of ``_force_round``."""
     return np.array([[s.k * s.a * s.b / scale_u, s.k * s.a / (scale_k * length), s.k * s.b / (scale_k * length),
                       s.k / scale_k] for s in springs]).ravel()
 

@@ -1,8 +1,8 @@
 """The total potential energy of a general serial chain by three independent routes:
 
-* :mod:`.quadratic`, route 1: the papers' algebra, X^T (G + sum K_S) X (000 Eqs. 8-29);
-* :mod:`.geometry`, route 2: direct geometry, sum m g h + k |AB|^2 / 2;
-* :mod:`.simulation`, route 3: exudyn (with the helpers of :mod:`.multibody`).
+* :mod:`~springlab.energy.quadratic`, route 1: the papers' algebra, X^T (G + sum K_S) X (000 Eqs. 8-29);
+* :mod:`~springlab.energy.geometry`, route 2: direct geometry, sum m g h + k |AB|^2 / 2;
+* :mod:`~springlab.energy.simulation`, route 3: exudyn (with the helpers of :mod:`~springlab.energy.multibody`).
 
 Routes 2 and 3 never import route 1, directly or through a helper (an import contract in
 ``pyproject.toml``, run by the tests). This package's ``__init__`` imports none of them.

@@ -127,7 +127,7 @@ def com_offset_energy(chain: Chain, offsets, poses) -> np.ndarray:
 
     :param offsets: per moving link, the COM's offset from its line in the link's frame (m), (n-1, 3)
     :param poses: joint angles (N, n-1, 3) or, for an all-spherical chain, directions (N, n, 3)
-        (then each link's spin about its own axis is :func:`frames_from_directions`' choice)
+        (then each link's spin about its own axis is :func:`~springlab.model.rotations.frames_from_directions`' choice)
     """
     _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     delta = _checks.real_array("offsets", offsets, shape=(chain.n - 1, 3))

@@ -155,7 +155,7 @@ def add_sensor(mbs, kind: str, **kwargs):
 
 
 def check_constraints(mbs, what: str) -> None:
-    """Raise :class:`SolverError` if the assembled system ``mbs`` has redundant constraints."""
+    """Raise :class:`~springlab.errors.SolverError` if the assembled system ``mbs`` has redundant constraints."""
     dof = mbs.ComputeSystemDegreeOfFreedom()
     if dof["redundantConstraints"]:
         raise SolverError(f"the {what} model has redundant constraints: {dof}")

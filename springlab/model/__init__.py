@@ -1,5 +1,5 @@
-"""The arm, shared by every route: the serial chain and its poses (:mod:`.chain`), rotations
-(:mod:`.rotations`), zero-free-length springs and their attachment checks (:mod:`.springs`),
-trajectories (:mod:`.trajectories`) and arm files (:mod:`.armfile`).
+"""The arm, shared by every route: the serial chain and its poses (:mod:`~springlab.model.chain`), rotations
+(:mod:`~springlab.model.rotations`), zero-free-length springs and their attachment checks (:mod:`~springlab.model.springs`),
+trajectories (:mod:`~springlab.model.trajectories`) and arm files (:mod:`~springlab.model.armfile`).
 
 The model imports nothing above it (an import contract in ``pyproject.toml``)."""

@@ -202,7 +202,7 @@ class Chain:
     def check_directions(self, X) -> np.ndarray:
         """Validate a batch of poses and return it as a float array of shape (N, n, 3).
 
-        Raises :class:`SpringlabError` on a wrong shape, NaN, a non-unit vector or
+        Raises :class:`~springlab.errors.SpringlabError` on a wrong shape, NaN, a non-unit vector or
         a ground link that does not point up.
         """
         X = self.as_poses(X)
@@ -217,7 +217,7 @@ class Chain:
         multiply contiguous rows. ``xt`` is a reused buffer: consume it before
         the next step. Memory stays bounded by the chunk, whatever N is.
 
-        Raises :class:`SpringlabError` on a wrong shape, NaN, a non-unit vector
+        Raises :class:`~springlab.errors.SpringlabError` on a wrong shape, NaN, a non-unit vector
         (|x|^2 off 1 by more than 2e-9) or a ground link that does not point up.
         """
         X = self.as_poses(X)

@@ -26,7 +26,8 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import asdict, dataclass
+import sys
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 from springlab import tables
@@ -52,6 +53,7 @@ class Claim:
     tolerance_basis: str = ""
     band: dict | None = None  # {"value": the rounding band, "basis": how it was propagated}
     cause: str = ""  # a discrepancy's cause, when one was found
+    cell: int | None = None  # the execution count of the notebook cell that recorded it (the book links it)
 
     @property
     def difference(self) -> float | None:
@@ -65,6 +67,17 @@ def report_column(record: dict) -> str:
     if record["status"] == "discrepancy":
         return "discrepancy, cause found" if record.get("cause") else "discrepancy, no cause found"
     return record["status"]
+
+
+def _current_cell() -> int | None:
+    """The execution count of the notebook cell running now, or None outside a kernel: the
+    count of the result IPython is running the cell for (its own ``execution_count`` is
+    already the next cell's while a cell runs)."""
+    ipython = sys.modules.get("IPython")
+    shell = ipython.get_ipython() if ipython is not None else None
+    result = getattr(getattr(shell, "displayhook", None), "exec_result", None)
+    count = getattr(result, "execution_count", None)
+    return count if isinstance(count, int) else None
 
 
 def _number(value) -> str:
@@ -159,7 +172,7 @@ class Claims:
             quantity, paper, ours, tolerance, decimals, rounding, band_basis)
         claim = Claim(quantity, where, paper, ours, unit, tolerance, status, note, tolerance_basis,
                       band, cause if status == "discrepancy" else "")
-        self.records.append(claim)
+        self.records.append(claim := replace(claim, cell=_current_cell()))
         assert status == expect, (
             f"{quantity} ({where}): paper {paper}, ours {ours:.10g}, |difference| {diff:.3g} {unit}: "
             f"status {status}, expected {expect} (tolerance {tolerance:g})")
@@ -179,7 +192,7 @@ class Claims:
             quantity, paper, recomputed, tolerance, decimals, rounding, band_basis)
         status = "inconsistent" if status == "discrepancy" else "consistent"
         claim = Claim(quantity, where, paper, ours, unit, tolerance, status, note, tolerance_basis, band)
-        self.records.append(claim)
+        self.records.append(claim := replace(claim, cell=_current_cell()))
         assert status == expect, (
             f"{quantity} ({where}): paper {paper}, from its own numbers {ours:.10g}, |difference| "
             f"{diff:.3g} {unit}: {status}, expected {expect}")
@@ -193,7 +206,7 @@ class Claims:
         paper = None if paper is None else _finite("paper", paper, quantity)
         claim = Claim(quantity, where, paper, ours, unit, None, "input", note,
                       "none: a value fed in is shown, not compared")
-        self.records.append(claim)
+        self.records.append(claim := replace(claim, cell=_current_cell()))
         return claim
 
     def not_reproducible(self, quantity: str, where: str, paper: float | None, *, unit: str,
@@ -203,7 +216,7 @@ class Claims:
         paper = None if paper is None else _finite("paper", paper, quantity)
         claim = Claim(quantity, where, paper, None, unit, None, "not reproducible", note,
                       "none: no value could be computed")
-        self.records.append(claim)
+        self.records.append(claim := replace(claim, cell=_current_cell()))
         return claim
 
     def markdown(self) -> str:
@@ -232,6 +245,8 @@ class Claims:
 
 
 NUMERIC_FIELDS = ("paper", "ours", "difference", "tolerance")
+PLACE_FIELDS = ("cell",)
+"""Where a claim is made, not what it says: :func:`diff_claims` ignores them."""
 
 
 def diff_claims(before_dir, after_dir, *, rel: float = 1e-12) -> list[str]:
@@ -257,7 +272,7 @@ def diff_claims(before_dir, after_dir, *, rel: float = 1e-12) -> list[str]:
             # difference of 0 becoming 1e-16 J on a 100 J quantity is round-off, not a change
             scale = max((abs(v) for r in (a, b) for f, v in r.items()
                          if f in NUMERIC_FIELDS and isinstance(v, (int, float))), default=0.0)
-            for field in sorted(set(a) | set(b)):
+            for field in sorted(set(a) | set(b) - set(PLACE_FIELDS)):
                 x, y = a.get(field), b.get(field)
                 if field in NUMERIC_FIELDS and isinstance(x, (int, float)) and isinstance(y, (int, float)):
                     if abs(x - y) > rel * max(scale, 1e-300):

@@ -11,9 +11,7 @@ inputs have not changed since its last successful run is not run again: its key
 it imports, the arm files, the style and the environment) is kept under
 ``build/cache``; ``--no-cache`` runs everything.
 
-Each executed notebook is rendered to its page of the site (``--site``,
-:func:`springlab.workbench.site.render_page`) as soon as it finishes, in a process of its
-own beside the kernels still running, so the site step that follows only writes the index.
+The book (:mod:`springlab.workbench.site`) is built from the executed copies afterwards.
 """
 
 from __future__ import annotations
@@ -23,7 +21,6 @@ import os
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from multiprocessing import get_context
 from pathlib import Path
 
 THREAD_VARIABLES = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
@@ -105,21 +102,6 @@ def _run(nb: Path, out: Path, parameters: dict | None) -> float:
     return time.perf_counter() - t0
 
 
-def _ready_to_render() -> None:
-    """Import nbconvert and the site's modules while the first notebooks run, so that the page of
-    the last notebook to finish is rendered at once."""
-    skip_unused_format_checker()
-    import nbconvert  # noqa: F401
-
-    from springlab.workbench import site  # noqa: F401
-
-
-def _render(executed: Path, site: str, cache: str) -> None:
-    from springlab.workbench.site import render_page
-
-    render_page(executed, site, cache)
-
-
 def main(argv=None) -> int:
     from springlab.workbench.cache import Cache, digest, notebook_dependencies
 
@@ -129,8 +111,6 @@ def main(argv=None) -> int:
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="notebooks run at once (default: the cores)")
     parser.add_argument("--no-cache", action="store_true", help="run every notebook, changed or not")
     parser.add_argument("--cache", default="build/cache", help="folder for the keys of finished runs")
-    parser.add_argument("--site", default="",
-                        help="render each executed notebook's page into this folder as it finishes (make figures: build/site)")
     args = parser.parse_args(argv)
     if args.jobs < 1:
         parser.error(f"--jobs must be >= 1, got {args.jobs}")
@@ -150,12 +130,6 @@ def main(argv=None) -> int:
     # so the cores finish together instead of one waiting on a long notebook started last
     todo.sort(key=lambda nb: -expected_seconds(nb, args.cache))
     failures = []
-    # spawned, not forked: this process has run grimp's threads (the keys), which a fork can deadlock
-    pages = (ProcessPoolExecutor(max_workers=1, mp_context=get_context("spawn"), initializer=_ready_to_render)
-             if args.site and todo else None)
-    if pages is not None:
-        pages.submit(int)  # start the process now (a pool starts its processes on the first task)
-    rendering = []
     with ProcessPoolExecutor(max_workers=min(args.jobs, max(1, len(todo)))) as pool:
         running = {}
         for nb in todo:
@@ -174,12 +148,6 @@ def main(argv=None) -> int:
             if not args.quick:
                 _record_seconds(args.cache, nb.stem, seconds)
             print(f"done {nb} in {seconds:.0f} s", flush=True)
-            if pages is not None:
-                rendering.append(pages.submit(_render, Path(args.out) / nb.name, args.site, args.cache))
-    if pages is not None:
-        for job in rendering:  # a page that fails here is rendered again by the site step, which reports it
-            job.exception()
-        pages.shutdown()
     if failures:
         return 1
     print(f"executed notebooks written to {args.out}/")

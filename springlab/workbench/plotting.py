@@ -358,7 +358,7 @@ def index_resolution_figure(steps, diffs: dict, *, marked_step: float = 5.0):
 
 def springs_per_n_figure(rows):
     """Springs needed per n: the rules' fewest, the n - 1 ground springs, and n - 2 where the
-    relaxation proves it impossible (rows of :func:`springlab.design.rank.springs_per_n`)."""
+    relaxation proves it impossible (rows of :func:`springlab.design.ground.springs_per_n`)."""
     fig, ax = plt.subplots()
     ns = [r.n for r in rows]
     ax.plot(ns, [r.necessary for r in rows], "o-", label="rules R1-R6 (000): fewest springs")

@@ -1,23 +1,19 @@
-"""The reader's side: the executed notebooks as a static site, and the reproduction report.
+"""The reader's side: the reproduction report and the book, and the checks a reader's browser makes.
 
 ``python -m springlab.workbench.site`` (run by ``make figures`` after the notebooks):
 
-* renders every executed notebook in ``build/notebooks/`` to ``build/site/<stem>.html``
-  (nbconvert's lab template), with MathJax served from the site itself (the
-  ``jupyter-server-mathjax`` package) and no script from the internet;
-* copies each notebook's figures beside the pages and writes ``build/site/index.html``:
-  every paper with its authors, year, title, DOI, a thumbnail of its key figure,
-  its run time and its claims counted by status;
-* aggregates every ``figures/<stem>/claims.json`` into ``figures/REPRODUCTION.md``.
+* aggregates every ``figures/<stem>/claims.json`` into ``figures/REPRODUCTION.md``;
+* builds the book into ``build/site`` (:mod:`springlab.workbench.book`: Sphinx, myst-nb and
+  sphinx-book-theme), unless nothing it is built from changed.
 
-:func:`check_links` lists what a page points to that is not there (used in tests).
+:func:`check_links` lists what a page points to that is not there; :func:`browser_check`
+opens pages in headless Chromium and lists what a reader would see broken, including any
+request that leaves the machine (used in tests).
 """
 
 from __future__ import annotations
 
 import argparse
-import functools
-import html
 import json
 import re
 import shutil
@@ -28,19 +24,9 @@ from pathlib import Path
 from springlab import tables
 from springlab.errors import SolverError
 from springlab.papers import PAPERS
-from springlab.workbench.cache import Cache, digest, module_closure
+from springlab.workbench.book import load_claims
+from springlab.workbench.cache import PACKAGE, Cache, digest
 from springlab.workbench.claims import REPORT_COLUMNS, markdown_table, report_column
-
-MATHJAX_URL = "mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe"
-_EXTERNAL_SCRIPT = re.compile(r'<script[^>]*\ssrc="https?://[^"]*"[^>]*>\s*</script>', re.I)
-
-
-def load_claims(figures_dir) -> dict[str, list[dict]]:
-    """{notebook stem: its claims} from every figures/<stem>/claims.json."""
-    out = {}
-    for path in sorted(Path(figures_dir).glob("*/claims.json")):
-        out[path.parent.name] = json.loads(path.read_text())
-    return out
 
 
 def write_report(figures_dir) -> Path:
@@ -69,145 +55,14 @@ def write_report(figures_dir) -> Path:
     return path
 
 
-def write_report_page(figures_dir, site_dir) -> Path:
-    """The reproduction report as ``site_dir/report.html`` (from REPRODUCTION.md)."""
-    import mistune
-
-    text = write_report(figures_dir).read_text()
-    body = mistune.create_markdown(plugins=["table"])(text)
-    page = Path(site_dir) / "report.html"
-    page.write_text('<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"><title>springlab: '
-                    "reproduction report</title><style>body{font-family:sans-serif;margin:2em}"
-                    "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:.2em .4em;"
-                    f'font-size:90%}}</style></head><body><p><a href="index.html">back</a></p>{body}</body></html>\n')
-    return page
-
-
-def _mathjax_dir() -> Path:
-    """MathJax's folder in the ``jupyter-server-mathjax`` package, found without importing
-    it (its import loads Jupyter Server, 4 s)."""
-    import importlib.util
-
-    spec = importlib.util.find_spec("jupyter_server_mathjax")
-    if spec is None or not spec.submodule_search_locations:
-        raise SolverError("jupyter-server-mathjax is not installed: run `make` to build the environment")
-    return Path(list(spec.submodule_search_locations)[0]) / "static"
-
-
-def render_notebook(executed: Path, site_dir: Path) -> Path:
-    """One executed notebook to ``site_dir/<stem>.html``, with local MathJax."""
-    from springlab.workbench.notebooks import skip_unused_format_checker
-
-    skip_unused_format_checker()
-    import nbformat
-    from nbconvert import HTMLExporter
-
-    exporter = HTMLExporter(template_name="lab")
-    exporter.mathjax_url = MATHJAX_URL
-    body, _ = exporter.from_notebook_node(nbformat.read(executed, as_version=4))
-    body = _EXTERNAL_SCRIPT.sub("", body)  # require.js: only interactive widgets need it
-    out = site_dir / f"{executed.stem}.html"
-    out.write_text(body)
-    return out
-
-
-@functools.cache
-def _site_sources() -> tuple[Path, ...]:
-    """The files of the modules that build the site (the import graph is read once a process)."""
-    return tuple(sorted(module_closure(["springlab.workbench.site"])))
-
-
-def page_key(executed: Path) -> str:
-    """The key of a rendered page: the executed notebook and the modules that render it."""
-    return digest([executed, *_site_sources()])
-
-
-def render_page(executed, site_dir, cache_folder="build/cache") -> Path:
-    """:func:`render_notebook`, unless the page was rendered from this executed notebook by
-    this code before (its :func:`page_key` under ``cache_folder``): the notebook runner renders
-    each page as its notebook finishes, and the site reuses it."""
-    executed, site_dir = Path(executed), Path(site_dir)
-    key = page_key(executed)
-    if _page_fresh(executed, site_dir, cache_folder, key):
-        return site_dir / f"{executed.stem}.html"
-    site_dir.mkdir(parents=True, exist_ok=True)
-    page = render_notebook(executed, site_dir)
-    Cache(cache_folder).store(f"page-{executed.stem}", key)
-    return page
-
-
-def _page_fresh(executed: Path, site_dir: Path, cache_folder, key: str | None = None) -> bool:
-    """True when ``executed``'s page exists and was rendered from it by this code."""
-    key = page_key(executed) if key is None else key
-    return Cache(cache_folder).fresh(f"page-{executed.stem}", key, [site_dir / f"{executed.stem}.html"])
-
-
-def _render_all(executed: list[Path], site_dir: Path, cache_folder) -> list[Path]:
-    """:func:`render_page` for each notebook, on every core (nbconvert is pure Python: one
-    process per core), the pages in the notebooks' order."""
-    import os
-    from concurrent.futures import ProcessPoolExecutor
-    from multiprocessing import get_context
-
-    stale = [nb for nb in executed if not _page_fresh(nb, site_dir, cache_folder)]
-    workers = min(len(stale), os.cpu_count() or 1)
-    if workers > 1:
-        # spawned, not forked: page_key has run grimp's threads here, which a fork can deadlock
-        with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn")) as pool:
-            list(pool.map(render_page, stale, [site_dir] * len(stale), [cache_folder] * len(stale)))
-    else:
-        for nb in stale:
-            render_page(nb, site_dir, cache_folder)
-    return [site_dir / f"{nb.stem}.html" for nb in executed]
-
-
-def _run_time(executed: Path) -> float | None:
-    meta = json.loads(executed.read_text()).get("metadata", {}).get("papermill", {})
-    return meta.get("duration")
-
-
 def build_site(notebooks_dir="build/notebooks", site_dir="build/site", figures_dir="figures",
-               cache_folder="build/cache") -> Path:
-    """Render the executed notebooks (those not rendered already, :func:`render_page`) and
-    write the index; returns index.html's path."""
-    notebooks_dir, site_dir, figures_dir = Path(notebooks_dir), Path(site_dir), Path(figures_dir)
-    site_dir.mkdir(parents=True, exist_ok=True)
-    shutil.copytree(_mathjax_dir(), site_dir / "mathjax", dirs_exist_ok=True)
-    claims = load_claims(figures_dir)
-    rows = []
-    executed_notebooks = sorted(notebooks_dir.glob("*.ipynb"))
-    for executed, page in zip(executed_notebooks, _render_all(executed_notebooks, site_dir, cache_folder), strict=True):
-        stem = executed.stem
-        if (figures_dir / stem).is_dir():
-            shutil.copytree(figures_dir / stem, site_dir / "figures" / stem, dirs_exist_ok=True)
-        paper = PAPERS.get(stem, {"authors": "", "year": "", "title": stem, "venue": "", "doi": None,
-                                  "key_figure": None})
-        thumb = ""
-        if paper.get("key_figure") and (site_dir / "figures" / stem / paper["key_figure"]).exists():
-            src = f"figures/{stem}/{paper['key_figure']}"
-            thumb = f'<a href="{page.name}"><img src="{src}" alt="key figure of {stem}" width="260"></a>'
-        doi = (f'<a href="https://doi.org/{paper["doi"]}">doi:{html.escape(paper["doi"])}</a>'
-               if paper.get("doi") else "no DOI given")
-        run = _run_time(executed)
-        run_text = f"{run:.1f} s" if run is not None else "unknown"
-        count = Counter(report_column(r) for r in claims.get(stem, []))
-        tally = ", ".join(f"{count[s]} {s}" for s in REPORT_COLUMNS if count.get(s))
-        rows.append(
-            f"<tr><td>{thumb}</td><td><b>{html.escape(paper['authors'])} ({paper['year']})</b><br>"
-            f"<i>{html.escape(paper['title'])}</i><br>{html.escape(paper.get('venue') or '')} {doi}<br>"
-            f'<a href="{page.name}">the rendered notebook</a> &middot; run time '
-            f"{run_text}<br>claims: {tally or 'none'}</td></tr>")
-    report = write_report_page(figures_dir, site_dir)
-    index = site_dir / "index.html"
-    index.write_text(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>springlab</title>"
-        "<style>body{font-family:sans-serif;max-width:60em;margin:2em auto}td{vertical-align:top;padding:.6em}"
-        "</style></head><body><h1>springlab: spring gravity balancing, reproduced</h1>"
-        "<p>Each paper's derivations, tables and figures, recomputed and checked. "
-        f'<a href="{report.name}">The reproduction report</a> lists every claim '
-        "(<code>figures/REPRODUCTION.md</code> in the repository).</p>"
-        f"<table>{''.join(rows)}</table></body></html>\n")
-    return index
+               work_dir="build/book") -> Path:
+    """The reproduction report (``figures/REPRODUCTION.md``) and the book
+    (:func:`springlab.workbench.book.build_book`); returns the book's index.html."""
+    from springlab.workbench.book import build_book
+
+    write_report(figures_dir)
+    return build_book(notebooks_dir, figures_dir, site_dir, work_dir)
 
 
 _REF = re.compile(r'<(img|script|link|a)\b[^>]*?\s(src|href)="([^"]*)"', re.I)
@@ -241,6 +96,7 @@ def main(argv=None) -> int:
     parser.add_argument("--figures", default="figures")
     parser.add_argument("--no-cache", action="store_true", help="rebuild even if nothing changed")
     parser.add_argument("--cache", default="build/cache", help="folder for the key of the last build")
+    parser.add_argument("--work", default="build/book", help="folder for the book's sources and Sphinx's state")
     args = parser.parse_args(argv)
     report = Path(args.figures) / "REPRODUCTION.md"
     key, cache = _site_key(args), Cache(args.cache)
@@ -248,8 +104,14 @@ def main(argv=None) -> int:
         print(f"unchanged: report {report}; site {Path(args.site) / 'index.html'}")
         return 0
     cache.forget("site")
-    index = build_site(args.notebooks, args.site, args.figures, args.cache)
-    problems = [f"{p.name}: {issue}" for p in sorted(Path(args.site).glob("*.html")) for issue in check_links(p)]
+    try:
+        index = build_site(args.notebooks, args.site, args.figures, args.work)
+    except SolverError as err:
+        print(err, file=sys.stderr)
+        return 1
+    site = Path(args.site)
+    pages = [p for p in sorted(site.rglob("*.html")) if p.relative_to(site).parts[0] != "_static"]  # not templates
+    problems = [f"{p.relative_to(site)}: {issue}" for p in pages for issue in check_links(p)]
     for line in problems:
         print(line, file=sys.stderr)
     print(f"report: {report}; site: {index}")
@@ -261,11 +123,12 @@ def main(argv=None) -> int:
 
 def _site_key(args) -> str:
     """The site's inputs: the executed notebooks, the figures and claims (not the report it
-    writes), the modules that build it, and where it goes."""
+    writes), every file of the package (the book documents all of it) and where it goes."""
     inputs = [p for p in Path(args.notebooks).glob("*.ipynb")]
     inputs += [p for p in Path(args.figures).rglob("*") if p.is_file() and p.name != "REPRODUCTION.md"]
-    inputs += _site_sources()
-    return digest(inputs, {"site": str(Path(args.site).resolve()), "figures": str(Path(args.figures).resolve())})
+    inputs += sorted(p for p in PACKAGE.rglob("*") if p.is_file() and "__pycache__" not in p.parts)
+    return digest(inputs, {"site": str(Path(args.site).resolve()), "figures": str(Path(args.figures).resolve()),
+                           "work": str(Path(args.work).resolve())})
 
 
 if __name__ == "__main__":

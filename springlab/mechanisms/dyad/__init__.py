@@ -1,2 +1,2 @@
-"""Paper 002's crank-slider gravity compensator: :mod:`.model`, :mod:`.algebra` (route 1),
-:mod:`.geometry` (route 2), :mod:`.simulation` (route 3, exudyn), :mod:`.synthesis`."""
+"""Paper 002's crank-slider gravity compensator: :mod:`~springlab.mechanisms.dyad.model`, :mod:`~springlab.mechanisms.dyad.algebra` (route 1),
+:mod:`~springlab.mechanisms.dyad.geometry` (route 2), :mod:`~springlab.mechanisms.dyad.simulation` (route 3, exudyn), :mod:`~springlab.mechanisms.dyad.synthesis`."""

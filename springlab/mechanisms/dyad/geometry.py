@@ -1,6 +1,6 @@
 """Route 2 for paper 002: the total potential energy with the slider placed by the
 linkage's geometry (002 Eq. 24), and the unbalanced moment about O by virtual work,
--dP/dphi. It shares no formula with :mod:`.algebra`.
+-dP/dphi. It shares no formula with :mod:`~springlab.mechanisms.dyad.algebra`.
 
 References
 ----------

@@ -26,7 +26,7 @@ Two unbalanced moments are implemented side by side:
   as printed (route 1, with the synthesis of 002 Eqs. 5-19);
 * :func:`springlab.mechanisms.dyad.geometry.unbalanced_moment`: the moment of gravity
   and spring about O by virtual work, -dP/dphi of the total potential energy (route 2).
-  Route 3 (:mod:`.simulation`) drives the linkage in exudyn.
+  Route 3 (:mod:`~springlab.mechanisms.dyad.simulation`) drives the linkage in exudyn.
 
 They differ in the spring's share by cos^2(theta) (theta = angle OBA): 002 Eq. (26)
 takes the rod's force as F_sp cos(theta), but a slider guided along OB passes the

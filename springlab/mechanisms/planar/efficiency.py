@@ -1,5 +1,5 @@
 r"""Spring and system efficiency (003 Eqs. 17-25) and the workspace index
-(003 Section 5), read from the pseudo-stiffness terms of :mod:`.quadratic`.
+(003 Section 5), read from the pseudo-stiffness terms of :mod:`~springlab.mechanisms.planar.quadratic`.
 
 References
 ----------
@@ -108,7 +108,7 @@ def efficiency_index(arm: PlanarArm, springs, workspace: Workspace, *, step: flo
     """The system spring efficiency index: the mean of e_sys over the workspace (Section 5).
 
     Sampling, stated by the arguments: ``step`` (deg), a grid with both ends included
-    (:meth:`Workspace.grid`), every point weighted equally; or ``samples`` poses drawn
+    (:meth:`~springlab.mechanisms.planar.model.Workspace.grid`), every point weighted equally; or ``samples`` poses drawn
     uniformly with ``seed``. Memory stays bounded: the grid is walked a slice at a
     time over all but the last two joints, the samples ``chunk`` at a time.
     """

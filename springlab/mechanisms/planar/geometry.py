@@ -1,6 +1,6 @@
 r"""Route 2 for paper 003: place the joints, centres of mass and attachment points
 in the plane and sum m g h and k |AB|^2 / 2. It shares no formula with route 1
-(:mod:`.quadratic`).
+(:mod:`~springlab.mechanisms.planar.quadratic`).
 
 References
 ----------

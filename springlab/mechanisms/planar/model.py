@@ -1,8 +1,8 @@
 r"""The planar arm of Juang, Jhuang and Chen (2022), paper 003: links, springs with
 attachment angles, the workspace, and the map onto paper 000's spatial form.
 
-The model shared by :mod:`.quadratic` (route 1, the pseudo-stiffness terms),
-:mod:`.geometry` (route 2), :mod:`.efficiency` and :mod:`.synthesis`.
+The model shared by :mod:`~springlab.mechanisms.planar.quadratic` (route 1, the pseudo-stiffness terms),
+:mod:`~springlab.mechanisms.planar.geometry` (route 2), :mod:`~springlab.mechanisms.planar.efficiency` and :mod:`~springlab.mechanisms.planar.synthesis`.
 
 A planar serial arm with revolute joints: link 1 is the ground (a horizontal
 reference of length r_1, 1 m in the paper), links 2..n move; theta_j is link j's
@@ -30,7 +30,7 @@ spring's K^S_{u,v} = amplitude cos(phase - Theta_{u,v}) (003 Eqs. 11a-d)::
     K_{u,j} = k B   cos(-beta - Theta_uj),        u > i     (11c)
     K_{u,v} = k     cos(-Theta_uv),               i < u < v < j   (11d)
 
-with A = a / r_i, B = b / r_j (003 Eq. 12). A :class:`Term` holds one of them.
+with A = a / r_i, B = b / r_j (003 Eq. 12). A :class:`~springlab.mechanisms.planar.quadratic.Term` holds one of them.
 
 The planar form is the spatial one of paper 000 (:mod:`springlab.energy.quadratic`)
 restricted to a vertical plane. With 000's vertical x_1 in place of the

@@ -1,7 +1,7 @@
 r"""Route 1 for paper 003: the gravitational and elastic pseudo-stiffness terms
 (003 Eqs. 5-7, 10-12) and the energy they sum to; the same terms in 000's spatial form.
 Every pose-dependent energy term is a pseudo-stiffness (N/m) times r_u r_v (see
-:mod:`.model`). Route 2 (:mod:`.geometry`) never uses them.
+:mod:`~springlab.mechanisms.planar.model`). Route 2 (:mod:`~springlab.mechanisms.planar.geometry`) never uses them.
 
 References
 ----------

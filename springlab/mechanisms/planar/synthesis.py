@@ -147,7 +147,7 @@ def design(arm: PlanarArm, config, choices: dict) -> list[PlanarSpring]:
     """Springs of ``config`` for the arm, from 003 Eqs. (16) and the user's ``choices``
     ({'A_S14': 0.1, 'k_S12': 4998, ...}: enough of k, A, B to fix the rest).
 
-    Raises :class:`UnbalanceableError` if the equations have no positive solution or
+    Raises :class:`~springlab.errors.UnbalanceableError` if the equations have no positive solution or
     leave a parameter undetermined, SpringlabError if an attachment falls off its link.
     """
     check_arm(arm)

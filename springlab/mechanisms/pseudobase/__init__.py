@@ -1,2 +1,2 @@
-"""Paper 001's pseudobase arm: :mod:`.model`, :mod:`.subsystems` (route 1),
-:mod:`.geometry` (route 2), :mod:`.simulation` (route 3, exudyn)."""
+"""Paper 001's pseudobase arm: :mod:`~springlab.mechanisms.pseudobase.model`, :mod:`~springlab.mechanisms.pseudobase.subsystems` (route 1),
+:mod:`~springlab.mechanisms.pseudobase.geometry` (route 2), :mod:`~springlab.mechanisms.pseudobase.simulation` (route 3, exudyn)."""

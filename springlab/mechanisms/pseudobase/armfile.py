@@ -29,7 +29,7 @@ number or a string with a unit (read by pint, :func:`springlab.model.armfile.par
     l_CA = "0.1 m"                 # l_CA,i, chosen; l_CB,i follows from 001 Eq. (16)
 
 The links with a module must be the last ones, from link 1 or 2 on (link 2 when joint 1 is
-vertical: link 1's weight never changes the energy), as :class:`PseudobaseArm` requires.
+vertical: link 1's weight never changes the energy), as :class:`~springlab.mechanisms.pseudobase.model.PseudobaseArm` requires.
 ``notebooks/arms/paper001_arm.toml`` is paper 001's example arm in this form.
 
 References

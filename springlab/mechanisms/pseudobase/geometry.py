@@ -1,6 +1,6 @@
 r"""Route 2 for paper 001: direct geometry. Every body and attachment point of the
 pseudobase arm placed in space for a pose, then m g h and K |AB|^2 / 2 summed.
-It shares no formula with the subsystems of route 1 (:mod:`.subsystems`).
+It shares no formula with the subsystems of route 1 (:mod:`~springlab.mechanisms.pseudobase.subsystems`).
 
 References
 ----------

@@ -1,7 +1,7 @@
 r"""The pseudobase arm of Lin, Shieh and Chen (2010), paper 001: its kinematics and modules.
 
-The model shared by the three routes (:mod:`.subsystems` route 1, :mod:`.geometry`
-route 2, :mod:`.simulation` route 3): standard DH kinematics, the arm with its
+The model shared by the three routes (:mod:`~springlab.mechanisms.pseudobase.subsystems` route 1, :mod:`~springlab.mechanisms.pseudobase.geometry`
+route 2, :mod:`~springlab.mechanisms.pseudobase.simulation` route 3): standard DH kinematics, the arm with its
 RSSR modules, the equilibrator springs, fold margins, mobility and added inertia.
 
 The gravity energy of n serial links is a sum of n *rotational subsystems*
@@ -37,7 +37,7 @@ Conventions (stated, tested):
 * links are numbered 1..n as in the paper (link 0 is the ground); arrays are
   0-based: ``m[i - 1]`` is m_i.
 
-The subsystems and why only the product mu_i sigma_i is physical: :mod:`.subsystems`.
+The subsystems and why only the product mu_i sigma_i is physical: :mod:`~springlab.mechanisms.pseudobase.subsystems`.
 
 References
 ----------

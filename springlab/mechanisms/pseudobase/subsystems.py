@@ -4,7 +4,7 @@ equilibrator springs they call for (001 Eqs. 13-16).
 The gravity energy of n serial links is a sum of n rotational subsystems
 -mu_i g . sigma_i, each fixed in one link; this module computes them from the
 arm's data, the energy they give, and one spring per module that balances each.
-It never places a body in space (that is :mod:`.geometry`, route 2).
+It never places a body in space (that is :mod:`~springlab.mechanisms.pseudobase.geometry`, route 2).
 
 Only the product mu_i sigma_i is physical
 -----------------------------------------
@@ -113,7 +113,7 @@ def design_equilibrators(arm: PseudobaseArm, K, l_CA, *, max_l_CB: float | None 
 
     :param K: stiffnesses (N/m, > 0), one per module; l_CA: (m, > 0)
     :param max_l_CB: the longest distance C_i B_i link i allows (m); a spring that
-        needs more cannot be attached and raises :class:`UnbalanceableError`
+        needs more cannot be attached and raises :class:`~springlab.errors.UnbalanceableError`
     :param l_CB: given lengths instead of 001 Eq. (16) (e.g. a paper's rounded ones),
         for measuring what they leave unbalanced
     """

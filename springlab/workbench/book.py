@@ -1,0 +1,319 @@
+"""The reader's book: the executed notebooks, the reproduction report and the API reference
+as one Sphinx site (myst-nb and sphinx-book-theme), built into ``build/site``.
+
+:func:`build_book` writes the book's sources into ``build/book/src`` (only the files whose
+text changed, so Sphinx re-reads only those) and runs Sphinx with warnings as errors:
+
+* ``index.md``, the front page: what springlab is, each paper with its DOI (where its text
+  prints one), the notebook's run time and its claims counted by status, and how to read a claim;
+* one chapter per paper and the design chapter: the executed notebooks from
+  ``build/notebooks``, read, not run (papermill is the executor), each section heading given
+  a label ``<stem>-s<k>`` so the report can point at it;
+* ``report.md``: every claim beside the paper's value, each linked to the notebook section
+  that makes it (the claim's cell, recorded by :class:`~springlab.workbench.claims.Claims`);
+* ``api/``: the library's docstrings (autodoc), with "000 Eq. (23b)" linked to paper 000's
+  chapter, and the source of every module (viewcode) with its equation comments linked too.
+
+MathJax is copied into the site from the ``jupyter-server-mathjax`` package: the site opens
+from ``file://`` without a network.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import pkgutil
+import re
+import shutil
+from collections import Counter
+from pathlib import Path
+
+from springlab.errors import SolverError
+from springlab.papers import PAPERS
+from springlab.workbench.claims import REPORT_COLUMNS, report_column
+
+CONF_DIR = Path(__file__).resolve().parent / "bookconf"
+CHAPTER_ORDER = ("juang2023_spatial_balance", "lin2010_pseudobases", "zhang2023_dyad",
+                 "juang2022_spring_efficiency", "lenzo2017_two_spring_arm", "springlab_design_your_arm")
+"""The chapters in the papers' key order (000 .. 004), then the design chapter."""
+
+_HEADING = re.compile(r"^(#{1,6})\s+(.+?)\s*$", re.M)
+
+
+def _write_if_changed(path: Path, text: str) -> None:
+    """Write ``text`` unless ``path`` holds it already (its mtime then tells Sphinx nothing changed)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if not path.exists() or path.read_text() != text:
+        path.write_text(text)
+
+
+def section_label(stem: str, k: int) -> str:
+    """The label of section ``k`` (0: the title) of notebook ``stem`` in the book."""
+    return f"{stem}-s{k}"
+
+
+def sections(notebook: dict) -> tuple[list[str], dict[int, int]]:
+    """A notebook's section titles (its headings in order; 0 is the title) and, for each
+    executed code cell's execution count, the section it sits in."""
+    titles, where, current = [], {}, 0
+    for cell in notebook["cells"]:
+        if cell["cell_type"] == "markdown":
+            for match in _HEADING.finditer("".join(cell["source"])):
+                titles.append(match.group(2))
+                current = len(titles) - 1
+        elif cell["cell_type"] == "code" and cell.get("execution_count"):
+            where[cell["execution_count"]] = current
+    return titles, where
+
+
+def labelled(notebook: dict, stem: str) -> dict:
+    """A copy of the notebook with a MyST label ``(<stem>-s<k>)=`` before each heading."""
+    notebook = json.loads(json.dumps(notebook))
+    k = 0
+    for cell in notebook["cells"]:
+        if cell["cell_type"] != "markdown":
+            continue
+        text = "".join(cell["source"])
+
+        def label(match):
+            nonlocal k
+            out = f"({section_label(stem, k)})=\n{match.group(0)}"
+            k += 1
+            return out
+        cell["source"] = _HEADING.sub(label, text)
+    return notebook
+
+
+_MD_SPECIAL = re.compile(r"([\\`*_\[\]{}<>|$#])")
+
+
+def _md(text) -> str:
+    """Text made literal inside a Markdown table cell."""
+    return _MD_SPECIAL.sub(r"\\\1", str(text)).replace("\n", " ")
+
+
+def _number(value) -> str:
+    return "" if value is None else f"{value:.6g}"
+
+
+def _run_time(notebook: dict) -> float | None:
+    return notebook.get("metadata", {}).get("papermill", {}).get("duration")
+
+
+def load_claims(figures_dir) -> dict[str, list[dict]]:
+    """{notebook stem: its claims} from every figures/<stem>/claims.json."""
+    return {p.parent.name: json.loads(p.read_text()) for p in sorted(Path(figures_dir).glob("*/claims.json"))}
+
+
+def _tally(records: list[dict]) -> str:
+    count = Counter(report_column(r) for r in records)
+    return ", ".join(f"{count[s]} {s}" for s in REPORT_COLUMNS if count.get(s)) or "none"
+
+
+def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, list[dict]]) -> str:
+    """The book's front page (MyST Markdown)."""
+    lines = ["# springlab: spring gravity balancing, reproduced", "",
+             "springlab recomputes the derivations, tables and figures of five papers on spring gravity "
+             "balancing of robot arms, checks every number against the printed one, and designs springs "
+             "for a reader's own arm. A design is balanced when the total potential energy (gravity and "
+             "springs) does not depend on the pose; springlab checks that three independent ways: the "
+             "papers' algebra (the quadratic form), direct geometry, and a multibody simulation (exudyn).",
+             "", "## The papers", ""]
+    for stem in stems:
+        paper = PAPERS.get(stem, {"authors": "", "year": "", "title": stem, "venue": "", "doi": None})
+        key = f"paper {paper['key']}: " if paper.get("key") else ""
+        doi = (f"doi:[{paper['doi']}](https://doi.org/{paper['doi']})" if paper.get("doi")
+               else (f"no DOI (the text prints none; {paper['url']})" if paper.get("url")
+                     else "no DOI (the text prints none)") if paper.get("key") else "")
+        run = _run_time(notebooks[stem])
+        lines += [f"**{key}{_md(paper['authors'])} ({paper['year']})**, *{_md(paper['title'])}*. "
+                  f"{_md(paper.get('venue') or '')} {doi}", "",
+                  f"- chapter: {{doc}}`{stem}`; run time {run:.1f} s" if run is not None else
+                  f"- chapter: {{doc}}`{stem}`; run time unknown",
+                  f"- claims: {_tally(claims.get(stem, []))}", ""]
+        if paper.get("key_figure"):
+            lines += [f"```{{image}} thumbs/{stem}.png", f":alt: key figure of {stem}", ":width: 320px",
+                      f":target: {stem}.html", "```", ""]
+    total = Counter(report_column(r) for records in claims.values() for r in records)
+    lines += ["## How to read a claim", "",
+              "Every number a notebook reproduces is a *claim*: the quantity, where the paper prints it, "
+              "the paper's value, ours, the difference, the tolerance and why it is what it is, and a status:",
+              "",
+              "- **reproduced**: within the stated tolerance;",
+              "- **rounding**: within the band the paper's printed rounding explains;",
+              "- **discrepancy**: further off than rounding explains, with its cause when one was found, or "
+              "what was tried;",
+              "- **not reproducible**: the paper gives too little to recompute it;",
+              "- **input**: a value the notebook fed in, shown and never counted as reproduced;",
+              "- **consistent** / **inconsistent**: a number recomputed from the paper's own printed numbers "
+              "(a check of the paper against itself).", "",
+              f"All claims: {', '.join(f'{total[s]} {s}' for s in REPORT_COLUMNS if total.get(s))}. "
+              "{doc}`report` lists every one, linked to the notebook section that makes it.", "",
+              "```{toctree}", ":hidden:", ":caption: The papers", "", *[s for s in stems if PAPERS.get(s, {}).get("key")],
+              "```", "", "```{toctree}", ":hidden:", ":caption: Your arm", "",
+              *[s for s in stems if not PAPERS.get(s, {}).get("key")], "```", "",
+              "```{toctree}", ":hidden:", ":caption: Reference", "", "report", "api/index", "```", ""]
+    return "\n".join(lines)
+
+
+def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, list[dict]]) -> str:
+    """The reproduction report (MyST Markdown): counts per paper and status, then every claim
+    with a link to the section of its notebook that makes it."""
+    lines = ["# Reproduction report", "",
+             "Every number the notebooks reproduce, beside the paper's, from `figures/<notebook>/claims.json` "
+             "(the same claims as `figures/REPRODUCTION.md`). The last column links to the notebook section "
+             "whose cell records the claim.", "",
+             "| notebook | " + " | ".join(REPORT_COLUMNS) + " | total |",
+             "|---|" + "---|" * (len(REPORT_COLUMNS) + 1)]
+    for stem in stems:
+        count = Counter(report_column(r) for r in claims.get(stem, []))
+        lines.append(f"| {{doc}}`{stem}` | " + " | ".join(str(count.get(s, 0)) for s in REPORT_COLUMNS)
+                     + f" | {len(claims.get(stem, []))} |")
+    for stem in stems:
+        records = claims.get(stem, [])
+        if not records:
+            continue
+        titles, where = sections(notebooks[stem])
+        paper = PAPERS.get(stem, {})
+        lines += ["", f"## {_md(paper.get('authors', stem))} ({paper.get('year', '')})", "",
+                  f"Chapter: {{doc}}`{stem}`.", "",
+                  "| quantity | where | paper | ours | difference | unit | status | tolerance (basis) | note | made in |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
+        for r in records:
+            k = where.get(r.get("cell"), None) if r.get("cell") is not None else None
+            made = (f"{{ref}}`§{k} <{section_label(stem, k)}>`" if k is not None else "")
+            status = report_column(r)
+            basis = f"{_number(r['tolerance'])} ({r.get('tolerance_basis', '')})" if r.get("tolerance") is not None \
+                else r.get("tolerance_basis", "")
+            if r.get("band"):
+                basis += f"; band {_number(r['band']['value'])} ({r['band']['basis']})"
+            note = r.get("note", "") + (f" Cause: {r['cause']}" if r.get("cause") else "")
+            lines.append(f"| {_md(r['quantity'])} | {_md(r['where'])} | {_number(r['paper'])} | {_number(r['ours'])} "
+                         f"| {_number(r.get('difference'))} | {_md(r['unit'])} | **{status}** | {_md(basis)} "
+                         f"| {_md(note)} | {made} |")
+    return "\n".join(lines) + "\n"
+
+
+def api_pages() -> dict[str, str]:
+    """{path under api/: MyST text}: one page per springlab package with its modules (autodoc)."""
+    import springlab
+
+    modules = sorted(m.name for m in pkgutil.walk_packages(springlab.__path__, "springlab.")
+                     if not m.name.rsplit(".", 1)[-1].startswith("__"))
+    packages = ["springlab", *sorted({m for m in modules if _is_package(m)})]
+    groups: dict[str, list[str]] = {p: [] for p in packages}
+    for m in modules:
+        if _is_package(m):
+            continue
+        parent = m.rsplit(".", 1)[0]
+        groups.setdefault(parent, []).append(m)
+    pages = {"index.md": "\n".join(
+        ["# API reference", "",
+         "The library's docstrings, package by package. A citation such as \"000 Eq. (23b)\" links to "
+         "the chapter of paper 000; each module's `[source]` link shows its code, whose equation "
+         "comments link to the chapters too.", "", "```{toctree}", ":maxdepth: 1", "",
+         *packages, "```", ""])}
+    for package in packages:
+        # autodoc's directives write reStructuredText: they run inside eval-rst
+        lines = [f"# `{package}`", "", "```{eval-rst}", f".. automodule:: {package}",
+                 # the top package's names are lazy re-exports, documented in their own modules
+                 *(["   :no-members:"] if package == "springlab" else []), "```", ""]
+        for m in groups.get(package, []):
+            lines += [f"## `{m}`", "", "```{eval-rst}", f".. automodule:: {m}", "```", ""]
+        pages[f"{package}.md"] = "\n".join(lines)
+    return pages
+
+
+def _is_package(module: str) -> bool:
+    import importlib.util
+
+    spec = importlib.util.find_spec(module)
+    return bool(spec and spec.submodule_search_locations)
+
+
+def mathjax_dir() -> Path:
+    """MathJax's folder in the ``jupyter-server-mathjax`` package, found without importing it."""
+    import importlib.util
+
+    spec = importlib.util.find_spec("jupyter_server_mathjax")
+    if spec is None or not spec.submodule_search_locations:
+        raise SolverError("jupyter-server-mathjax is not installed: run `make` to build the environment")
+    return Path(list(spec.submodule_search_locations)[0]) / "static"
+
+
+def stage(notebooks_dir, figures_dir, src) -> list[str]:
+    """Write the book's sources into ``src``; returns the chapters' stems."""
+    notebooks_dir, figures_dir, src = Path(notebooks_dir), Path(figures_dir), Path(src)
+    found = {p.stem: p for p in notebooks_dir.glob("*.ipynb")}
+    stems = [s for s in CHAPTER_ORDER if s in found] + sorted(set(found) - set(CHAPTER_ORDER))
+    notebooks = {s: json.loads(found[s].read_text()) for s in stems}
+    claims = load_claims(figures_dir)
+    for stem in stems:
+        _write_if_changed(src / f"{stem}.ipynb", json.dumps(labelled(notebooks[stem], stem), indent=1))
+        figure = PAPERS.get(stem, {}).get("key_figure")
+        if figure and (figures_dir / stem / figure).exists():
+            thumb = src / "thumbs" / f"{stem}.png"
+            thumb.parent.mkdir(parents=True, exist_ok=True)
+            data = (figures_dir / stem / figure).read_bytes()
+            if not thumb.exists() or thumb.read_bytes() != data:
+                thumb.write_bytes(data)
+    for gone in set(p.stem for p in src.glob("*.ipynb")) - set(stems):
+        (src / f"{gone}.ipynb").unlink()
+    _write_if_changed(src / "index.md", front_page(stems, notebooks, claims))
+    _write_if_changed(src / "report.md", report_page(stems, notebooks, claims))
+    for name, text in api_pages().items():
+        _write_if_changed(src / "api" / name, text)
+    return stems
+
+
+def build_book(notebooks_dir="build/notebooks", figures_dir="figures", site_dir="build/site",
+               work_dir="build/book", *, jobs: int | None = None) -> Path:
+    """Stage the sources and run Sphinx (warnings are errors); returns ``site_dir/index.html``.
+
+    :raises SolverError: when Sphinx reports a warning or an error (its messages are printed)
+    """
+    from sphinx.cmd.build import build_main
+
+    site_dir, work_dir = Path(site_dir), Path(work_dir)
+    stems = stage(notebooks_dir, figures_dir, work_dir / "src")
+    os.environ["SPRINGLAB_BOOK_CHAPTERS"] = ";".join(
+        f"{PAPERS[s]['key']}={s}" for s in stems if PAPERS.get(s, {}).get("key"))
+    args = ["-b", "html", "-c", str(CONF_DIR), "-d", str(work_dir / "doctrees"), "-W", "--keep-going", "-q",
+            "-j", str(jobs or os.cpu_count() or 1), str(work_dir / "src"), str(site_dir)]
+    if build_main(args) != 0:
+        # a warning is reported only when its page is read: forget the read pages, so the
+        # next build reads them again and fails again until the cause is fixed
+        shutil.rmtree(work_dir / "doctrees", ignore_errors=True)
+        raise SolverError(f"the book did not build: Sphinx's warnings above (sources in {work_dir / 'src'})")
+    target = site_dir / "_static" / "mathjax"
+    if not (target / "MathJax.js").exists():
+        shutil.copytree(mathjax_dir(), target, dirs_exist_ok=True)
+    link_source_citations(site_dir, stems)
+    return site_dir / "index.html"
+
+
+_COMMENT = re.compile(r'<span class="c1">([^<]*)</span>')
+_CITE = re.compile(r"(?<![\w])(00[0-9])(?= Eqs?\.| Table| Fig| Section)")
+
+
+def link_source_citations(site_dir, stems) -> int:
+    """In the module source pages (viewcode), link each "000 Eq. (...)" in a comment to paper
+    000's chapter; returns the number of links made (a page already linked is left as it is)."""
+    site_dir = Path(site_dir)
+    chapters = {PAPERS[s]["key"]: s for s in stems if PAPERS.get(s, {}).get("key")}
+    made = 0
+    for page in (site_dir / "_modules").rglob("*.html"):
+        up = os.path.relpath(site_dir, page.parent)
+        text = page.read_text()
+
+        def cite(match, up=up):
+            nonlocal made
+            if match.group(1) not in chapters:
+                return match.group(0)
+            made += 1
+            return f'<a href="{up}/{chapters[match.group(1)]}.html">{match.group(1)}</a>'
+
+        new = _COMMENT.sub(lambda m: f'<span class="c1">{_CITE.sub(cite, m.group(1))}</span>', text)
+        if new != text:
+            page.write_text(new)
+    return made

@@ -1,0 +1,88 @@
+"""Sphinx configuration of springlab's book (``build/site``), built by
+:mod:`springlab.workbench.book` from the executed notebooks: myst-nb reads them without
+running them (papermill is the executor), sphinx-book-theme lays them out, autodoc writes
+the API reference. Everything is served from the site itself: MathJax, fonts, search."""
+
+import os
+import re
+
+project = "springlab"
+author = "springlab"
+copyright = "springlab contributors"  # noqa: A001
+extensions = ["myst_nb", "sphinx.ext.autodoc", "sphinx.ext.viewcode", "sphinx.ext.mathjax"]
+root_doc = "index"
+exclude_patterns = ["_build", "**.ipynb_checkpoints"]
+suppress_warnings = ["mystnb.unknown_mime_type"]  # tqdm's widget bars: the text bar is shown instead
+
+# myst-nb: render, never execute; stderr (progress bars) left out of the book
+nb_execution_mode = "off"
+nb_output_stderr = "remove"
+nb_merge_streams = True
+nb_ipywidgets_js = {}  # no widget scripts from a CDN
+myst_enable_extensions = ["dollarmath", "amsmath"]
+myst_heading_anchors = 3
+
+# a broken cross-reference is an error (make figures builds with -W), nitpicky: every
+# springlab name a docstring or a type hint mentions must resolve; types from other packages
+# (numpy, sympy, pathlib) are not linked, the book having no network to their docs
+nitpicky = True
+nitpick_ignore_regex = [(r"py:.*", r"(numpy|np|pathlib|sympy|concurrent|collections|typing)\b.*")]
+
+autodoc_member_order = "bysource"
+autodoc_default_options = {"members": True, "undoc-members": False, "show-inheritance": False}
+autodoc_typehints = "description"
+
+# MathJax 2 from the jupyter-server-mathjax package, copied to _static/mathjax by the builder
+mathjax_path = "mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML"
+
+html_theme = "sphinx_book_theme"
+html_title = "springlab"
+html_static_path = ["_static"]
+html_css_files = ["springlab.css"]
+html_last_updated_fmt = None
+html_theme_options = {
+    "show_toc_level": 2,
+    "use_download_button": True,
+    "use_fullscreen_button": False,
+    "home_page_in_toc": True,
+    "navigation_with_keys": False,
+    "max_navbar_depth": 2,  # chapters and the API's packages; a page's own sections are on its right
+    "collapse_navbar": True,
+}
+html_show_sourcelink = False
+html_copy_source = False
+
+# the book links "000 Eq. (23b)" in docstrings to the chapter of paper 000
+CHAPTERS = dict(item.split("=", 1) for item in os.environ.get("SPRINGLAB_BOOK_CHAPTERS", "").split(";") if item)
+_CITE = re.compile(r"(?<![\w`])(00[0-9])(?= Eqs?\.| Table| Fig| Section)")
+
+
+def _link_citations(app, what, name, obj, options, lines):
+    for k, line in enumerate(lines):
+        lines[k] = _CITE.sub(lambda m: f":doc:`{m.group(1)} </{CHAPTERS[m.group(1)]}>`"
+                             if m.group(1) in CHAPTERS else m.group(0), line)
+
+
+_UNDERLINE = re.compile(r"\s*-{3,}\s*")
+_BAR = re.compile(r"(``.*?``|`[^`]*`)|\|")
+
+
+def _plain_text(app, what, name, obj, options, lines):
+    """springlab's docstrings are read as text first (``help()``): ``|x|`` is a magnitude, not
+    a substitution, and an underlined "References" is a heading of the docstring, not a section
+    of the page (a rubric)."""
+    k = 0
+    while k < len(lines):
+        if k + 1 < len(lines) and lines[k].strip() and _UNDERLINE.fullmatch(lines[k + 1]):
+            indent = lines[k][: len(lines[k]) - len(lines[k].lstrip())]
+            lines[k:k + 2] = [f"{indent}.. rubric:: {lines[k].strip()}", ""]
+        row = lines[k].strip()
+        if not (row.startswith("+-") or (row.startswith("|") and row.endswith("|") and row.count("|") > 2)):
+            # a grid table's rows keep their bars
+            lines[k] = _BAR.sub(lambda m: m.group(1) or r"\|", lines[k])
+        k += 1
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", _plain_text)
+    app.connect("autodoc-process-docstring", _link_citations)
