@@ -110,3 +110,25 @@ def test_diff_claims_finds_a_changed_verdict_and_nothing_else(tmp_path):
     assert any("index" in x for x in changes)
     assert diff_claims(before, after, rel=1e-3) == []  # within a loose tolerance, the same
     assert diff_claims(before, before) == []
+
+
+def _executed_code_cells(notebook: Path) -> list[str]:
+    """The sources of the code cells a kernel numbers 1, 2, ... (IPython skips blank cells)."""
+    cells = json.loads(notebook.read_text())["cells"]
+    return ["".join(c["source"]) for c in cells if c["cell_type"] == "code" and "".join(c["source"]).strip()]
+
+
+@pytest.mark.parametrize("stem", STEMS)
+def test_every_claim_names_the_cell_that_records_it(stem):
+    """make figures runs the notebooks without injected parameters, so a claim's execution
+    count is its cell's place among the notebook's code cells; that cell records claims."""
+    cells = _executed_code_cells(ROOT / "notebooks" / f"{stem}.ipynb")
+    for c in json.loads((ROOT / "figures" / stem / "claims.json").read_text()):
+        assert isinstance(c["cell"], int) and 1 <= c["cell"] <= len(cells), c["quantity"]
+        assert "claims." in cells[c["cell"] - 1], (c["quantity"], cells[c["cell"] - 1][:200])
+
+
+def test_a_claim_outside_a_kernel_has_no_cell():
+    claims = Claims("test")
+    claims.input("x", "here", None, 1.0, unit="m", note="fed in")
+    assert claims.records[0].cell is None

@@ -58,7 +58,8 @@ PAPERS = {
         "year": 2017,
         "title": "Gravity balancing of a spatial serial 4-dof arm without auxiliary links using minimum number of springs",
         "venue": "AIMETA 2017",
-        "doi": None,
+        "doi": None,  # the text prints none; it gives the archive's address below
+        "url": "http://shura.shu.ac.uk/16806/",
         "key_figure": "fig5_layouts.png",
     },
 }

@@ -11,8 +11,9 @@ text changed, so Sphinx re-reads only those) and runs Sphinx with warnings as er
   a label ``<stem>-s<k>`` so the report can point at it;
 * ``report.md``: every claim beside the paper's value, each linked to the notebook section
   that makes it (the claim's cell, recorded by :class:`~springlab.workbench.claims.Claims`);
-* ``api/``: the library's docstrings (autodoc), with "000 Eq. (23b)" linked to paper 000's
-  chapter, and the source of every module (viewcode) with its equation comments linked too.
+* ``api/``: the library's docstrings (autodoc), each citation (a paper's key before an
+  equation, table or figure) linked to the paper's chapter, and the source of every module
+  (viewcode) with the citations in its comments linked too.
 
 MathJax is copied into the site from the ``jupyter-server-mathjax`` package: the site opens
 from ``file://`` without a network.
@@ -110,8 +111,19 @@ def _tally(records: list[dict]) -> str:
     return ", ".join(f"{count[s]} {s}" for s in REPORT_COLUMNS if count.get(s)) or "none"
 
 
-def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, list[dict]]) -> str:
-    """The book's front page (MyST Markdown)."""
+def short_name(stem: str) -> str:
+    """'000 Juang et al. (2023)', 'design your arm': a chapter's name in a table."""
+    paper = PAPERS.get(stem)
+    if not paper or not paper.get("key"):
+        return stem.replace("springlab_", "").replace("_", " ")
+    names = [a.strip().split(" ")[-1] for a in paper["authors"].split(",")]
+    who = names[0] + (" et al." if len(names) > 2 else f" and {names[1]}" if len(names) == 2 else "")
+    return f"{paper['key']} {who} ({paper['year']})"
+
+
+def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, list[dict]], *,
+               api: bool = True, thumbs: frozenset = frozenset()) -> str:
+    """The book's front page (MyST Markdown); ``thumbs``: the stems with a key figure in ``thumbs/``."""
     lines = ["# springlab: spring gravity balancing, reproduced", "",
              "springlab recomputes the derivations, tables and figures of five papers on spring gravity "
              "balancing of robot arms, checks every number against the printed one, and designs springs "
@@ -131,7 +143,7 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
                   f"- chapter: {{doc}}`{stem}`; run time {run:.1f} s" if run is not None else
                   f"- chapter: {{doc}}`{stem}`; run time unknown",
                   f"- claims: {_tally(claims.get(stem, []))}", ""]
-        if paper.get("key_figure"):
+        if stem in thumbs:
             lines += [f"```{{image}} thumbs/{stem}.png", f":alt: key figure of {stem}", ":width: 320px",
                       f":target: {stem}.html", "```", ""]
     total = Counter(report_column(r) for records in claims.values() for r in records)
@@ -152,7 +164,7 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
               "```{toctree}", ":hidden:", ":caption: The papers", "", *[s for s in stems if PAPERS.get(s, {}).get("key")],
               "```", "", "```{toctree}", ":hidden:", ":caption: Your arm", "",
               *[s for s in stems if not PAPERS.get(s, {}).get("key")], "```", "",
-              "```{toctree}", ":hidden:", ":caption: Reference", "", "report", "api/index", "```", ""]
+              "```{toctree}", ":hidden:", ":caption: Reference", "", "report", *(["api/index"] if api else []), "```", ""]
     return "\n".join(lines)
 
 
@@ -167,7 +179,7 @@ def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, 
              "|---|" + "---|" * (len(REPORT_COLUMNS) + 1)]
     for stem in stems:
         count = Counter(report_column(r) for r in claims.get(stem, []))
-        lines.append(f"| {{doc}}`{stem}` | " + " | ".join(str(count.get(s, 0)) for s in REPORT_COLUMNS)
+        lines.append(f"| {{doc}}`{short_name(stem)} <{stem}>` | " + " | ".join(str(count.get(s, 0)) for s in REPORT_COLUMNS)
                      + f" | {len(claims.get(stem, []))} |")
     for stem in stems:
         records = claims.get(stem, [])
@@ -209,8 +221,8 @@ def api_pages() -> dict[str, str]:
         groups.setdefault(parent, []).append(m)
     pages = {"index.md": "\n".join(
         ["# API reference", "",
-         "The library's docstrings, package by package. A citation such as \"000 Eq. (23b)\" links to "
-         "the chapter of paper 000; each module's `[source]` link shows its code, whose equation "
+         "The library's docstrings, package by package. An equation's citation (the paper's key, then the number) links to "
+         "the chapter of that paper; each module's `[source]` link shows its code, whose equation "
          "comments link to the chapters too.", "", "```{toctree}", ":maxdepth: 1", "",
          *packages, "```", ""])}
     for package in packages:
@@ -241,13 +253,15 @@ def mathjax_dir() -> Path:
     return Path(list(spec.submodule_search_locations)[0]) / "static"
 
 
-def stage(notebooks_dir, figures_dir, src) -> list[str]:
-    """Write the book's sources into ``src``; returns the chapters' stems."""
+def stage(notebooks_dir, figures_dir, src, *, api: bool = True) -> list[str]:
+    """Write the book's sources into ``src`` (with the API reference unless ``api`` is False);
+    returns the chapters' stems."""
     notebooks_dir, figures_dir, src = Path(notebooks_dir), Path(figures_dir), Path(src)
     found = {p.stem: p for p in notebooks_dir.glob("*.ipynb")}
     stems = [s for s in CHAPTER_ORDER if s in found] + sorted(set(found) - set(CHAPTER_ORDER))
     notebooks = {s: json.loads(found[s].read_text()) for s in stems}
     claims = load_claims(figures_dir)
+    thumbs = set()
     for stem in stems:
         _write_if_changed(src / f"{stem}.ipynb", json.dumps(labelled(notebooks[stem], stem), indent=1))
         figure = PAPERS.get(stem, {}).get("key_figure")
@@ -257,25 +271,30 @@ def stage(notebooks_dir, figures_dir, src) -> list[str]:
             data = (figures_dir / stem / figure).read_bytes()
             if not thumb.exists() or thumb.read_bytes() != data:
                 thumb.write_bytes(data)
+            thumbs.add(stem)
     for gone in set(p.stem for p in src.glob("*.ipynb")) - set(stems):
         (src / f"{gone}.ipynb").unlink()
-    _write_if_changed(src / "index.md", front_page(stems, notebooks, claims))
+    _write_if_changed(src / "index.md", front_page(stems, notebooks, claims, api=api, thumbs=frozenset(thumbs)))
     _write_if_changed(src / "report.md", report_page(stems, notebooks, claims))
-    for name, text in api_pages().items():
-        _write_if_changed(src / "api" / name, text)
+    if api:
+        for name, text in api_pages().items():
+            _write_if_changed(src / "api" / name, text)
+    elif (src / "api").exists():
+        shutil.rmtree(src / "api")
     return stems
 
 
 def build_book(notebooks_dir="build/notebooks", figures_dir="figures", site_dir="build/site",
-               work_dir="build/book", *, jobs: int | None = None) -> Path:
+               work_dir="build/book", *, jobs: int | None = None, api: bool = True) -> Path:
     """Stage the sources and run Sphinx (warnings are errors); returns ``site_dir/index.html``.
+    ``api=False`` leaves the API reference out (a quicker book, for tests).
 
     :raises SolverError: when Sphinx reports a warning or an error (its messages are printed)
     """
     from sphinx.cmd.build import build_main
 
     site_dir, work_dir = Path(site_dir), Path(work_dir)
-    stems = stage(notebooks_dir, figures_dir, work_dir / "src")
+    stems = stage(notebooks_dir, figures_dir, work_dir / "src", api=api)
     os.environ["SPRINGLAB_BOOK_CHAPTERS"] = ";".join(
         f"{PAPERS[s]['key']}={s}" for s in stems if PAPERS.get(s, {}).get("key"))
     args = ["-b", "html", "-c", str(CONF_DIR), "-d", str(work_dir / "doctrees"), "-W", "--keep-going", "-q",
@@ -288,7 +307,8 @@ def build_book(notebooks_dir="build/notebooks", figures_dir="figures", site_dir=
     target = site_dir / "_static" / "mathjax"
     if not (target / "MathJax.js").exists():
         shutil.copytree(mathjax_dir(), target, dirs_exist_ok=True)
-    link_source_citations(site_dir, stems)
+    if api:
+        link_source_citations(site_dir, stems)
     return site_dir / "index.html"
 
 
@@ -297,8 +317,8 @@ _CITE = re.compile(r"(?<![\w])(00[0-9])(?= Eqs?\.| Table| Fig| Section)")
 
 
 def link_source_citations(site_dir, stems) -> int:
-    """In the module source pages (viewcode), link each "000 Eq. (...)" in a comment to paper
-    000's chapter; returns the number of links made (a page already linked is left as it is)."""
+    """In the module source pages (viewcode), link each citation in a comment (a paper's key
+    before an equation, table or figure) to the paper's chapter; returns the number of links made (a page already linked is left as it is)."""
     site_dir = Path(site_dir)
     chapters = {PAPERS[s]["key"]: s for s in stems if PAPERS.get(s, {}).get("key")}
     made = 0

@@ -142,60 +142,135 @@ def find_browser() -> tuple[str, str] | None:
     return (chromium, driver) if chromium and driver else None
 
 
-def browser_check(pages, *, screenshot=None, math_timeout: float = 10.0) -> dict[str, list[str]]:
-    """Open each page in headless Chromium and list what a reader would see broken:
-    an image that did not load, a link to a missing local file, a traceback in an
-    output, or TeX left unrendered on a page that has math. Saves a screenshot of
-    the first page to ``screenshot`` if given. Returns {page name: problems}.
+LOCAL_SCHEMES = ("file:", "data:", "blob:", "about:", "chrome:", "chrome-extension:", "devtools:")
+"""The requests a page may make: none of them leaves the machine."""
 
-    :raises SolverError: when Chromium and its driver are not installed
-    """
-    import time
+_MATH_DONE = ("return !window.MathJax || !!(MathJax.isReady && MathJax.Hub && MathJax.Hub.queue.pending === 0"
+              " && !MathJax.Hub.queue.running)")
+_MATH_LEFT = r"""
+const math = Array.from(document.querySelectorAll('.math, .MathJax_Preview'));
+return {math: document.querySelectorAll('span.math, div.math').length,
+        rendered: document.querySelectorAll('.MathJax, .MathJax_Display, .MathJax_CHTML, mjx-container').length,
+        raw: math.filter(e => /\\\(|\\\[|\$\$/.test(e.innerText)).length,
+        errors: document.querySelectorAll('.MathJax_Error, merror').length};
+"""
 
+
+def _driver(found):
     from selenium import webdriver
     from selenium.webdriver.chrome.options import Options
     from selenium.webdriver.chrome.service import Service
 
-    found = find_browser()
-    if found is None:
-        raise SolverError("headless Chromium is not installed: apt-get install chromium chromium-driver")
     options = Options()
     options.binary_location = found[0]
     for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                "--no-first-run", "--window-size=1200,1600", "--allow-file-access-from-files"):
+                "--no-first-run", "--window-size=1400,1000", "--allow-file-access-from-files"):
         options.add_argument(arg)
-    driver = webdriver.Chrome(service=Service(found[1]), options=options)
-    out = {}
+    options.set_capability("goog:loggingPrefs", {"performance": "ALL"})  # the network log
+    return webdriver.Chrome(service=Service(found[1]), options=options)
+
+
+def _requests(driver) -> tuple[list[str], list[str]]:
+    """The URLs requested since the last call, and those that failed to load (Chromium's
+    performance log)."""
+    urls, ids, failed = [], {}, []
+    for entry in driver.get_log("performance"):
+        message = json.loads(entry["message"])["message"]
+        params = message.get("params", {})
+        if message.get("method") == "Network.requestWillBeSent":
+            urls.append(params["request"]["url"])
+            ids[params["requestId"]] = params["request"]["url"]
+        elif (message.get("method") == "Network.loadingFailed" and not params.get("canceled")
+              and not ids.get(params.get("requestId"), "").startswith("about:")):  # MathJax's blank frame
+            failed.append(f"{ids.get(params.get('requestId'), '?')} ({params.get('errorText', '')})")
+    return urls, failed
+
+
+def _wait(driver, script: str, timeout: float):
+    import time
+
+    deadline = time.time() + timeout
+    while True:
+        value = driver.execute_script(script)
+        if value or time.time() > deadline:
+            return value
+        time.sleep(0.1)
+
+
+def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, search=None,
+                  math_timeout: float = 30.0) -> dict[str, list[str]]:
+    """Open each page in headless Chromium and list what a reader would see broken: an image
+    that did not load, a link to a missing local file, a traceback in an output, TeX that
+    MathJax left unrendered or could not parse, and any request that leaves the machine
+    (Chromium's network log: every request must be ``file://`` or inline).
+
+    :param screenshots: {page: png path}: screenshots to save (the page as a reader first sees it)
+    :param network_log: a file to write every request to, page by page
+    :param chapters: the page names (``lenzo2017_two_spring_arm.html``) the first page's
+        sidebar must link; a missing one is a problem of the first page
+    :param search: (term, page name): searching the book for ``term`` must list that page
+        (reported under "search")
+    :returns: {page name: problems}
+    :raises SolverError: when Chromium and its driver are not installed
+    """
+    found = find_browser()
+    if found is None:
+        raise SolverError("headless Chromium is not installed: apt-get install chromium chromium-driver")
+    pages = [Path(p).resolve() for p in pages]
+    shots = {Path(k).resolve(): Path(v) for k, v in (screenshots or {}).items()}
+    driver = _driver(found)
+    out, log = {}, []
     try:
-        for k, page in enumerate(Path(p).resolve() for p in pages):
+        for k, page in enumerate(pages):
             driver.get(page.as_uri())
+            _wait(driver, "return document.readyState === 'complete'", 10)
             problems = list(check_links(page))
             for src in driver.execute_script(
                     "return Array.from(document.images).filter(i => !i.complete || i.naturalWidth === 0)"
                     ".map(i => i.getAttribute('src').slice(0, 120))"):
                 problems.append(f"image did not load: {src}")
-            text = driver.execute_script("return document.body.innerText")
-            if "Traceback (most recent call last)" in text:
+            if "Traceback (most recent call last)" in driver.execute_script("return document.body.innerText"):
                 problems.append("an output shows a traceback")
-            if "MathJax.js" in page.read_text():
-                deadline = time.time() + math_timeout
-                rendered = 0
-                while time.time() < deadline:
-                    rendered = driver.execute_script(
-                        "return document.querySelectorAll('.MathJax, .MathJax_Display, .MathJax_SVG, "
-                        ".MathJax_CHTML, mjx-container').length")
-                    if rendered:
-                        break
-                    time.sleep(0.2)
-                if not rendered:
-                    problems.append("no equation was rendered by MathJax")
-            if k == 0 and screenshot is not None:
-                Path(screenshot).parent.mkdir(parents=True, exist_ok=True)
-                driver.save_screenshot(str(screenshot))
+            if not _wait(driver, _MATH_DONE, math_timeout):
+                problems.append(f"MathJax did not finish within {math_timeout:g} s")
+            math = driver.execute_script(_MATH_LEFT)
+            if math["math"] and not math["rendered"]:
+                problems.append(f"no equation was rendered by MathJax ({math['math']} on the page)")
+            if math["raw"]:
+                problems.append(f"{math['raw']} equation(s) left as raw TeX")
+            if math["errors"]:
+                problems.append(f"{math['errors']} equation(s) MathJax could not parse")
+            if k == 0 and chapters:
+                linked = {Path(h.split("#")[0]).name for h in driver.execute_script(
+                    "return Array.from(document.querySelectorAll('nav.bd-docs-nav a')).map(a => a.href)")}
+                problems += [f"the sidebar does not link {name}" for name in chapters if name not in linked]
+            if page in shots:
+                shots[page].parent.mkdir(parents=True, exist_ok=True)
+                driver.save_screenshot(str(shots[page]))
+            urls, failed = _requests(driver)
+            log += [f"{page.name}\t{url}" for url in urls]
+            problems += [f"request left the machine: {url[:160]}" for url in urls if not url.startswith(LOCAL_SCHEMES)]
+            problems += [f"did not load: {what[:200]}" for what in failed]
             out[page.name] = problems
+        if search is not None:
+            term, expected = search
+            results = pages[0].parent / "search.html"
+            driver.get(f"{results.as_uri()}?q={term}")
+            listed = _wait(driver, "const r = document.querySelectorAll('#search-results ul.search li a');"
+                                   "return r.length ? Array.from(r).map(a => a.href) : null", 20) or []
+            names = {Path(h.split("?")[0].split("#")[0]).name for h in listed}
+            urls, failed = _requests(driver)
+            log += [f"search.html?q={term}\t{url}" for url in urls]
+            out["search"] = ([] if expected in names else [f"searching {term!r} does not list {expected} "
+                                                            f"(listed: {sorted(names)})"])
+            out["search"] += [f"request left the machine: {u[:160]}" for u in urls if not u.startswith(LOCAL_SCHEMES)]
+            out["search"] += [f"did not load: {what[:200]}" for what in failed]
     finally:
         driver.quit()
+    if network_log is not None:
+        Path(network_log).parent.mkdir(parents=True, exist_ok=True)
+        Path(network_log).write_text("\n".join(log) + "\n")
     return out
 
 

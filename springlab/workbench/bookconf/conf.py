@@ -33,7 +33,14 @@ autodoc_default_options = {"members": True, "undoc-members": False, "show-inheri
 autodoc_typehints = "description"
 
 # MathJax 2 from the jupyter-server-mathjax package, copied to _static/mathjax by the builder
-mathjax_path = "mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML"
+mathjax_path = "mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe"
+# the theme marks the page tex2jax_ignore; MathJax 2 typesets the elements Sphinx marks as math
+mathjax2_config = {
+    "tex2jax": {"processClass": "math|tex2jax_process|mathjax_process|output_area"},
+    "messageStyle": "none",
+    # the package ships the STIX-Web fonts only: no TeX fonts to look for
+    "HTML-CSS": {"availableFonts": [], "preferredFont": None, "webFont": "STIX-Web"},
+}
 
 html_theme = "sphinx_book_theme"
 html_title = "springlab"
@@ -52,7 +59,7 @@ html_theme_options = {
 html_show_sourcelink = False
 html_copy_source = False
 
-# the book links "000 Eq. (23b)" in docstrings to the chapter of paper 000
+# the book links each citation in a docstring (a paper's key before an equation, table or figure) to its chapter
 CHAPTERS = dict(item.split("=", 1) for item in os.environ.get("SPRINGLAB_BOOK_CHAPTERS", "").split(";") if item)
 _CITE = re.compile(r"(?<![\w`])(00[0-9])(?= Eqs?\.| Table| Fig| Section)")
 

@@ -1,0 +1,160 @@
+"""The book (build/site): built by Sphinx from executed notebooks, every claim linked to its
+section, citations linked to chapters, and the browser check: headless Chromium (Debian's
+chromium and chromium-driver) opens every page, searches, reads the sidebar and records the
+network log. `.ci/run` installs Chromium and sets SPRINGLAB_REQUIRE_BROWSER=1, so CI always
+runs the browser tests; elsewhere they are skipped when Chromium is not installed.
+
+The book here is built from two notebooks run with quick=True (the full book is built by
+`make figures`, with the same -W). Its screenshots and network log stay under
+build/book-check/ for the reader of the CI log."""
+
+import json
+import os
+import re
+import shutil
+from pathlib import Path
+
+import pytest
+
+from springlab.errors import SolverError
+from springlab.workbench import book, site
+from springlab.workbench.notebooks import run_notebook
+
+ROOT = Path(__file__).resolve().parents[1]
+OUT = ROOT / "build" / "book-check"
+STEMS = ("lenzo2017_two_spring_arm", "zhang2023_dyad")
+REQUIRED = os.environ.get("SPRINGLAB_REQUIRE_BROWSER") == "1"
+needs_browser = pytest.mark.skipif(site.find_browser() is None and not REQUIRED,
+                                   reason="headless Chromium not installed (apt-get install chromium chromium-driver)")
+
+
+@pytest.fixture(scope="module")
+def built():
+    """build/book-check/site: the book of two quick notebooks, with the API reference, built
+    once per test run: the first worker to get here builds it, under a lock, and the others
+    (pytest-xdist) read it."""
+    import fcntl
+
+    run = os.environ.get("PYTEST_XDIST_TESTRUNUID", f"pid {os.getpid()}")
+    OUT.parent.mkdir(parents=True, exist_ok=True)
+    with open(OUT.parent / "book-check.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        done = OUT / "built-by"
+        if not (done.exists() and done.read_text() == run):
+            shutil.rmtree(OUT, ignore_errors=True)
+            notebooks, figures = OUT / "notebooks", OUT / "figures"
+            for stem in STEMS:
+                run_notebook(ROOT / "notebooks" / f"{stem}.ipynb", notebooks / f"{stem}.ipynb",
+                             {"quick": True, "figures_dir": str(figures / stem)})
+                assert site.executed_errors(notebooks / f"{stem}.ipynb") == []
+            site.build_site(notebooks, OUT / "site", figures, OUT / "work")
+            done.write_text(run)
+    return OUT / "site"
+
+
+def test_every_page_resolves_and_fetches_nothing_from_the_internet(built):
+    pages = [p for p in built.rglob("*.html") if p.relative_to(built).parts[0] != "_static"]
+    assert len(pages) > 20  # chapters, report, API pages, module sources, search, index
+    assert {p: site.check_links(p) for p in pages if site.check_links(p)} == {}
+    assert (built / "_static" / "mathjax" / "MathJax.js").exists()  # MathJax served by the site
+
+
+def test_the_front_page_gives_dois_run_times_and_claims_by_status(built):
+    text = (built / "index.html").read_text()
+    assert "10.1016/j.mechmachtheory.2023.105497" not in text  # 000 is not in this book
+    assert "no DOI (the text prints none" in text  # 002 and 004 print none
+    assert "http://shura.shu.ac.uk/16806/" in text  # 004's archive, as its text gives it
+    for stem in STEMS:
+        run = json.loads((OUT / "notebooks" / f"{stem}.ipynb").read_text())["metadata"]["papermill"]["duration"]
+        assert f"run time {run:.1f} s" in text
+    assert re.search(r"claims: \d+ reproduced", text)
+
+
+def test_every_claim_in_the_report_links_to_the_section_that_makes_it(built):
+    report = (built / "report.html").read_text()
+    for stem in STEMS:
+        claims = json.loads((OUT / "figures" / stem / "claims.json").read_text())
+        assert all(isinstance(c["cell"], int) for c in claims)  # each recorded in a cell
+        links = re.findall(rf'href="{stem}\.html#({stem.replace("_", "-")}-s\d+)"', report)
+        assert len(links) == len(claims)
+        chapter = (built / f"{stem}.html").read_text()
+        assert all(f'id="{anchor}"' in chapter for anchor in set(links))
+        # and the section is the one whose cell made it: the cell's heading is the linked section
+        executed = json.loads((OUT / "notebooks" / f"{stem}.ipynb").read_text())
+        _titles, where = book.sections(executed)
+        first = claims[0]
+        assert links[0] == book.section_label(stem, where[first["cell"]]).replace("_", "-")
+
+
+def test_paper_citations_in_docstrings_and_comments_link_to_the_chapter(built):
+    dyad = (built / "api" / "springlab.mechanisms.dyad.html").read_text()
+    assert 'href="../zhang2023_dyad.html"' in dyad  # "002 Eq. (...)" in a docstring
+    source = (built / "_modules" / "springlab" / "mechanisms" / "dyad" / "synthesis.html").read_text()
+    assert re.search(r'<span class="c1">[^<]*<a href="(\.\./)+zhang2023_dyad\.html">002</a> Eq', source)
+
+
+def test_a_broken_cross_reference_fails_the_build(tmp_path):
+    notebooks = tmp_path / "nb"
+    notebooks.mkdir()
+    cell = {"cell_type": "markdown", "metadata": {}, "source": "# A page\n\nSee {ref}`no-such-section`."}
+    metadata = {"kernelspec": {"name": "python3", "display_name": "Python 3", "language": "python"},
+                "language_info": {"name": "python"}}
+    nb = {"cells": [cell], "metadata": metadata, "nbformat": 4, "nbformat_minor": 5}
+    (notebooks / "lenzo2017_two_spring_arm.ipynb").write_text(json.dumps(nb))
+    with pytest.raises(SolverError, match="did not build"):
+        book.build_book(notebooks, tmp_path / "figures", tmp_path / "site", tmp_path / "work", api=False)
+    cell["source"] = "# A page\n\nNo reference."  # the control: the same book builds once fixed
+    (notebooks / "lenzo2017_two_spring_arm.ipynb").write_text(json.dumps(nb))
+    assert book.build_book(notebooks, tmp_path / "figures", tmp_path / "site", tmp_path / "work",
+                           api=False).exists()
+
+
+def _term_in_one_page_only(built: Path, stem: str) -> str:
+    """A word Sphinx's index holds for ``stem``'s page and no other page (its own stem)."""
+    import snowballstemmer
+
+    text = (built / "searchindex.js").read_text()
+    index = json.loads(text[text.index("(") + 1: text.rindex(")")])
+    doc = index["docnames"].index(stem)
+    stem_word = snowballstemmer.stemmer("porter").stemWord
+    only = sorted(t for t, docs in index["terms"].items()
+                  if docs == doc and t.isalpha() and len(t) >= 6 and stem_word(t) == t)
+    assert only, f"no word of {stem} is on its page only"
+    return only[0]
+
+
+@needs_browser
+def test_the_book_reads_in_chromium_offline(built):
+    pages = [built / "index.html", built / "report.html", *(built / f"{s}.html" for s in STEMS),
+             built / "api" / "index.html", built / "api" / "springlab.mechanisms.dyad.html",
+             built / "_modules" / "springlab" / "mechanisms" / "dyad" / "synthesis.html"]
+    shots = OUT / "screenshots"
+    term = _term_in_one_page_only(built, "zhang2023_dyad")
+    result = site.browser_check(
+        pages, network_log=OUT / "network.log",
+        screenshots={built / "index.html": shots / "front-page.png", built / "zhang2023_dyad.html": shots / "chapter.png",
+                     built / "report.html": shots / "report.png"},
+        chapters=[f"{s}.html" for s in STEMS] + ["report.html", "index.html"], search=(term, "zhang2023_dyad.html"))
+    assert result == {**{p.name: [] for p in pages}, "search": []}, term
+    log = (OUT / "network.log").read_text().splitlines()
+    assert any("_static/mathjax/MathJax.js" in line for line in log)  # the log holds every request
+    assert all(line.split("\t")[1].startswith(site.LOCAL_SCHEMES) for line in log)
+    assert all((shots / f"{name}.png").stat().st_size > 20_000 for name in ("front-page", "chapter", "report"))
+
+
+@needs_browser
+def test_the_browser_check_catches_a_broken_page(tmp_path, built):
+    (tmp_path / "ok.png").write_bytes((ROOT / "figures" / "lenzo2017_two_spring_arm" / "fig5_layouts.png").read_bytes())
+    page = tmp_path / "broken.html"
+    page.write_text('<html><body><img src="ok.png"><img src="missing.png"><a href="gone.html">gone</a>'
+                    '<img src="http://example.invalid/pixel.png">'
+                    "<pre>Traceback (most recent call last):\n  boom</pre></body></html>")
+    problems = site.browser_check([page])[page.name]
+    assert any("missing.png" in p and "did not load" in p for p in problems)
+    assert any("gone.html" in p for p in problems)
+    assert any("traceback" in p for p in problems)
+    assert any("left the machine" in p and "example.invalid" in p for p in problems)
+    assert not any("ok.png" in p for p in problems)
+    # a search that lists nothing is caught too
+    found = site.browser_check([built / "index.html"], search=("zzqqxxnotaword", "zhang2023_dyad.html"))
+    assert found["search"] and "does not list" in found["search"][0]
