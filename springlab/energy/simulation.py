@@ -13,7 +13,8 @@ file is written.
 Three checks, each returning a result with the numbers:
 
 * :func:`hold_test`: release at rest at each pose, report the largest drift,
-  always beside the negative control (springs scaled by 0.9);
+  always beside the negative control (springs scaled by 0.9); :func:`hold_motion`
+  returns the same test's motion at one pose (for an animation);
 * :func:`holding_torques`: lock every joint, solve the statics, read the joint
   torques, and compare them with route 2 (:func:`springlab.energy.geometry.holding_torques`);
 * :func:`follow`: drive the joints along a :class:`~springlab.model.trajectories.Sweep`
@@ -192,7 +193,9 @@ class HoldResult:
                       for label, run in ((balanced, self.balanced), (control, self.control))])
 
 
-def _hold_run(chain, springs, frames, duration, settings, scale) -> HoldRun:
+def _hold_run(chain, springs, frames, duration, settings, scale, histories=None) -> HoldRun:
+    """One set of springs released at each pose; with ``histories`` (a list), each pose's
+    (times (T,), link directions (T, n, 3)) is appended to it."""
     tip_local = _local_x(chain.r[-1] - chain.d[-1])
     tip_drift, angle_drift = np.zeros(len(frames)), np.zeros(len(frames))
     cpu, scaled = 0.0, [s.scaled(scale) for s in springs]
@@ -206,11 +209,58 @@ def _hold_run(chain, springs, frames, duration, settings, scale) -> HoldRun:
         cpu += time.process_time() - t0
         path = model.mbs.GetSensorStoredData(tip)[:, 1:]
         tip_drift[p] = np.max(np.linalg.norm(path - path[0], axis=1))
+        directions = []
         for sensor in rot:  # the link's direction x_j is the first column of its rotation matrix
             x = model.mbs.GetSensorStoredData(sensor)[:, 1:].reshape(-1, 3, 3)[:, :, 0]
             angle = np.arctan2(np.linalg.norm(np.cross(x[0], x), axis=1), x @ x[0])
             angle_drift[p] = max(angle_drift[p], float(np.max(angle)))
+            directions.append(x)
+        if histories is not None:
+            t = model.mbs.GetSensorStoredData(tip)[:, 0]
+            ground = np.broadcast_to(UP, (len(t), 3))
+            histories.append((t, np.stack([ground, *directions], axis=1)))
     return HoldRun(scale, tip_drift, angle_drift, cpu, duration * len(frames))
+
+
+def _hold_inputs(chain, springs, poses, duration, control_scale, settings):
+    """The hold test's inputs checked: (frames, duration, springs, control_scale)."""
+    frames = chain.pose_frames(poses)
+    duration = _checks.duration(duration)
+    springs = check_springs(chain, springs)
+    control_scale = _checks.positive("control_scale", control_scale, allow_zero=True)
+    if control_scale == 1.0:
+        raise SpringlabError("control_scale = 1 makes the negative control the design itself: use e.g. 0.9")
+    _checks.instance("settings", settings, SimSettings)
+    return frames, duration, springs, control_scale
+
+
+@dataclass(frozen=True)
+class HoldMotion:
+    """The hold test at one pose, as motion: link directions (T, n, 3) at times t (s) of the
+    balanced arm and of the control (springs scaled by ``control_scale``)."""
+
+    t: np.ndarray
+    balanced: np.ndarray
+    control: np.ndarray
+    control_scale: float
+
+    def sampled(self, frames: int) -> HoldMotion:
+        """The motion at ``frames`` evenly spaced stored steps (for an animation)."""
+        k = np.unique(np.linspace(0, len(self.t) - 1, frames).round().astype(int))
+        return HoldMotion(self.t[k], self.balanced[k], self.control[k], self.control_scale)
+
+
+def hold_motion(chain: Chain, springs, pose, duration: float = 2.0, *, control_scale: float = 0.9,
+                settings: SimSettings = SimSettings()) -> HoldMotion:
+    """:func:`hold_test` at one pose (link directions (n, 3), or joint angles), returning the
+    motion of the balanced arm and of the control instead of their drifts."""
+    frames, duration, springs, control_scale = _hold_inputs(
+        chain, springs, np.asarray(pose, dtype=float)[None], duration, control_scale, settings)
+    runs: list = []
+    for scale in (1.0, control_scale):
+        _hold_run(chain, springs, frames, duration, settings, scale, runs)
+    (t, balanced), (_, control) = runs
+    return HoldMotion(t, balanced, control, control_scale)
 
 
 def hold_test(chain: Chain, springs, poses, duration: float = 2.0, *, control_scale: float = 0.9,
@@ -225,13 +275,7 @@ def hold_test(chain: Chain, springs, poses, duration: float = 2.0, *, control_sc
         for chains with revolute joints)
     :param duration: simulated time per pose (s)
     """
-    frames = chain.pose_frames(poses)
-    duration = _checks.duration(duration)
-    springs = check_springs(chain, springs)
-    control_scale = _checks.positive("control_scale", control_scale, allow_zero=True)
-    if control_scale == 1.0:
-        raise SpringlabError("control_scale = 1 makes the negative control the design itself: use e.g. 0.9")
-    _checks.instance("settings", settings, SimSettings)
+    frames, duration, springs, control_scale = _hold_inputs(chain, springs, poses, duration, control_scale, settings)
     return HoldResult(_hold_run(chain, springs, frames, duration, settings, 1.0),
                       _hold_run(chain, springs, frames, duration, settings, control_scale))
 

@@ -109,42 +109,19 @@ def energy_figure(t, gravity, springs, total, *, title: str, reference=None, ref
     return fig
 
 
-def arm_figure(chain, springs, X_frames, tip_path=None, *, title: str = ""):
-    """The arm drawn in 3-D at a few poses, with its springs and the tip's path.
+def arm_figure(chain, springs, X_frames, tip_path=None, *, title: str = "", titles=None):
+    """The arm at a few poses side by side (at most 4), in front and side views at one scale:
+    the ground column, links as thick segments with joints, springs as zigzags labelled
+    S(i,j) with their attachment points (:func:`springlab.workbench.drawing.mechanism_figure`).
 
-    Drawn with x_1 (up) as the vertical axis, like 000 Fig. 15.
-    :param X_frames: poses (F, n, 3) to draw
-    :param tip_path: optional (T, 3) tip positions (m)
+    :param X_frames: poses (F, n, 3) to draw (link directions)
+    :param tip_path: optional (T, 3) tip positions (m), drawn dashed
+    :param titles: one title per pose (default "pose 1", ...)
     """
-    import numpy as np
+    from springlab.workbench.drawing import chain_scene, mechanism_figure
 
-    from springlab.energy.geometry import attachment_points
-
-    def view(p):  # world (x up, y, z) -> plot (y, z, x up)
-        p = np.asarray(p)
-        return p[..., 1], p[..., 2], p[..., 0]
-
-    fig = plt.figure(figsize=(5.2, 4.6))
-    ax = fig.add_subplot(projection="3d")
-    joints = chain.joint_positions(X_frames)
-    shades = np.linspace(0.75, 0.0, len(joints))
-    for f, (pose, shade) in enumerate(zip(joints, shades, strict=True)):
-        colour = (shade, shade, shade)
-        ax.plot(*view(pose), "-o", color=colour, markersize=3, linewidth=2.2,
-                label="links" if f == len(joints) - 1 else None)
-        for s in springs:
-            A, B = attachment_points(chain, s, X_frames[f : f + 1])
-            ax.plot(*view(np.vstack([A, B])), color="tab:red", linewidth=0.8, alpha=0.4 + 0.6 * (1 - shade),
-                    label="springs" if (f == len(joints) - 1 and s is springs[0]) else None)
-    if tip_path is not None:
-        ax.plot(*view(tip_path), color="tab:blue", linewidth=1.0, label="end-point path")
-    ax.set_xlabel("y (m)")
-    ax.set_ylabel("z (m)")
-    ax.set_zlabel("x$_1$, up (m)")
-    ax.set_title(title)
-    ax.legend(loc="upper left")
-    ax.set_box_aspect((1, 1, 1))
-    return fig
+    scene = chain_scene(chain, springs, X_frames, tip_path)
+    return mechanism_figure(scene, range(scene.poses), titles=titles, title=title)
 
 
 def moment_figure(phi, curves: dict, *, title: str, ylabel: str = "moment (N m)", styles: dict | None = None):

@@ -1,0 +1,306 @@
+"""Mechanisms drawn so a reader understands them at a glance, and animated.
+
+A :class:`Scene` holds what a drawing shows at N poses, in world coordinates (m): the moving
+links as polylines joint to joint, the springs' ends, the ground column and any extra bodies
+(pseudobases). :func:`mechanism_figure` draws chosen poses side by side in orthographic
+projection views (front, side, top) with equal axes and one scale for every panel, like a
+paper's figure:
+
+* the ground: a hatched floor and the base column, drawn up to its highest attachment;
+* links as thick segments, joints as open circles;
+* springs as zigzags between their attachment points (black dots), labelled S(i,j).
+
+:func:`animate` writes the same drawing, frame by frame, as a GIF (matplotlib's Pillow writer,
+headless, deterministic: the same scene gives the same bytes). Builders: :func:`chain_scene`
+(the serial chain of papers 000/003 and a user's arm), :func:`pseudobase_scene` (paper 001's
+arm with its pseudobases).
+
+Coordinates: a view's horizontal axis and the vertical ``up`` are named by the world axes
+(the chain's up is x_1; paper 001's frame 0 has z up)::
+
+        up                 front view: (h1, up)   side view: (h2, up)   top view: (h1, h2)
+        |
+        +--- h1            up = x -> (h1, h2) = (y, z); up = z -> (x, y); up = y -> (z, x)
+       /
+     h2
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from springlab.errors import SpringlabError
+
+VIEWS = ("front", "side", "top")
+_AXES = "xyz"
+SPRING_COLOURS = ("tab:red", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:olive", "tab:cyan",
+                  "tab:green")
+"""One colour per spring, in the order of the scene's springs (the legend names them)."""
+LINK_COLOUR = "0.15"
+COLUMN_COLOUR = "0.55"
+
+
+@dataclass(frozen=True)
+class Scene:
+    """What a drawing of a mechanism shows at N poses (world coordinates, m).
+
+    :ivar up: (3,) the world's unit up vector (gravity along -up), a coordinate axis
+    :ivar links: the moving links, each (N, k, 3): a polyline joint to joint
+    :ivar springs: {label: (A (N, 3), B (N, 3))}: each spring's two attachment points
+    :ivar column: (bottom, top) of the ground column along ``up`` at the origin (m)
+    :ivar extras: {label: (N, k, 3)} other bodies drawn as thinner blue polylines (pseudobases)
+    :ivar path: optional (T, 3) path of the end point
+    """
+
+    up: np.ndarray
+    links: list
+    springs: dict
+    column: tuple
+    extras: dict = field(default_factory=dict)
+    path: np.ndarray | None = None
+
+    @property
+    def poses(self) -> int:
+        return int(self.links[0].shape[0])
+
+    def horizontal(self) -> tuple[int, int]:
+        """The world axes (indices) of the horizontal directions h1, h2."""
+        k = int(np.argmax(np.abs(self.up)))
+        if not np.isclose(abs(self.up[k]), 1.0):
+            raise SpringlabError(f"Scene.up must be a coordinate axis, got {self.up}: rotate the scene first")
+        return (k + 1) % 3, (k + 2) % 3
+
+    def project(self, points, view: str) -> np.ndarray:
+        """``points`` (..., 3) in ``view``'s plane (..., 2): (horizontal, up) or (h1, h2) for top."""
+        if view not in VIEWS:
+            raise SpringlabError(f"view must be one of {VIEWS}, got {view!r}")
+        h1, h2 = self.horizontal()
+        p = np.asarray(points, dtype=float)
+        height = p @ self.up
+        if view == "front":
+            return np.stack([p[..., h1], height], axis=-1)
+        if view == "side":
+            return np.stack([p[..., h2], height], axis=-1)
+        return np.stack([p[..., h1], p[..., h2]], axis=-1)
+
+    def axis_labels(self, view: str) -> tuple[str, str]:
+        h1, h2 = self.horizontal()
+        up = f"{_AXES[int(np.argmax(np.abs(self.up)))]}, up (m)"
+        return {"front": (f"{_AXES[h1]} (m)", up), "side": (f"{_AXES[h2]} (m)", up),
+                "top": (f"{_AXES[h1]} (m)", f"{_AXES[h2]} (m)")}[view]
+
+    def all_points(self) -> np.ndarray:
+        parts = [link.reshape(-1, 3) for link in self.links]
+        parts += [np.vstack(ab) for ab in self.springs.values()]
+        parts += [e.reshape(-1, 3) for e in self.extras.values()]
+        parts.append(np.outer(self.column, self.up))
+        if self.path is not None:
+            parts.append(np.asarray(self.path).reshape(-1, 3))
+        return np.vstack(parts)
+
+
+def chain_scene(chain, springs, X, tip_path=None) -> Scene:
+    """The serial chain (:class:`springlab.model.chain.Chain`) at poses X (N, n, 3): links 2..n
+    from joint to joint, the ground column from the lowest to the highest point on link 1
+    (the base joint, its springs' ends), the springs S(i,j) (route 2's attachment points)."""
+    from springlab.energy.geometry import attachment_points
+
+    X = chain.check_directions(X)
+    joints = chain.joint_positions(X)
+    up = X[0, 0]
+    ends = {}
+    for s in springs:
+        A, B = attachment_points(chain, s, X)
+        label = f"S({s.i},{s.j})"
+        while label in ends:
+            label += "'"
+        ends[label] = (A, B)
+    on_ground = [0.0] + [s.a for s in springs if s.i == 1]
+    column = (min(min(on_ground), -0.08 * sum(chain.r)), max(on_ground))
+    return Scene(np.asarray(up, dtype=float), [joints], ends, column, path=tip_path)
+
+
+def pseudobase_scene(arm, springs, q) -> Scene:
+    """Paper 001's arm at joint angles q (N, n): the primary links through the frame origins,
+    each module's pseudobase as the segment C_i D_i (it keeps its direction at every pose),
+    the equilibrator springs A B (route 2's positions)."""
+    from springlab.mechanisms.pseudobase.geometry import positions
+
+    p = positions(arm, springs, q)
+    ends = {f"S{i}": (p["A"][:, k], p["B"][:, k]) for k, i in enumerate(arm.modules)}
+    extras = {f"pseudobase {i}": np.stack([p["C"][:, k], p["D"][:, k]], axis=1) for k, i in enumerate(arm.modules)}
+    origins = p["O"]
+    base = np.asarray(arm.up, dtype=float)
+    low = min(0.0, float(np.min(origins @ base)))
+    column = (low - 0.05 * float(np.ptp(origins @ base) + 1e-9), float(np.max(origins[:, :2] @ base)))
+    return Scene(base, [origins], ends, column, extras)
+
+
+def zigzag(P, Q, *, coils: int = 6, width: float) -> np.ndarray:
+    """A spring drawn from P to Q (2-D points): straight leads of 15 % at each end and
+    ``coils`` zigzags of half-width ``width`` (m) between. (M, 2) points; P alone when P = Q."""
+    P, Q = np.asarray(P, dtype=float), np.asarray(Q, dtype=float)
+    d = Q - P
+    length = float(np.hypot(*d))
+    if length < 1e-12:
+        return P[None, :]
+    u = d / length
+    n = np.array([-u[1], u[0]])
+    w = min(width, 0.25 * length)
+    s = np.linspace(0.15, 0.85, 2 * coils + 1)
+    offsets = np.zeros_like(s)
+    offsets[1:-1] = w * np.where(np.arange(1, 2 * coils) % 2 == 1, 1.0, -1.0)
+    body = P + np.outer(s * length, u) + np.outer(offsets, n)
+    return np.vstack([P, body, Q])
+
+
+def _limits(scene: Scene, view: str, margin: float = 0.08):
+    pts = scene.project(scene.all_points(), view)
+    low, high = pts.min(axis=0), pts.max(axis=0)
+    span = float(max(high - low)) * (1 + 2 * margin) or 1.0
+    centre = (low + high) / 2
+    return (centre[0] - span / 2, centre[0] + span / 2), (centre[1] - span / 2, centre[1] + span / 2), span
+
+
+def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=None) -> list:
+    """Draw ``scene`` at ``pose`` in ``view`` on ``ax``; returns the artists (for animation)."""
+    xlim, ylim, span = limits or _limits(scene, view)
+    artists = []
+    if view != "top":  # the floor and the base column, seen from the side
+        bottom, top = scene.column
+        floor = np.array([[-0.12 * span, bottom], [0.12 * span, bottom]])
+        artists += ax.plot(*floor.T, color="k", linewidth=1.2)
+        for x in np.linspace(-0.12 * span, 0.1 * span, 8):
+            artists += ax.plot([x, x + 0.025 * span], [bottom - 0.025 * span, bottom], color="k", linewidth=0.6)
+        artists += ax.plot([0, 0], [bottom, top], color=COLUMN_COLOUR, linewidth=7, solid_capstyle="butt",
+                           label="ground (link 1)", zorder=1)
+    else:
+        artists += ax.plot([0], [0], "s", color=COLUMN_COLOUR, markersize=9, label="ground (link 1)", zorder=1)
+    for name, body in scene.extras.items():
+        pts = scene.project(body[pose], view)
+        artists += ax.plot(*pts.T, color="tab:blue", linewidth=2.4, solid_capstyle="round", zorder=2,
+                           label="pseudobase" if name == next(iter(scene.extras)) else None)
+    for link in scene.links:
+        pts = scene.project(link[pose], view)
+        artists += ax.plot(*pts.T, color=LINK_COLOUR, linewidth=4.5, solid_capstyle="round", zorder=3,
+                           label="links" if link is scene.links[0] else None)
+        artists += ax.plot(*pts.T, "o", markersize=6, markerfacecolor="white", markeredgecolor="k",
+                           markeredgewidth=1.2, zorder=5)
+    count = len(scene.springs)
+    for k, (label, (A, B)) in enumerate(scene.springs.items()):
+        P, Q = scene.project(A[pose], view), scene.project(B[pose], view)
+        colour = SPRING_COLOURS[k % len(SPRING_COLOURS)]
+        pts = zigzag(P, Q, width=0.018 * span)
+        artists += ax.plot(*pts.T, color=colour, linewidth=1.2, zorder=4, label=label)
+        artists += ax.plot(*np.array([P, Q]).T, "o", color="k", markersize=3.2, zorder=6,
+                           label="attachment points" if k == 0 else None)
+        if labels:  # along the spring, staggered so that neighbouring labels do not overlap
+            at = P + (0.3 + 0.4 * k / max(count - 1, 1)) * (Q - P)
+            artists.append(ax.text(at[0] + 0.015 * span, at[1], label, color=colour, fontsize=7, zorder=7,
+                                   bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.7, "pad": 0.5}))
+    if scene.path is not None:
+        artists += ax.plot(*scene.project(scene.path, view).T, color="tab:blue", linewidth=0.9,
+                           linestyle="--", label="end-point path", zorder=2)
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
+    ax.set_aspect("equal")
+    xl, yl = scene.axis_labels(view)
+    ax.set_xlabel(xl)
+    ax.set_ylabel(yl)
+    return artists
+
+
+def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=None, title: str = ""):
+    """``scene`` at ``poses`` (indices, at most 4) side by side, one row per view, every panel
+    at one scale. Returns the matplotlib figure."""
+    import matplotlib.pyplot as plt
+
+    poses = [int(p) for p in np.atleast_1d(poses)]
+    if not poses or len(poses) > 4 or any(not 0 <= p < scene.poses for p in poses):
+        raise SpringlabError(f"poses must be 1 to 4 indices in 0..{scene.poses - 1}, got {poses}")
+    views = tuple(views)
+    titles = list(titles) if titles is not None else [f"pose {p + 1}" for p in poses]
+    spans = [_limits(scene, v) for v in views]
+    across = len(poses) == 1  # one pose: its views side by side
+    rows, cols = (1, len(views)) if across else (len(views), len(poses))
+    fig, axes = plt.subplots(rows, cols, figsize=(2.7 * cols + 0.6, 2.8 * rows + 0.5), squeeze=False)
+    for r, view in enumerate(views):
+        for c, pose in enumerate(poses):
+            ax = axes[0][r] if across else axes[r][c]
+            draw(ax, scene, pose, view, labels=(c == 0), limits=spans[r])
+            ax.set_title(f"{titles[c]}, {view} view" if (r == 0 or across) else f"{view} view", fontsize=8)
+            if c:
+                ax.set_ylabel("")
+    handles, names = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, names, loc="lower center", ncol=min(4, len(names)), fontsize=7, frameon=False)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout(rect=(0, 0.04 + 0.035 * ((len(names) + 3) // 4), 1, 1))
+    return fig
+
+
+def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = "", times=None):
+    """Write a GIF of scenes side by side, one frame per pose: ``panels`` is {panel title:
+    (Scene, view)}, the scenes with one common number of poses. Panels of the same view share
+    one scale. ``times`` (s), one per pose, is shown in the title. Returns the GIF's path.
+
+    :raises SpringlabError: when the scenes have different numbers of poses, or none
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.animation import FuncAnimation, PillowWriter
+
+    scenes = [(name, scene, view) for name, (scene, view) in panels.items()]
+    counts = {s.poses for _, s, _ in scenes}
+    if not scenes or len(counts) != 1:
+        raise SpringlabError(f"animate needs scenes with one common number of poses, got {sorted(counts)}")
+    frames = counts.pop()
+    limits = {}
+    for _, scene, view in scenes:  # one scale per view: the union of its panels' extents
+        xlim, ylim, span = _limits(scene, view)
+        if view in limits:
+            (x0, x1), (y0, y1), old = limits[view]
+            xlim, ylim = (min(x0, xlim[0]), max(x1, xlim[1])), (min(y0, ylim[0]), max(y1, ylim[1]))
+            span = max(xlim[1] - xlim[0], ylim[1] - ylim[0])
+            cx, cy = sum(xlim) / 2, sum(ylim) / 2
+            xlim, ylim = (cx - span / 2, cx + span / 2), (cy - span / 2, cy + span / 2)
+        limits[view] = (xlim, ylim, span)
+    fig, axes = plt.subplots(1, len(scenes), figsize=(3.4 * len(scenes), 3.9), squeeze=False)
+    axes = axes[0]
+
+    def frame(k):
+        for i, (ax, (name, scene, view)) in enumerate(zip(axes, scenes, strict=True)):
+            ax.clear()
+            draw(ax, scene, k, view, labels=True, limits=limits[view])
+            ax.set_title(name, fontsize=8)
+            if i and scenes[i - 1][2] == view:  # one scale, one axis label
+                ax.set_ylabel("")
+        stamp = f" (t = {times[k]:.2f} s)" if times is not None else ""
+        fig.suptitle(f"{title}{stamp}", fontsize=9)
+        return []
+
+    path = str(path)
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    frame(0)
+    fig.tight_layout()  # laid out once, with the first frame's labels
+    FuncAnimation(fig, frame, frames=frames, init_func=lambda: [], blit=False).save(
+        path, writer=PillowWriter(fps=fps), dpi=dpi)
+    plt.close(fig)
+    return path
+
+
+def hold_animation(chain, springs, motion, path, *, title: str = "exudyn hold test") -> str:
+    """The hold test's motion (:func:`springlab.energy.simulation.hold_motion`) as a GIF: the
+    balanced arm beside the control, one scale, in the front view."""
+    scale = motion.control_scale
+    panels = {"balanced": (chain_scene(chain, springs, motion.balanced), "front"),
+              f"springs x {scale:g} (control)": (chain_scene(chain, [s.scaled(scale) for s in springs],
+                                                             motion.control), "front")}
+    return animate(panels, path, times=motion.t, title=title)
+
+
+def trajectory_animation(scene: Scene, path, times, *, views=("front", "side"), title: str = "") -> str:
+    """``scene`` along its poses (one per entry of ``times``, s) as a GIF, one panel per view."""
+    return animate({f"{view} view": (scene, view) for view in views}, path, times=times, title=title, fps=8)
