@@ -10,8 +10,9 @@ paper's figure:
 * links as thick segments, joints as open circles;
 * springs as zigzags between their attachment points (black dots), labelled S(i,j).
 
-:func:`animate` writes the same drawing, frame by frame, as a GIF (matplotlib's Pillow writer,
-headless, deterministic: the same scene gives the same bytes). Builders: :func:`chain_scene`
+:func:`animate` writes the same drawing, frame by frame, as a GIF (Pillow,
+headless, deterministic: the same scene gives the same bytes; each frame drawn once by Agg and
+quantised to 64 colours by Pillow). Builders: :func:`chain_scene`
 (the serial chain of papers 000/003 and a user's arm), :func:`pseudobase_scene` (paper 001's
 arm with its pseudobases).
 
@@ -250,7 +251,7 @@ def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = ""
     :raises SpringlabError: when the scenes have different numbers of poses, or none
     """
     import matplotlib.pyplot as plt
-    from matplotlib.animation import FuncAnimation, PillowWriter
+    from PIL import Image
 
     scenes = [(name, scene, view) for name, (scene, view) in panels.items()]
     counts = {s.poses for _, s, _ in scenes}
@@ -270,10 +271,13 @@ def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = ""
     fig, axes = plt.subplots(1, len(scenes), figsize=(3.4 * len(scenes), 3.9), squeeze=False)
     axes = axes[0]
 
+    drawn = [[] for _ in scenes]
+
     def frame(k):
         for i, (ax, (name, scene, view)) in enumerate(zip(axes, scenes, strict=True)):
-            ax.clear()
-            draw(ax, scene, k, view, labels=True, limits=limits[view])
+            for artist in drawn[i]:  # the axes stay; the last frame's mechanism goes
+                artist.remove()
+            drawn[i] = draw(ax, scene, k, view, labels=True, limits=limits[view])
             ax.set_title(name, fontsize=8)
             if i and scenes[i - 1][2] == view:  # one scale, one axis label
                 ax.set_ylabel("")
@@ -281,14 +285,20 @@ def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = ""
         fig.suptitle(f"{title}{stamp}", fontsize=9)
         return []
 
-    path = str(path)
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.set_dpi(dpi)
     frame(0)
     fig.tight_layout()  # laid out once, with the first frame's labels
-    FuncAnimation(fig, frame, frames=frames, init_func=lambda: [], blit=False).save(
-        path, writer=PillowWriter(fps=fps), dpi=dpi)
+    images = []
+    for k in range(frames):  # one draw per frame (matplotlib's writers draw each frame three times)
+        frame(k)
+        fig.canvas.draw()
+        rgb = Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3])
+        images.append(rgb.quantize(colors=64, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE))
     plt.close(fig)
-    return path
+    images[0].save(path, save_all=True, append_images=images[1:], duration=round(1000 / fps), loop=0)
+    return str(path)
 
 
 def hold_animation(chain, springs, motion, path, *, title: str = "exudyn hold test") -> str:
