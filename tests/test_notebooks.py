@@ -65,3 +65,21 @@ def test_notebook_runs_quick(path, tmp_path):
     assert claims and all(c["status"] in STATUSES for c in claims)
     assert all(c["status"] != "discrepancy" or c["note"] for c in claims), "a discrepancy needs a note"
     assert list(figures.glob("*.png")) and list(figures.glob("*.svg"))
+
+
+def headings(nb: dict) -> list[str]:
+    """Every Markdown heading of a notebook, in order."""
+    return [line.strip() for cell in nb["cells"] if cell["cell_type"] == "markdown"
+            for line in "".join(cell["source"]).splitlines() if line.startswith("#")]
+
+
+def test_the_heading_check_finds_a_repeated_heading():
+    cell = {"cell_type": "markdown", "source": "## 4. Figs\n\ntext\n\n## 4. Figs\n"}
+    assert headings({"cells": [cell]}) == ["## 4. Figs", "## 4. Figs"]
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_no_section_heading_is_repeated(path):
+    """The book's contents and the report's links go by section: each heading once."""
+    found = headings(json.loads(path.read_text()))
+    assert len(found) == len(set(found)), [h for h in found if found.count(h) > 1]

@@ -244,6 +244,13 @@ class HoldMotion:
     control: np.ndarray
     control_scale: float
 
+    def tip_travel(self, chain: Chain) -> tuple[float, float]:
+        """The largest distance (m) the tip moves from where it was released: balanced, control."""
+        def travel(X):
+            tip = chain.joint_positions(X)[:, -1]
+            return float(np.max(np.linalg.norm(tip - tip[0], axis=1)))
+        return travel(self.balanced), travel(self.control)
+
     def sampled(self, frames: int) -> HoldMotion:
         """The motion at ``frames`` evenly spaced stored steps (for an animation)."""
         k = np.unique(np.linspace(0, len(self.t) - 1, frames).round().astype(int))
