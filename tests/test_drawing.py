@@ -106,3 +106,52 @@ def test_committed_animations_are_small(gif):
 def test_there_are_committed_animations():
     assert {p.parent.name for p in (ROOT / "figures").glob("*/*.gif")} >= {"juang2023_spatial_balance",
                                                                          "lin2010_pseudobases"}
+
+
+def _distance_to_segment(p, a, b) -> float:
+    ab = b - a
+    t = np.clip(np.dot(p - a, ab) / max(np.dot(ab, ab), 1e-300), 0.0, 1.0)
+    return float(np.linalg.norm(p - (a + t * ab)))
+
+
+def floating(scene: drawing.Scene, pose: int = 0) -> list[str]:
+    """The spring ends and centres of mass that lie on no link, bracket or the ground column."""
+    joints = scene.links[0][pose]
+    segments = [(joints[k], joints[k + 1]) for k in range(len(joints) - 1)]
+    segments += [tuple(b) for b in (scene.brackets[pose] if scene.brackets is not None else [])]
+    segments.append((scene.column[0] * scene.up, scene.column[1] * scene.up))
+    points = {f"{label} {end}": P[pose] for label, (A, B) in scene.springs.items() for end, P in (("A", A), ("B", B))}
+    points |= {f"centre of mass {k + 2}": c for k, c in enumerate(scene.masses[pose])}
+    return [name for name, p in points.items() if min(_distance_to_segment(p, a, b) for a, b in segments) > 1e-12]
+
+
+def test_no_spring_end_or_mass_floats(arm, exact_springs, poses):
+    from springlab.mechanisms import two_spring_arm as an
+    from springlab.papers import lenzo2017 as lenzo
+
+    assert floating(drawing.chain_scene(arm, exact_springs, poses)) == []
+    for layout, (a12, b12) in lenzo.FREE_CHOICES.items():  # c and d carry a countermass behind the elbow
+        two = lenzo.ARM if layout in ("a", "b") else lenzo.ARM_COUNTERMASS
+        d = an.solve(two, a2=lenzo.A2, a12=a12, b12=b12, layout=layout)
+        chain = two.chain(lenzo.FOREARM_LENGTH)
+        X = chain.directions(chain.random_angles(2, np.random.default_rng(1)))
+        assert floating(drawing.chain_scene(chain, an.to_chain_springs(two, d), X)) == [], layout
+
+
+def test_the_floating_check_can_fail(arm, exact_springs, poses):
+    scene = drawing.chain_scene(arm, exact_springs, poses)
+    bare = drawing.Scene(scene.up, scene.links, scene.springs, scene.column, masses=scene.masses)  # no brackets
+    assert floating(bare) != []
+
+
+def test_nothing_floats_on_paper_001s_arm():
+    from springlab.mechanisms.pseudobase import subsystems as subs
+    from springlab.papers import lin2010
+
+    arm = lin2010.arm()
+    springs = subs.design_equilibrators(arm, lin2010.K, lin2010.L_CA)
+    q = np.random.default_rng(3).uniform(-np.pi, np.pi, (3, arm.n))
+    scene = drawing.pseudobase_scene(arm, springs, q)
+    assert len(scene.springs) == len(springs) and len(scene.extras) == len(arm.modules)
+    for pose in range(3):
+        assert floating(scene, pose) == []

@@ -54,6 +54,9 @@ class Scene:
     :ivar column: (bottom, top) of the ground column along ``up`` at the origin (m)
     :ivar extras: {label: (N, k, 3)} other bodies drawn as thinner blue polylines (pseudobases)
     :ivar path: optional (T, 3) path of the end point
+    :ivar brackets: (N, k, 2, 3) segments that carry a spring's end or a centre of mass off its
+        link's segment (a link's extension past a joint): drawn grey, so that nothing floats
+    :ivar masses: optional (N, m, 3) centres of mass
     """
 
     up: np.ndarray
@@ -62,6 +65,8 @@ class Scene:
     column: tuple
     extras: dict = field(default_factory=dict)
     path: np.ndarray | None = None
+    brackets: np.ndarray | None = None
+    masses: np.ndarray | None = None
 
     @property
     def poses(self) -> int:
@@ -97,6 +102,7 @@ class Scene:
         parts = [link.reshape(-1, 3) for link in self.links]
         parts += [np.vstack(ab) for ab in self.springs.values()]
         parts += [e.reshape(-1, 3) for e in self.extras.values()]
+        parts += [b.reshape(-1, 3) for b in (self.brackets, self.masses) if b is not None]
         parts.append(np.outer(self.column, self.up))
         if self.path is not None:
             parts.append(np.asarray(self.path).reshape(-1, 3))
@@ -112,32 +118,59 @@ def chain_scene(chain, springs, X, tip_path=None) -> Scene:
     X = chain.check_directions(X)
     joints = chain.joint_positions(X)
     up = X[0, 0]
-    ends = {}
+    ends, brackets = {}, []
     for s in springs:
         A, B = attachment_points(chain, s, X)
         label = f"S({s.i},{s.j})"
         while label in ends:
             label += "'"
         ends[label] = (A, B)
+        # A = J_i + a x_i lies on link i's segment J_(i-1) J_i for -r_i <= a <= 0; B = J_(j-1) + b x_j
+        # on link j's for 0 <= b <= r_j; past either end it sits on a bracket from the nearer joint
+        if s.i > 1 and s.a > 0:
+            brackets.append((joints[:, s.i - 1], A))
+        elif s.i > 1 and s.a < -chain.r[s.i - 2]:
+            brackets.append((joints[:, s.i - 2], A))
+        if s.b < 0:
+            brackets.append((joints[:, s.j - 2], B))
+        elif s.b > chain.r[s.j - 2]:
+            brackets.append((joints[:, s.j - 1], B))
+    coms = chain.com_positions(X)
+    for j, (d, r) in enumerate(zip(chain.d, chain.r, strict=True)):  # a countermass past a joint
+        if d < 0:
+            brackets.append((joints[:, j], coms[:, j]))
+        elif d > r:
+            brackets.append((joints[:, j + 1], coms[:, j]))
     on_ground = [0.0] + [s.a for s in springs if s.i == 1]
     column = (min(min(on_ground), -0.08 * sum(chain.r)), max(on_ground))
-    return Scene(np.asarray(up, dtype=float), [joints], ends, column, path=tip_path)
+    bracket = np.stack([np.stack(b, axis=1) for b in brackets], axis=1) if brackets else None
+    return Scene(np.asarray(up, dtype=float), [joints], ends, column, path=tip_path, brackets=bracket,
+                 masses=coms)
 
 
 def pseudobase_scene(arm, springs, q) -> Scene:
     """Paper 001's arm at joint angles q (N, n): the primary links through the frame origins,
     each module's pseudobase as the segment C_i D_i (it keeps its direction at every pose),
-    the equilibrator springs A B (route 2's positions)."""
+    the equilibrator springs A B with their brackets (A_i on the pseudobase's line, B_i fixed to
+    link i at O_i) and the primary links' centres of mass (each fixed in its frame, at O_i)
+    (route 2's positions)."""
     from springlab.mechanisms.pseudobase.geometry import positions
 
     p = positions(arm, springs, q)
-    ends = {f"S{i}": (p["A"][:, k], p["B"][:, k]) for k, i in enumerate(arm.modules)}
+    springs = list(springs)
+    ends = {f"S{sp.link}": (p["A"][:, k], p["B"][:, k]) for k, sp in enumerate(springs)}
     extras = {f"pseudobase {i}": np.stack([p["C"][:, k], p["D"][:, k]], axis=1) for k, i in enumerate(arm.modules)}
     origins = p["O"]
+    column_k = {i: k for k, i in enumerate(arm.modules)}
+    # A_i sits on the pseudobase's line, l_CA from C_i; B_i on a bracket fixed to link i at O_i
+    brackets = [np.stack([p["C"][:, column_k[sp.link]], p["A"][:, k]], axis=1) for k, sp in enumerate(springs)]
+    brackets += [np.stack([origins[:, sp.link], p["B"][:, k]], axis=1) for k, sp in enumerate(springs)]
+    brackets += [np.stack([origins[:, i], p["com"][:, i - 1]], axis=1) for i in range(1, arm.n + 1)]  # in frame i
     base = np.asarray(arm.up, dtype=float)
     low = min(0.0, float(np.min(origins @ base)))
     column = (low - 0.05 * float(np.ptp(origins @ base) + 1e-9), float(np.max(origins[:, :2] @ base)))
-    return Scene(base, [origins], ends, column, extras)
+    return Scene(base, [origins], ends, column, extras,
+                 brackets=np.stack(brackets, axis=1) if brackets else None, masses=p["com"])
 
 
 def zigzag(P, Q, *, coils: int = 6, width: float) -> np.ndarray:
@@ -184,12 +217,19 @@ def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=
         pts = scene.project(body[pose], view)
         artists += ax.plot(*pts.T, color="tab:blue", linewidth=2.4, solid_capstyle="round", zorder=2,
                            label="pseudobase" if name == next(iter(scene.extras)) else None)
+    if scene.brackets is not None:
+        for k, segment in enumerate(scene.brackets[pose]):
+            artists += ax.plot(*scene.project(segment, view).T, color=COLUMN_COLOUR, linewidth=2.6,
+                               solid_capstyle="round", zorder=2, label="brackets" if k == 0 else None)
     for link in scene.links:
         pts = scene.project(link[pose], view)
         artists += ax.plot(*pts.T, color=LINK_COLOUR, linewidth=4.5, solid_capstyle="round", zorder=3,
                            label="links" if link is scene.links[0] else None)
         artists += ax.plot(*pts.T, "o", markersize=6, markerfacecolor="white", markeredgecolor="k",
                            markeredgewidth=1.2, zorder=5)
+    if scene.masses is not None:
+        artists += ax.plot(*scene.project(scene.masses[pose], view).T, "o", color="tab:blue", markersize=4.5,
+                           zorder=6, label="centres of mass")
     count = len(scene.springs)
     for k, (label, (A, B)) in enumerate(scene.springs.items()):
         P, Q = scene.project(A[pose], view), scene.project(B[pose], view)
@@ -235,6 +275,31 @@ def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=Non
             ax.set_title(f"{titles[c]}, {view} view" if (r == 0 or across) else f"{view} view", fontsize=8)
             if c:
                 ax.set_ylabel("")
+    handles, names = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, names, loc="lower center", ncol=min(4, len(names)), fontsize=7, frameon=False)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout(rect=(0, 0.04 + 0.035 * ((len(names) + 3) // 4), 1, 1))
+    return fig
+
+
+def scenes_figure(panels: dict, *, view: str = "front", columns: int = 2, title: str = ""):
+    """Several scenes side by side, each at one pose: {panel title: (Scene, pose)} in ``view``,
+    every panel at one scale (the union of their extents). Returns the matplotlib figure."""
+    import matplotlib.pyplot as plt
+
+    if not panels:
+        raise SpringlabError("scenes_figure needs at least one panel")
+    boxes = [_limits(scene, view) for scene, _ in panels.values()]
+    span = max(b[2] for b in boxes)
+    rows = -(-len(panels) // columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(3.1 * columns, 3.0 * rows + 0.5), squeeze=False)
+    for ax, (name, (scene, pose)), (xlim, ylim, _) in zip(axes.flat, panels.items(), boxes, strict=False):
+        cx, cy = sum(xlim) / 2, sum(ylim) / 2
+        draw(ax, scene, pose, view, limits=((cx - span / 2, cx + span / 2), (cy - span / 2, cy + span / 2), span))
+        ax.set_title(name, fontsize=8)
+    for ax in list(axes.flat)[len(panels):]:
+        ax.set_visible(False)
     handles, names = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, names, loc="lower center", ncol=min(4, len(names)), fontsize=7, frameon=False)
     if title:

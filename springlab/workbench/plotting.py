@@ -174,46 +174,26 @@ def dyad_figure(comp, dyad, phis, *, title: str = ""):
 
 def two_spring_layouts_figure(designs: dict, forearm_length: float, *, shoulder_deg: float = 50.0,
                               elbow_deg: float = 70.0):
-    """Lenzo's layouts (004 Fig. 5) drawn to scale in the vertical plane: one panel
-    per design {title: (arm, design)}. Links solid, their extensions (brackets)
-    dashed, springs red, centres of mass as dots; the upper arm at
-    ``shoulder_deg`` from the vertical, the forearm bent by ``elbow_deg`` more."""
+    """Lenzo's layouts (004 Fig. 5) drawn to scale in the vertical plane, one panel per design
+    {title: (arm, design)}, with the drawing of every arm in the book
+    (:func:`springlab.workbench.drawing.scenes_figure`): the ground column, links and joints,
+    brackets where a spring's end lies past a joint, springs S(1,3) (k2) and S(2,3) (k12) as
+    zigzags, centres of mass. The upper arm at ``shoulder_deg`` from the vertical, the forearm
+    bent by ``elbow_deg`` more."""
     import numpy as np
 
-    def unit(deg):
-        return np.array([np.sin(np.radians(deg)), np.cos(np.radians(deg))])
+    from springlab.mechanisms.two_spring_arm import to_chain_springs
+    from springlab.model.chain import UP
+    from springlab.workbench.drawing import chain_scene, scenes_figure
 
-    rows = (len(designs) + 1) // 2
-    fig, axes = plt.subplots(rows, 2, figsize=(6.4, 2.4 * rows), squeeze=False)
-    x1, x2, x0 = unit(shoulder_deg), unit(shoulder_deg + elbow_deg), np.array([0.0, 1.0])
-    for ax, (title, (arm, d)) in zip(axes.flat, designs.items(), strict=False):  # spare panels hidden below
-        elbow = arm.l1 * x1
-        ax.plot([0, elbow[0], (elbow + forearm_length * x2)[0]], [0, elbow[1], (elbow + forearm_length * x2)[1]],
-                "-", color="k", linewidth=3)
-        reach1 = max(arm.l1, d.b12)
-        if reach1 > arm.l1:
-            ax.plot(*np.c_[elbow, reach1 * x1], "--", color="k", linewidth=1.5)
-        back2 = min(0.0, d.a12, d.b2, arm.h2)
-        if back2 < 0:
-            ax.plot(*np.c_[elbow, elbow + back2 * x2], "--", color="k", linewidth=1.5)
-        ax.plot(*np.c_[[0, 0], d.a2 * x0], ":", color="0.4")
-        P, Q = d.a2 * x0, elbow + d.b2 * x2
-        U, V = d.b12 * x1, elbow + d.a12 * x2
-        ax.plot(*np.c_[P, Q], color="tab:red", linewidth=1.4)
-        ax.plot(*np.c_[U, V], color="tab:red", linewidth=1.4)
-        ax.plot(*(arm.h1 * x1), "o", color="tab:blue", markersize=5)
-        ax.plot(*(elbow + arm.h2 * x2), "o", color="tab:blue", markersize=5)
-        ax.plot(0, 0, "k^", markersize=8)
-        ax.text(P[0] + 0.01, P[1], "P", fontsize=7)
-        ax.set_title(f"{title}\nk2 = {d.k2:.0f} N/m, k12 = {d.k12:.0f} N/m", fontsize=8)
-        ax.set_aspect("equal")
-        ax.set_xlabel("horizontal (m)")
-    for row in axes:
-        row[0].set_ylabel("vertical, $x_0$ (m)")
-    for ax in list(axes.flat)[len(designs):]:
-        ax.set_visible(False)
-    fig.tight_layout()
-    return fig
+    def unit(deg):  # in the vertical plane (x_1 up, y)
+        return np.cos(np.radians(deg)) * UP + np.sin(np.radians(deg)) * np.array([0.0, 1.0, 0.0])
+
+    X = np.array([[UP, unit(shoulder_deg), unit(shoulder_deg + elbow_deg)]])
+    panels = {f"{title}\nk2 = {d.k2:.0f} N/m, k12 = {d.k12:.0f} N/m":
+              (chain_scene(arm.chain(forearm_length), to_chain_springs(arm, d), X), 0)
+              for title, (arm, d) in designs.items()}
+    return scenes_figure(panels, view="front")
 
 
 def joint_angles_figure(t, angles, *, printed=None, title: str = "", events=None):
