@@ -36,7 +36,7 @@ EARLIER = {  # s per notebook: (commit 0abe5ae, one after another, papermill's c
 }
 """0abe5ae tested the rules against physics to n = 4 in the 000 notebook; from 4d58831 on, to n = 5."""
 BEFORE = "cf00226"
-"""The last commit before the book (57.4 s cold on this machine; c73f122, before the round of speed-ups,
+"""The last commit before the book (52.6-57.4 s cold on this machine; c73f122, before the round of speed-ups,
 73-76 s), run again here so that before and after share a machine and a day."""
 EARLIER_COLD = (430, 440)  # s, the whole of `make figures` from a fresh clone
 EARLIER_WARM = (430, 0.6)  # s, again with nothing changed (0abe5ae had no cache: it ran everything again)
