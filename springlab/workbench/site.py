@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import re
 import shutil
 import sys
@@ -211,7 +212,7 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
         sidebar must link; a missing one is a problem of the first page
     :param search: (term, page name): searching the book for ``term`` must list that page
         (reported under "search")
-    :returns: {page name: problems}
+    :returns: {page: problems}, each page named by its path from the first page's folder
     :raises SolverError: when Chromium and its driver are not installed
     """
     found = find_browser()
@@ -230,7 +231,11 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
                     "return Array.from(document.images).filter(i => !i.complete || i.naturalWidth === 0)"
                     ".map(i => i.getAttribute('src').slice(0, 120))"):
                 problems.append(f"image did not load: {src}")
-            if "Traceback (most recent call last)" in driver.execute_script("return document.body.innerText"):
+            outputs = driver.execute_script(  # the page's text but its doctests (which may show an error)
+                "const body = document.body.cloneNode(true);"
+                "body.querySelectorAll('.doctest').forEach(e => e.remove());"
+                "return body.textContent")
+            if "Traceback (most recent call last)" in outputs:
                 problems.append("an output shows a traceback")
             if not _wait(driver, _MATH_DONE, math_timeout):
                 problems.append(f"MathJax did not finish within {math_timeout:g} s")
@@ -252,7 +257,7 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
             log += [f"{page.name}\t{url}" for url in urls]
             problems += [f"request left the machine: {url[:160]}" for url in urls if not url.startswith(LOCAL_SCHEMES)]
             problems += [f"did not load: {what[:200]}" for what in failed]
-            out[page.name] = problems
+            out[os.path.relpath(page, pages[0].parent)] = problems
         if search is not None:
             term, expected = search
             results = pages[0].parent / "search.html"
