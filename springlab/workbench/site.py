@@ -262,8 +262,12 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
             term, expected = search
             results = pages[0].parent / "search.html"
             driver.get(f"{results.as_uri()}?q={term}")
-            listed = _wait(driver, "const r = document.querySelectorAll('#search-results ul.search li a');"
-                                   "return r.length ? Array.from(r).map(a => a.href) : null", 20) or []
+            # Sphinx titles the results "Search Results" once it has listed them all
+            listed = _wait(driver, "const t = document.querySelector('#search-results h2');"
+                                   "if (!t || !t.innerText.startsWith('Search Results')) return null;"
+                                   "return {links: Array.from(document.querySelectorAll('#search-results ul.search li a'))"
+                                   ".map(a => a.href)}", 20)  # an object: an empty list is an answer too
+            listed = listed["links"] if listed else []
             names = {Path(h.split("?")[0].split("#")[0]).name for h in listed}
             urls, failed = _requests(driver)
             log += [f"search.html?q={term}\t{url}" for url in urls]
