@@ -275,7 +275,12 @@ def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=Non
             ax.set_title(f"{titles[c]}, {view} view" if (r == 0 or across) else f"{view} view", fontsize=8)
             if c:
                 ax.set_ylabel("")
-    handles, names = axes[0][0].get_legend_handles_labels()
+    return _legend_and_title(fig, axes[0][0], title)
+
+
+def _legend_and_title(fig, ax, title: str):
+    """The figure's legend (from ``ax``, below the panels) and title, then its layout."""
+    handles, names = ax.get_legend_handles_labels()
     fig.legend(handles, names, loc="lower center", ncol=min(4, len(names)), fontsize=7, frameon=False)
     if title:
         fig.suptitle(title, fontsize=10)
@@ -300,12 +305,7 @@ def scenes_figure(panels: dict, *, view: str = "front", columns: int = 2, title:
         ax.set_title(name, fontsize=8)
     for ax in list(axes.flat)[len(panels):]:
         ax.set_visible(False)
-    handles, names = axes[0][0].get_legend_handles_labels()
-    fig.legend(handles, names, loc="lower center", ncol=min(4, len(names)), fontsize=7, frameon=False)
-    if title:
-        fig.suptitle(title, fontsize=10)
-    fig.tight_layout(rect=(0, 0.04 + 0.035 * ((len(names) + 3) // 4), 1, 1))
-    return fig
+    return _legend_and_title(fig, axes[0][0], title)
 
 
 def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = "", times=None):
