@@ -31,7 +31,7 @@ from pathlib import Path
 
 from springlab.errors import SolverError
 from springlab.papers import PAPERS
-from springlab.workbench.claims import REPORT_COLUMNS, report_column
+from springlab.workbench.claims import REPORT_COLUMNS, number_text, report_column
 
 CONF_DIR = Path(__file__).resolve().parent / "bookconf"
 CHAPTER_ORDER = ("juang2023_spatial_balance", "lin2010_pseudobases", "zhang2023_dyad",
@@ -39,13 +39,17 @@ CHAPTER_ORDER = ("juang2023_spatial_balance", "lin2010_pseudobases", "zhang2023_
 """The chapters in the papers' key order (000 .. 004), then the design chapter."""
 
 _HEADING = re.compile(r"^(#{1,6})\s+(.+?)\s*$", re.M)
+CITATION = re.compile(r"(?<![\w`])(00[0-9])(?= Eqs?\.| Table| Fig| Section)")
+"""A paper's key before the number of one of its equations, tables, figures or sections: linked
+to the paper's chapter in docstrings (the book's conf) and in the source pages' comments."""
 
 
-def _write_if_changed(path: Path, text: str) -> None:
-    """Write ``text`` unless ``path`` holds it already (its mtime then tells Sphinx nothing changed)."""
+def _write_if_changed(path: Path, content: str | bytes) -> None:
+    """Write ``content`` unless ``path`` holds it already (its mtime then tells Sphinx nothing changed)."""
+    data = content.encode() if isinstance(content, str) else content
     path.parent.mkdir(parents=True, exist_ok=True)
-    if not path.exists() or path.read_text() != text:
-        path.write_text(text)
+    if not path.exists() or path.read_bytes() != data:
+        path.write_bytes(data)
 
 
 def section_label(stem: str, k: int) -> str:
@@ -91,10 +95,6 @@ _MD_SPECIAL = re.compile(r"([\\`*_\[\]{}<>|$#])")
 def _md(text) -> str:
     """Text made literal inside a Markdown table cell."""
     return _MD_SPECIAL.sub(r"\\\1", str(text)).replace("\n", " ")
-
-
-def _number(value) -> str:
-    return "" if value is None else f"{value:.6g}"
 
 
 def _run_time(notebook: dict) -> float | None:
@@ -146,7 +146,6 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
         if stem in thumbs:
             lines += [f"```{{image}} thumbs/{stem}.png", f":alt: key figure of {stem}", ":width: 320px",
                       f":target: {stem}.html", "```", ""]
-    total = Counter(report_column(r) for records in claims.values() for r in records)
     lines += ["## How to read a claim", "",
               "Every number a notebook reproduces is a *claim*: the quantity, where the paper prints it, "
               "the paper's value, ours, the difference, the tolerance and why it is what it is, and a status:",
@@ -159,7 +158,7 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
               "- **input**: a value the notebook fed in, shown and never counted as reproduced;",
               "- **consistent** / **inconsistent**: a number recomputed from the paper's own printed numbers "
               "(a check of the paper against itself).", "",
-              f"All claims: {', '.join(f'{total[s]} {s}' for s in REPORT_COLUMNS if total.get(s))}. "
+              f"All claims: {_tally([r for records in claims.values() for r in records])}. "
               "{doc}`report` lists every one, linked to the notebook section that makes it.", "",
               "```{toctree}", ":hidden:", ":caption: The papers", "", *[s for s in stems if PAPERS.get(s, {}).get("key")],
               "```", "", "```{toctree}", ":hidden:", ":caption: Your arm", "",
@@ -185,23 +184,23 @@ def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, 
         records = claims.get(stem, [])
         if not records:
             continue
-        titles, where = sections(notebooks[stem])
+        _titles, where = sections(notebooks[stem])
         paper = PAPERS.get(stem, {})
         lines += ["", f"## {_md(paper.get('authors', stem))} ({paper.get('year', '')})", "",
                   f"Chapter: {{doc}}`{stem}`.", "",
                   "| quantity | where | paper | ours | difference | unit | status | tolerance (basis) | note | made in |",
                   "|---|---|---|---|---|---|---|---|---|---|"]
         for r in records:
-            k = where.get(r.get("cell"), None) if r.get("cell") is not None else None
-            made = (f"{{ref}}`§{k} <{section_label(stem, k)}>`" if k is not None else "")
+            k = where.get(r.get("cell"))  # None: recorded outside a kernel, or in no numbered cell
+            made = f"{{ref}}`§{k} <{section_label(stem, k)}>`" if k is not None else ""
             status = report_column(r)
-            basis = f"{_number(r['tolerance'])} ({r.get('tolerance_basis', '')})" if r.get("tolerance") is not None \
+            basis = f"{number_text(r['tolerance'])} ({r.get('tolerance_basis', '')})" if r.get("tolerance") is not None \
                 else r.get("tolerance_basis", "")
             if r.get("band"):
-                basis += f"; band {_number(r['band']['value'])} ({r['band']['basis']})"
+                basis += f"; band {number_text(r['band']['value'])} ({r['band']['basis']})"
             note = r.get("note", "") + (f" Cause: {r['cause']}" if r.get("cause") else "")
-            lines.append(f"| {_md(r['quantity'])} | {_md(r['where'])} | {_number(r['paper'])} | {_number(r['ours'])} "
-                         f"| {_number(r.get('difference'))} | {_md(r['unit'])} | **{status}** | {_md(basis)} "
+            lines.append(f"| {_md(r['quantity'])} | {_md(r['where'])} | {number_text(r['paper'])} | {number_text(r['ours'])} "
+                         f"| {number_text(r.get('difference'))} | {_md(r['unit'])} | **{status}** | {_md(basis)} "
                          f"| {_md(note)} | {made} |")
     return "\n".join(lines) + "\n"
 
@@ -266,11 +265,7 @@ def stage(notebooks_dir, figures_dir, src, *, api: bool = True) -> list[str]:
         _write_if_changed(src / f"{stem}.ipynb", json.dumps(labelled(notebooks[stem], stem), indent=1))
         figure = PAPERS.get(stem, {}).get("key_figure")
         if figure and (figures_dir / stem / figure).exists():
-            thumb = src / "thumbs" / f"{stem}.png"
-            thumb.parent.mkdir(parents=True, exist_ok=True)
-            data = (figures_dir / stem / figure).read_bytes()
-            if not thumb.exists() or thumb.read_bytes() != data:
-                thumb.write_bytes(data)
+            _write_if_changed(src / "thumbs" / f"{stem}.png", (figures_dir / stem / figure).read_bytes())
             thumbs.add(stem)
     for gone in set(p.stem for p in src.glob("*.ipynb")) - set(stems):
         (src / f"{gone}.ipynb").unlink()
@@ -313,12 +308,11 @@ def build_book(notebooks_dir="build/notebooks", figures_dir="figures", site_dir=
 
 
 _COMMENT = re.compile(r'<span class="c1">([^<]*)</span>')
-_CITE = re.compile(r"(?<![\w])(00[0-9])(?= Eqs?\.| Table| Fig| Section)")
 
 
 def link_source_citations(site_dir, stems) -> int:
-    """In the module source pages (viewcode), link each citation in a comment (a paper's key
-    before an equation, table or figure) to the paper's chapter; returns the number of links made (a page already linked is left as it is)."""
+    """In the module source pages (viewcode), link each :data:`CITATION` in a comment to the
+    paper's chapter; returns the number of links made (a page already linked is left as it is)."""
     site_dir = Path(site_dir)
     chapters = {PAPERS[s]["key"]: s for s in stems if PAPERS.get(s, {}).get("key")}
     made = 0
@@ -333,7 +327,7 @@ def link_source_citations(site_dir, stems) -> int:
             made += 1
             return f'<a href="{up}/{chapters[match.group(1)]}.html">{match.group(1)}</a>'
 
-        new = _COMMENT.sub(lambda m: f'<span class="c1">{_CITE.sub(cite, m.group(1))}</span>', text)
+        new = _COMMENT.sub(lambda m: f'<span class="c1">{CITATION.sub(cite, m.group(1))}</span>', text)
         if new != text:
             page.write_text(new)
     return made

@@ -80,7 +80,8 @@ def _current_cell() -> int | None:
     return count if isinstance(count, int) else None
 
 
-def _number(value) -> str:
+def number_text(value) -> str:
+    """A claim's number as the report prints it (6 significant digits; empty for None)."""
     return "" if value is None else f"{value:.6g}"
 
 
@@ -88,10 +89,10 @@ def markdown_table(records: list[dict]) -> str:
     """Claim records (as in claims.json) as a Markdown table: paper, ours, difference, status."""
     rows = []
     for r in records:
-        band = f"; band {_number(r['band']['value'])} ({r['band']['basis']})" if r.get("band") else ""
+        band = f"; band {number_text(r['band']['value'])} ({r['band']['basis']})" if r.get("band") else ""
         cause = f" Cause: {r['cause']}" if r.get("cause") else ""
-        rows.append((r["quantity"], r["where"], _number(r["paper"]), _number(r["ours"]), _number(r["difference"]),
-                     r["unit"], f"{_number(r['tolerance'])} ({r.get('tolerance_basis', '')}{band})",
+        rows.append((r["quantity"], r["where"], number_text(r["paper"]), number_text(r["ours"]), number_text(r["difference"]),
+                     r["unit"], f"{number_text(r['tolerance'])} ({r.get('tolerance_basis', '')}{band})",
                      f"**{r['status']}**", f"{r['note']}{cause}"))
     return tables.markdown_table(["quantity", "where", "paper", "ours", "difference", "unit", "tolerance (basis)",
                                   "status", "note"], rows)

@@ -188,6 +188,15 @@ def _requests(driver) -> tuple[list[str], list[str]]:
     return urls, failed
 
 
+def _network_problems(driver, page: str, log: list) -> list[str]:
+    """The requests since the last call, appended to ``log`` under ``page``; the problems: any
+    request that left the machine, any resource that did not load."""
+    urls, failed = _requests(driver)
+    log += [f"{page}\t{url}" for url in urls]
+    return ([f"request left the machine: {url[:160]}" for url in urls if not url.startswith(LOCAL_SCHEMES)]
+            + [f"did not load: {what[:200]}" for what in failed])
+
+
 def _wait(driver, script: str, timeout: float):
     import time
 
@@ -253,10 +262,7 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
             if page in shots:
                 shots[page].parent.mkdir(parents=True, exist_ok=True)
                 driver.save_screenshot(str(shots[page]))
-            urls, failed = _requests(driver)
-            log += [f"{page.name}\t{url}" for url in urls]
-            problems += [f"request left the machine: {url[:160]}" for url in urls if not url.startswith(LOCAL_SCHEMES)]
-            problems += [f"did not load: {what[:200]}" for what in failed]
+            problems += _network_problems(driver, page.name, log)
             out[os.path.relpath(page, pages[0].parent)] = problems
         if search is not None:
             term, expected = search
@@ -269,12 +275,9 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
                                    ".map(a => a.href)}", 20)  # an object: an empty list is an answer too
             listed = listed["links"] if listed else []
             names = {Path(h.split("?")[0].split("#")[0]).name for h in listed}
-            urls, failed = _requests(driver)
-            log += [f"search.html?q={term}\t{url}" for url in urls]
             out["search"] = ([] if expected in names else [f"searching {term!r} does not list {expected} "
                                                             f"(listed: {sorted(names)})"])
-            out["search"] += [f"request left the machine: {u[:160]}" for u in urls if not u.startswith(LOCAL_SCHEMES)]
-            out["search"] += [f"did not load: {what[:200]}" for what in failed]
+            out["search"] += _network_problems(driver, f"search.html?q={term}", log)
     finally:
         driver.quit()
     if network_log is not None:

@@ -6,6 +6,8 @@ the API reference. Everything is served from the site itself: MathJax, fonts, se
 import os
 import re
 
+from springlab.workbench.book import CITATION
+
 project = "springlab"
 author = "springlab"
 copyright = "springlab contributors"  # noqa: A001
@@ -61,12 +63,11 @@ html_copy_source = False
 
 # the book links each citation in a docstring (a paper's key before an equation, table or figure) to its chapter
 CHAPTERS = dict(item.split("=", 1) for item in os.environ.get("SPRINGLAB_BOOK_CHAPTERS", "").split(";") if item)
-_CITE = re.compile(r"(?<![\w`])(00[0-9])(?= Eqs?\.| Table| Fig| Section)")
 
 
 def _link_citations(app, what, name, obj, options, lines):
     for k, line in enumerate(lines):
-        lines[k] = _CITE.sub(lambda m: f":doc:`{m.group(1)} </{CHAPTERS[m.group(1)]}>`"
+        lines[k] = CITATION.sub(lambda m: f":doc:`{m.group(1)} </{CHAPTERS[m.group(1)]}>`"
                              if m.group(1) in CHAPTERS else m.group(0), line)
 
 
