@@ -15,8 +15,9 @@ text changed, so Sphinx re-reads only those) and runs Sphinx with warnings as er
   equation, table or figure) linked to the paper's chapter, and the source of every module
   (viewcode) with the citations in its comments linked too.
 
-MathJax is copied into the site from the ``jupyter-server-mathjax`` package: the site opens
-from ``file://`` without a network.
+MathJax 3 (its ``es5`` folder, from the ``django-static-mathjax`` package) is copied into the
+site: the site opens from ``file://`` without a network. Its SVG output draws every glyph as a
+path, so no web font has to load from disk (a browser may refuse fonts from ``file://``).
 """
 
 from __future__ import annotations
@@ -29,11 +30,16 @@ import shutil
 from collections import Counter
 from pathlib import Path
 
+from docutils.nodes import make_id
+
 from springlab.errors import SolverError
 from springlab.papers import PAPERS
-from springlab.workbench.claims import REPORT_COLUMNS, number_text, report_column
+from springlab.workbench.claims import REPORT_COLUMNS, html_table, report_column
 
 CONF_DIR = Path(__file__).resolve().parent / "bookconf"
+MATHJAX_SCRIPT = "tex-svg-full.js"
+"""MathJax 3's component the book loads from ``_static/mathjax``: TeX in (every extension
+preloaded, so nothing is fetched on demand), SVG out."""
 CHAPTER_ORDER = ("juang2023_spatial_balance", "lin2010_pseudobases", "zhang2023_dyad",
                  "juang2022_spring_efficiency", "lenzo2017_two_spring_arm", "springlab_design_your_arm")
 """The chapters in the papers' key order (000 .. 004), then the design chapter."""
@@ -112,13 +118,13 @@ def _tally(records: list[dict]) -> str:
 
 
 def short_name(stem: str) -> str:
-    """'000 Juang et al. (2023)', 'design your arm': a chapter's name in a table."""
+    """'Juang et al. (2023)', 'design your arm': a chapter's name in a table."""
     paper = PAPERS.get(stem)
     if not paper or not paper.get("key"):
         return stem.replace("springlab_", "").replace("_", " ")
     names = [a.strip().split(" ")[-1] for a in paper["authors"].split(",")]
     who = names[0] + (" et al." if len(names) > 2 else f" and {names[1]}" if len(names) == 2 else "")
-    return f"{paper['key']} {who} ({paper['year']})"
+    return f"{who} ({paper['year']})"
 
 
 def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, list[dict]], *,
@@ -167,6 +173,12 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
     return "\n".join(lines)
 
 
+def _section_number(title: str, k: int) -> str:
+    """'§2b' for a heading "2b. The rules ...", else '§k' (the k-th heading)."""
+    number = re.match(r"(\w{1,4})\.\s", title)
+    return f"§{number.group(1) if number else k}"
+
+
 def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, list[dict]]) -> str:
     """The reproduction report (MyST Markdown): counts per paper and status, then every claim
     with a link to the section of its notebook that makes it."""
@@ -174,34 +186,26 @@ def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, 
              "Every number the notebooks reproduce, beside the paper's, from `figures/<notebook>/claims.json` "
              "(the same claims as `figures/REPRODUCTION.md`). The last column links to the notebook section "
              "whose cell records the claim.", "",
-             "| notebook | " + " | ".join(REPORT_COLUMNS) + " | total |",
-             "|---|" + "---|" * (len(REPORT_COLUMNS) + 1)]
-    for stem in stems:
-        count = Counter(report_column(r) for r in claims.get(stem, []))
-        lines.append(f"| {{doc}}`{short_name(stem)} <{stem}>` | " + " | ".join(str(count.get(s, 0)) for s in REPORT_COLUMNS)
-                     + f" | {len(claims.get(stem, []))} |")
+             "| status | " + " | ".join(f"{{doc}}`{short_name(stem)} <{stem}>`" for stem in stems) + " | all |",
+             "|---|" + "---:|" * (len(stems) + 1)]
+    counts = {stem: Counter(report_column(r) for r in claims.get(stem, [])) for stem in stems}
+    for status in (*REPORT_COLUMNS, "total"):
+        row = [len(claims.get(stem, [])) if status == "total" else counts[stem].get(status, 0) for stem in stems]
+        name = "**total**" if status == "total" else status
+        lines.append(f"| {name} | " + " | ".join(str(n) for n in row) + f" | {sum(row)} |")
     for stem in stems:
         records = claims.get(stem, [])
         if not records:
             continue
-        _titles, where = sections(notebooks[stem])
+        titles, where = sections(notebooks[stem])
         paper = PAPERS.get(stem, {})
-        lines += ["", f"## {_md(paper.get('authors', stem))} ({paper.get('year', '')})", "",
-                  f"Chapter: {{doc}}`{stem}`.", "",
-                  "| quantity | where | paper | ours | difference | unit | status | tolerance (basis) | note | made in |",
-                  "|---|---|---|---|---|---|---|---|---|---|"]
+        made = []
         for r in records:
             k = where.get(r.get("cell"))  # None: recorded outside a kernel, or in no numbered cell
-            made = f"{{ref}}`§{k} <{section_label(stem, k)}>`" if k is not None else ""
-            status = report_column(r)
-            basis = f"{number_text(r['tolerance'])} ({r.get('tolerance_basis', '')})" if r.get("tolerance") is not None \
-                else r.get("tolerance_basis", "")
-            if r.get("band"):
-                basis += f"; band {number_text(r['band']['value'])} ({r['band']['basis']})"
-            note = r.get("note", "") + (f" Cause: {r['cause']}" if r.get("cause") else "")
-            lines.append(f"| {_md(r['quantity'])} | {_md(r['where'])} | {number_text(r['paper'])} | {number_text(r['ours'])} "
-                         f"| {number_text(r.get('difference'))} | {_md(r['unit'])} | **{status}** | {_md(basis)} "
-                         f"| {_md(note)} | {made} |")
+            made.append((f"{stem}.html#{make_id(section_label(stem, k))}", _section_number(titles[k], k))
+                        if k is not None else None)
+        lines += ["", f"## {_md(paper.get('authors', stem))} ({paper.get('year', '')})", "",
+                  f"Chapter: {{doc}}`{stem}`.", "", html_table(records, made_in=made)]
     return "\n".join(lines) + "\n"
 
 
@@ -243,13 +247,16 @@ def _is_package(module: str) -> bool:
 
 
 def mathjax_dir() -> Path:
-    """MathJax's folder in the ``jupyter-server-mathjax`` package, found without importing it."""
+    """MathJax 3's ``es5`` folder in the ``django-static-mathjax`` package (import name
+    ``mathjax``), found without importing it."""
     import importlib.util
 
-    spec = importlib.util.find_spec("jupyter_server_mathjax")
-    if spec is None or not spec.submodule_search_locations:
-        raise SolverError("jupyter-server-mathjax is not installed: run `make` to build the environment")
-    return Path(list(spec.submodule_search_locations)[0]) / "static"
+    spec = importlib.util.find_spec("mathjax")
+    folder = Path(list(spec.submodule_search_locations)[0]) / "static" / "mathjax" / "es5" \
+        if spec is not None and spec.submodule_search_locations else None
+    if folder is None or not (folder / MATHJAX_SCRIPT).exists():
+        raise SolverError("django-static-mathjax (MathJax 3) is not installed: run `make` to build the environment")
+    return folder
 
 
 def stage(notebooks_dir, figures_dir, src, *, api: bool = True) -> list[str]:
@@ -300,7 +307,7 @@ def build_book(notebooks_dir="build/notebooks", figures_dir="figures", site_dir=
         shutil.rmtree(work_dir / "doctrees", ignore_errors=True)
         raise SolverError(f"the book did not build: Sphinx's warnings above (sources in {work_dir / 'src'})")
     target = site_dir / "_static" / "mathjax"
-    if not (target / "MathJax.js").exists():
+    if not (target / MATHJAX_SCRIPT).exists():
         shutil.copytree(mathjax_dir(), target, dirs_exist_ok=True)
     if api:
         link_source_citations(site_dir, stems)

@@ -61,6 +61,10 @@ class Claim:
             return None
         return self.ours - self.paper
 
+    def _repr_html_(self) -> str:
+        """A claim a cell ends with shows as a one-row claims table, not as its repr."""
+        return html_table([{**asdict(self), "difference": self.difference}])
+
 
 def report_column(record: dict) -> str:
     """The report column a claim record counts in (see :data:`REPORT_COLUMNS`)."""
@@ -96,6 +100,56 @@ def markdown_table(records: list[dict]) -> str:
                      f"**{r['status']}**", f"{r['note']}{cause}"))
     return tables.markdown_table(["quantity", "where", "paper", "ours", "difference", "unit", "tolerance (basis)",
                                   "status", "note"], rows)
+
+
+def claim_details(record: dict) -> str:
+    """A claim's tolerance with its basis, rounding band, note and cause, as one sentence."""
+    parts = []
+    if record.get("tolerance") is not None:
+        parts.append(f"tolerance {number_text(record['tolerance'])} {record.get('unit', '')}".rstrip()
+                     + (f" ({record['tolerance_basis']})" if record.get("tolerance_basis") else ""))
+    elif record.get("tolerance_basis"):
+        parts.append(record["tolerance_basis"])
+    if record.get("band"):
+        parts.append(f"band {number_text(record['band']['value'])} ({record['band']['basis']})")
+    text = "; ".join(parts)
+    for extra in (record.get("note"), f"Cause: {record['cause']}" if record.get("cause") else ""):
+        if extra:
+            text = f"{text}. {extra}" if text else extra
+    return text
+
+
+HTML_COLUMNS = ("quantity", "paper", "ours", "difference", "unit", "status")
+"""The columns of a claims table in HTML; each claim's tolerance, basis, note and cause sit on
+a row of their own under it (:func:`claim_details`), so the table fits a page's text column."""
+
+
+def html_table(records: list[dict], made_in: list | None = None) -> str:
+    """Claim records as an HTML table (the book, and Jupyter): per claim a row with the
+    quantity (and where the paper prints it), paper, ours, difference, unit and status, then a
+    row under it with :func:`claim_details`. ``made_in``: per record, ``(href, text)`` or None,
+    a last column linking each claim to where it is made. One line, no blank line: Markdown
+    passes it through as one HTML block."""
+    from html import escape
+
+    columns = list(HTML_COLUMNS) + (["made in"] if made_in is not None else [])
+    head = "".join(f"<th>{escape(c)}</th>" for c in columns)
+    rows = []
+    for k, r in enumerate(records):
+        status = r["status"] + (", cause found" if r["status"] == "discrepancy" and r.get("cause") else "")
+        cells = [f'{escape(r["quantity"])}<br><span class="claim-where">{escape(r["where"])}</span>',
+                 number_text(r["paper"]), number_text(r["ours"]), number_text(r.get("difference")),
+                 escape(r["unit"]), f"<strong>{escape(status)}</strong>"]
+        if made_in is not None:
+            link = made_in[k]
+            cells.append(f'<a href="{escape(link[0])}">{escape(link[1])}</a>' if link else "")
+        css = "claim-status-" + r["status"].replace(" ", "-")
+        rows.append(f'<tr class="claim {css}">' + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
+        details = claim_details(r)
+        if details:
+            rows.append(f'<tr class="claim-details {css}"><td colspan="{len(columns)}">{escape(details)}</td></tr>')
+    return (f'<table class="claims"><thead><tr>{head}</tr></thead><tbody>' + "".join(rows)
+            + "</tbody></table>")
 
 
 def _finite(name: str, value, quantity: str) -> float:
@@ -226,6 +280,9 @@ class Claims:
 
     def _repr_markdown_(self) -> str:
         return self.markdown()
+
+    def _repr_html_(self) -> str:
+        return html_table(self.to_records())
 
     def to_records(self) -> list[dict]:
         out = []

@@ -146,14 +146,24 @@ def find_browser() -> tuple[str, str] | None:
 LOCAL_SCHEMES = ("file:", "data:", "blob:", "about:", "chrome:", "chrome-extension:", "devtools:")
 """The requests a page may make: none of them leaves the machine."""
 
-_MATH_DONE = ("return !window.MathJax || !!(MathJax.isReady && MathJax.Hub && MathJax.Hub.queue.pending === 0"
-              " && !MathJax.Hub.queue.running)")
+_MATH_DONE = r"""
+if (!window.MathJax) return true;
+if (!MathJax.startup || !MathJax.startup.promise) return false;
+if (window.__springlabMath === undefined) {
+    window.__springlabMath = false;
+    MathJax.startup.promise.then(() => { window.__springlabMath = true; });
+}
+return window.__springlabMath;
+"""
 _MATH_LEFT = r"""
-const math = Array.from(document.querySelectorAll('.math, .MathJax_Preview'));
+const doc = window.MathJax && MathJax.startup && MathJax.startup.document;
+const sources = doc ? Array.from(doc.math).map(m => m.math) : [];
 return {math: document.querySelectorAll('span.math, div.math').length,
-        rendered: document.querySelectorAll('.MathJax, .MathJax_Display, .MathJax_CHTML, mjx-container').length,
-        raw: math.filter(e => /\\\(|\\\[|\$\$/.test(e.innerText)).length,
-        errors: document.querySelectorAll('.MathJax_Error, merror').length};
+        rendered: document.querySelectorAll('mjx-container').length,
+        raw: Array.from(document.querySelectorAll('span.math, div.math'))
+                  .filter(e => !e.querySelector('mjx-container') && /\\\(|\\\[|\$\$/.test(e.textContent)).length,
+        errors: document.querySelectorAll('mjx-merror, [data-mjx-error]').length,
+        doubled: sources.filter(t => /\\\\[A-Za-z]/.test(t)).map(t => t.slice(0, 60))};
 """
 
 

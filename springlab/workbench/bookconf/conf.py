@@ -6,7 +6,7 @@ the API reference. Everything is served from the site itself: MathJax, fonts, se
 import os
 import re
 
-from springlab.workbench.book import CITATION
+from springlab.workbench.book import CITATION, MATHJAX_SCRIPT
 
 project = "springlab"
 author = "springlab"
@@ -20,6 +20,9 @@ suppress_warnings = ["mystnb.unknown_mime_type"]  # tqdm's widget bars: the text
 nb_execution_mode = "off"
 nb_output_stderr = "remove"
 nb_merge_streams = True
+# a cell's Markdown output (springlab.tables.Table, the claims) is read as MyST, like the notebook's own
+# Markdown cells: tables and $...$ math; myst-nb's default, CommonMark, has neither
+nb_render_markdown_format = "myst"
 nb_ipywidgets_js = {}  # no widget scripts from a CDN
 myst_enable_extensions = ["dollarmath", "amsmath"]
 myst_heading_anchors = 3
@@ -34,14 +37,15 @@ autodoc_member_order = "bysource"
 autodoc_default_options = {"members": True, "undoc-members": False, "show-inheritance": False}
 autodoc_typehints = "description"
 
-# MathJax 2 from the jupyter-server-mathjax package, copied to _static/mathjax by the builder
-mathjax_path = "mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe"
-# the theme marks the page tex2jax_ignore; MathJax 2 typesets the elements Sphinx marks as math
-mathjax2_config = {
-    "tex2jax": {"processClass": "math|tex2jax_process|mathjax_process|output_area"},
-    "messageStyle": "none",
-    # the package ships the STIX-Web fonts only: no TeX fonts to look for
-    "HTML-CSS": {"availableFonts": [], "preferredFont": None, "webFont": "STIX-Web"},
+# MathJax 3 from the django-static-mathjax package, copied to _static/mathjax by the builder
+mathjax_path = f"mathjax/{MATHJAX_SCRIPT}"
+mathjax3_config = {
+    # the theme marks the page mathjax_ignore; MathJax typesets the elements Sphinx marks as math
+    "options": {"processHtmlClass": "tex2jax_process|mathjax_process|math|output_area",
+                "ignoreHtmlClass": "tex2jax_ignore|mathjax_ignore"},
+    # \tag{23b} shows a paper's own equation number; \text{...} is set in the page's face
+    "tex": {"tags": "none"},
+    "svg": {"fontCache": "global", "mtextInheritFont": True},
 }
 
 html_theme = "sphinx_book_theme"
