@@ -155,3 +155,192 @@ def test_nothing_floats_on_paper_001s_arm():
     assert len(scene.springs) == len(springs) and len(scene.extras) == len(arm.modules)
     for pose in range(3):
         assert floating(scene, pose) == []
+
+
+# --- the drawings read at the book's width ----------------------------------------------------
+BOOK_COLUMN = 750  # px: the book's text column; a figure is shown at its notebook size (figure.dpi), at most this wide
+NOTEBOOK_DPI = 110  # springlab.mplstyle's figure.dpi: a saved PNG is shown at this many px per inch
+
+
+def panel_widths_in_book(fig) -> list[float]:
+    """The width (px) of each visible panel with data as the book shows the figure: at its
+    notebook size, shrunk to the column when wider (the PNG is saved with bbox 'tight')."""
+    renderer = fig.canvas.get_renderer()
+    fig.canvas.draw()
+    shown = fig.get_tightbbox(renderer).width * NOTEBOOK_DPI  # px, the tight bbox in inches
+    shrink = min(1.0, BOOK_COLUMN / shown)
+    return [ax.get_window_extent(renderer).width / fig.dpi * NOTEBOOK_DPI * shrink
+            for ax in fig.axes if ax.get_visible() and ax.axison and ax.lines]
+
+
+def overlapping_texts(fig) -> list[tuple[str, str]]:
+    """Pairs of visible texts of the panels (spring labels, annotations, axis labels, titles)
+    whose boxes overlap each other, or a legend."""
+    renderer = fig.canvas.get_renderer()
+    fig.canvas.draw()
+    texts = [(t.get_text(), t.get_window_extent(renderer), ax) for ax in fig.axes
+             for t in [*ax.texts, ax.xaxis.label, ax.yaxis.label, ax.title] if t.get_visible() and t.get_text()]
+    legends = [lg.get_window_extent(renderer) for lg in [*fig.legends, *(ax.get_legend() for ax in fig.axes)] if lg]
+    out = [(a, b) for k, (a, box_a, _) in enumerate(texts) for b, box_b, _ in texts[k + 1:] if box_a.overlaps(box_b)]
+    out += [(a, "legend") for a, box, _ in texts for lg in legends if box.overlaps(lg)]
+    return out
+
+
+def outside_texts(fig) -> list[str]:
+    """Spring labels (texts named S...) that leave their panel."""
+    renderer = fig.canvas.get_renderer()
+    fig.canvas.draw()
+    out = []
+    for ax in fig.axes:
+        inside = ax.get_window_extent(renderer)
+        for t in ax.texts:
+            box = t.get_window_extent(renderer)
+            if t.get_text().startswith("S") and not (inside.x0 <= box.x0 and box.x1 <= inside.x1
+                                                     and inside.y0 <= box.y0 and box.y1 <= inside.y1):
+                out.append(t.get_text())
+    return out
+
+
+@pytest.fixture
+def styled():
+    """The book's figure style (sizes, fonts, dpi), for the tests that measure figures."""
+    import matplotlib.pyplot as plt
+
+    from springlab.workbench.plotting import STYLE
+
+    with plt.style.context(STYLE):
+        yield
+
+
+@pytest.fixture(scope="module")
+def lin2010_scene():
+    from springlab.mechanisms.pseudobase import subsystems as subs
+    from springlab.model.trajectories import PiecewiseCubic
+    from springlab.papers import lin2010
+
+    arm = lin2010.arm()
+    springs = subs.design_equilibrators(arm, lin2010.K, lin2010.L_CA)
+    t = np.array([0.0, 0.5, 1.0]) * lin2010.DURATION
+    return drawing.pseudobase_scene(arm, springs, PiecewiseCubic(lin2010.TABLE4[:, :4]).angles(t))
+
+
+def test_the_overlap_checks_can_fail(styled):
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots()
+    ax.text(0.5, 0.5, "S2")
+    ax.text(0.5, 0.5, "S3")  # on top of S2
+    ax.text(1.5, 0.5, "S4")  # outside the axes
+    assert overlapping_texts(fig) == [("S2", "S3")] and outside_texts(fig) == ["S4"]
+    ax.plot([0, 1], [0, 1], label="a line")
+    ax.legend(loc="center")  # over S2 and S3
+    assert {b for _, b in overlapping_texts(fig)} == {"S3", "legend"}
+    plt.close(fig)
+
+
+def test_paper_001s_instants_read_at_the_books_width(lin2010_scene, styled):
+    """One figure per instant, its three views two to a row: every panel at least 250 px wide in
+    the book (the 3 x 3 grid it replaces: about 150 px), every spring named or in the legend,
+    no two labels overlapping."""
+    import matplotlib.pyplot as plt
+
+    for pose in range(3):
+        fig = drawing.mechanism_figure(lin2010_scene, [pose], views=drawing.VIEWS, columns=2, frame="shown")
+        widths = panel_widths_in_book(fig)
+        assert len(widths) == 3 and min(widths) >= 250, widths
+        assert overlapping_texts(fig) == [] and outside_texts(fig) == []
+        legend = {t.get_text() for t in fig.axes[3].get_legend().get_texts()}
+        assert set(lin2010_scene.springs) <= legend  # every spring named by colour
+        named = {t.get_text() for ax in fig.axes[:3] for t in ax.texts}
+        assert len(named) >= 4  # most are named on the drawing as well
+        plt.close(fig)
+    grid = drawing.mechanism_figure(lin2010_scene, [0, 1, 2], views=drawing.VIEWS)  # the old 3 x 3: too small
+    assert max(panel_widths_in_book(grid)) < 200
+    plt.close(grid)
+
+
+def test_one_scale_for_every_view_of_one_pose(lin2010_scene):
+    import matplotlib.pyplot as plt
+
+    fig = drawing.mechanism_figure(lin2010_scene, [1], views=drawing.VIEWS, columns=2, frame="shown")
+    spans = {round(np.ptp(ax.get_xlim()), 12) for ax in fig.axes[:3]} | {round(np.ptp(ax.get_ylim()), 12) for ax in fig.axes[:3]}
+    assert len(spans) == 1
+    plt.close(fig)
+    with pytest.raises(SpringlabError, match="frame must be"):
+        drawing.mechanism_figure(lin2010_scene, [1], frame="tight")
+
+
+def test_spring_labels_never_overlap_in_the_chain_figures(arm, exact_springs, poses, styled):
+    import matplotlib.pyplot as plt
+
+    fig = drawing.mechanism_figure(drawing.chain_scene(arm, exact_springs, poses), [0, 1, 2])
+    assert overlapping_texts(fig) == [] and outside_texts(fig) == []
+    plt.close(fig)
+
+
+def test_paper_002s_drawing_has_a_legend_and_no_overlaps(styled):
+    import matplotlib.pyplot as plt
+
+    from springlab.papers import zhang2023
+    from springlab.workbench.plotting import dyad_figure
+
+    fig = dyad_figure(zhang2023.compensator(), zhang2023.printed_dyad("B"), np.radians([30, 60, 90, 120, 150]))
+    names = [t.get_text() for lg in fig.legends for t in lg.get_texts()]
+    assert len(names) >= 8 and any(n.startswith("spring") for n in names) and "slider B" in names
+    assert overlapping_texts(fig) == []
+    assert min(panel_widths_in_book(fig)) >= 200
+    a, b = fig.axes
+    assert a.get_xlim() == b.get_xlim() and a.get_ylim() == b.get_ylim()  # one scale
+    plt.close(fig)
+
+
+def test_paper_003s_configurations_are_drawn_to_scale(styled):
+    import matplotlib.pyplot as plt
+
+    from springlab.mechanisms.planar import model as pl
+    from springlab.mechanisms.planar import synthesis as plsyn
+    from springlab.papers import juang2022
+    from springlab.workbench.plotting import planar_designs_figure
+
+    arm = juang2022.ARM
+    two = pl.PlanarArm(r=arm.r[:2], s=arm.s[:2], m=arm.m[:2], g=arm.g)
+    designs = {"Λ1": (two, plsyn.design(two, "Λ1", {"A_S12": 0.1, "B_S12": 0.5})),
+               "Λ3-1": (arm, plsyn.design(arm, "Λ3-1", juang2022.FREE_CHOICES))}
+    fig = planar_designs_figure(designs, [60, -60, -45])
+    one, full = fig.axes[:2]
+    assert one.get_xlim()[1] - one.get_xlim()[0] == pytest.approx(full.get_xlim()[1] - full.get_xlim()[0])
+    assert len(one.lines) < len(full.lines)  # one link and one spring, beside three links and four springs
+    legend = {t.get_text() for t in fig.legends[0].get_texts()}
+    assert {"S(1,2)", "S(1,4)", "S(2,4)", "S(3,4)"} <= legend
+    assert overlapping_texts(fig) == [] and outside_texts(fig) == []
+    assert min(panel_widths_in_book(fig)) >= 250
+    plt.close(fig)
+    chain, _ = pl.to_spatial(arm, designs["Λ3-1"][1])  # drawn at the angles given
+    X = chain.directions(pl.spatial_angles(np.radians([[60, -60, -45]])))
+    assert X[0, 1] @ X[0, 0] == pytest.approx(np.sin(np.radians(60)))  # link 2 at 60 deg above the horizontal
+
+
+def arm_fill(scene: drawing.Scene, limits, view: str = "front") -> float:
+    """The larger extent of the links and springs over every pose, over the panel's span."""
+    pts = np.concatenate([link.reshape(-1, 3) for link in scene.links] + [np.vstack(ab) for ab in scene.springs.values()])
+    return float(np.max(np.ptp(scene.project(pts, view), axis=0))) / limits[view][2]
+
+
+def test_the_hold_animation_frames_the_arms_and_stops_at_the_floor(arm, exact_springs, poses, tmp_path):
+    from PIL import Image
+
+    motion = sim.hold_motion(arm, exact_springs, poses[0], duration=2.0)
+    shown = drawing.hold_scenes(arm, exact_springs, motion, frames=9)
+    for scene in (shown.balanced, shown.control):  # nothing drawn below the floor, the column stands on it
+        assert np.all(drawing.lowest(scene) >= shown.floor) and scene.column[0] == shown.floor
+    assert shown.stopped and 0 < shown.t[-1] < motion.t[-1]  # the control falls to the floor within 2 s
+    limits = drawing.shared_limits({"a": (shown.balanced, "front"), "b": (shown.control, "front")})
+    assert arm_fill(shown.balanced, limits) >= 0.6 and arm_fill(shown.control, limits) >= 0.6
+    # negative controls: the whole run drawn on the column's own floor
+    balanced = drawing.chain_scene(arm, exact_springs, motion.balanced)
+    control = drawing.chain_scene(arm, [s.scaled(motion.control_scale) for s in exact_springs], motion.control)
+    assert np.min(drawing.lowest(control)) < control.column[0]  # the control swings below that floor
+    whole = drawing.shared_limits({"a": (balanced, "front"), "b": (control, "front")})
+    assert arm_fill(balanced, whole) < 0.6  # and the still arm is lost in the frame of the fall
+    gif = drawing.hold_animation(arm, exact_springs, motion, tmp_path / "hold.gif", frames=9)
+    assert Image.open(gif).n_frames == len(shown.t) and Image.open(gif).size[0] >= 700  # the column's width

@@ -28,7 +28,7 @@ Coordinates: a view's horizontal axis and the vertical ``up`` are named by the w
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -199,8 +199,9 @@ def _limits(scene: Scene, view: str, margin: float = 0.08):
     return (centre[0] - span / 2, centre[0] + span / 2), (centre[1] - span / 2, centre[1] + span / 2), span
 
 
-def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=None) -> list:
-    """Draw ``scene`` at ``pose`` in ``view`` on ``ax``; returns the artists (for animation)."""
+def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=None, colours=None) -> list:
+    """Draw ``scene`` at ``pose`` in ``view`` on ``ax``; returns the artists (for animation).
+    ``colours``: {spring label: colour}, by default :data:`SPRING_COLOURS` in the scene's order."""
     xlim, ylim, span = limits or _limits(scene, view)
     artists = []
     if view != "top":  # the floor and the base column, seen from the side
@@ -230,18 +231,14 @@ def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=
     if scene.masses is not None:
         artists += ax.plot(*scene.project(scene.masses[pose], view).T, "o", color="tab:blue", markersize=4.5,
                            zorder=6, label="centres of mass")
-    count = len(scene.springs)
     for k, (label, (A, B)) in enumerate(scene.springs.items()):
         P, Q = scene.project(A[pose], view), scene.project(B[pose], view)
-        colour = SPRING_COLOURS[k % len(SPRING_COLOURS)]
-        pts = zigzag(P, Q, width=0.018 * span)
-        artists += ax.plot(*pts.T, color=colour, linewidth=1.2, zorder=4, label=label)
+        colour = _colour(label, k, colours)
+        coils = int(np.clip(round(30 * float(np.hypot(*(Q - P))) / span), 2, 6))  # a short spring: fewer coils
+        pts = zigzag(P, Q, coils=coils, width=0.018 * span)
+        artists += ax.plot(*pts.T, color=colour, linewidth=1.5, zorder=4, label=label)
         artists += ax.plot(*np.array([P, Q]).T, "o", color="k", markersize=3.2, zorder=6,
                            label="attachment points" if k == 0 else None)
-        if labels:  # along the spring, staggered so that neighbouring labels do not overlap
-            at = P + (0.3 + 0.4 * k / max(count - 1, 1)) * (Q - P)
-            artists.append(ax.text(at[0] + 0.015 * span, at[1], label, color=colour, fontsize=7, zorder=7,
-                                   bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.7, "pad": 0.5}))
     if scene.path is not None:
         artists += ax.plot(*scene.project(scene.path, view).T, color="tab:blue", linewidth=0.9,
                            linestyle="--", label="end-point path", zorder=2)
@@ -251,41 +248,154 @@ def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=
     xl, yl = scene.axis_labels(view)
     ax.set_xlabel(xl)
     ax.set_ylabel(yl)
+    if labels:
+        artists += label_springs(ax, scene, pose, view, colours=colours)
     return artists
 
 
-def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=None, title: str = ""):
+def _colour(label: str, k: int, colours=None):
+    return (colours or {}).get(label, SPRING_COLOURS[k % len(SPRING_COLOURS)])
+
+
+def label_springs(ax, scene: Scene, pose: int, view: str, *, colours=None) -> list:
+    """Name each spring S(i,j) beside its zigzag, where the name overlaps no other and stays in
+    the axes; returns the texts.
+
+    Each label tries places along its spring (its middle first, then towards the ends), on
+    either side, just clear of the zigzag, in the axes' current pixels (so call it once the
+    figure is laid out): first a place clear of every spring too, then one clear of the other
+    labels only. A label that finds no free place is left out: the legend names every spring
+    by its colour."""
+    from matplotlib.transforms import Bbox
+
+    ax.apply_aspect()  # the box equal axes will have once drawn
+    renderer = ax.figure.canvas.get_renderer()
+    inside = ax.get_window_extent(renderer)
+    to_pixels = ax.transData.transform
+    span = abs(np.subtract(*ax.get_xlim()))  # m: the panel's width, as draw's limits
+    scale = abs(np.subtract(*to_pixels([[0.0, 0.0], [span, 0.0]])[:, 0])) / span  # px per m
+    ends = [(to_pixels(scene.project(A[pose], view)), to_pixels(scene.project(B[pose], view)))
+            for A, B in scene.springs.values()]
+    widths = [min(0.018 * span, 0.25 * float(np.hypot(*(Q - P))) / scale) * scale for P, Q in ends]  # see draw
+    springs = [Bbox([np.minimum(P, Q), np.maximum(P, Q)]).padded(w) for (P, Q), w in zip(ends, widths, strict=True)]
+    placed, texts = [], []
+    for k, (label, (P, Q), w) in enumerate(zip(scene.springs, ends, widths, strict=True)):
+        d = Q - P
+        length = float(np.hypot(*d))
+        u = d / length if length > 1e-9 else np.array([1.0, 0.0])
+        normal = np.array([-u[1], u[0]])
+        colour = _colour(label, k, colours)
+        places = [(t, side) for t in (0.5, 0.3, 0.7, 0.1, 0.9) for side in (1.0, -1.0)]
+        for avoid_springs, (t, side) in [(a, place) for a in (True, False) for place in places]:
+            off = side * normal
+            at = ax.transData.inverted().transform(P + t * d + (w + 3.0) * off)  # 3 px clear of the zigzag
+            text = ax.text(*at, label, color=colour, fontsize=7, zorder=7,
+                           ha="left" if off[0] > 0.35 else "right" if off[0] < -0.35 else "center",
+                           va="bottom" if off[1] > 0.35 else "top" if off[1] < -0.35 else "center",
+                           bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.75, "pad": 0.4})
+            box = text.get_window_extent(renderer).padded(1.0)
+            blocked = placed + ([b for j, b in enumerate(springs) if j != k] if avoid_springs else [])
+            if (inside.x0 <= box.x0 and box.x1 <= inside.x1 and inside.y0 <= box.y0 and box.y1 <= inside.y1
+                    and not any(box.overlaps(other) for other in blocked)):
+                placed.append(box)
+                texts.append(text)
+                break
+            text.remove()
+    return texts
+
+
+def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=None, title: str = "",
+                     columns: int | None = None, frame: str = "all"):
     """``scene`` at ``poses`` (indices, at most 4) side by side, one row per view, every panel
-    at one scale. Returns the matplotlib figure."""
+    at one scale. Returns the matplotlib figure.
+
+    One pose: its views side by side, ``columns`` to a row (default all); the legend takes
+    the first free panel, if any, else goes below. ``frame``: "all" frames the panels on
+    every pose of the scene (so that drawings of its poses share their limits), "shown" on
+    the poses drawn (a larger drawing)."""
     import matplotlib.pyplot as plt
 
     poses = [int(p) for p in np.atleast_1d(poses)]
     if not poses or len(poses) > 4 or any(not 0 <= p < scene.poses for p in poses):
         raise SpringlabError(f"poses must be 1 to 4 indices in 0..{scene.poses - 1}, got {poses}")
+    if frame not in ("all", "shown"):
+        raise SpringlabError(f"frame must be 'all' or 'shown', got {frame!r}")
     views = tuple(views)
     titles = list(titles) if titles is not None else [f"pose {p + 1}" for p in poses]
-    spans = [_limits(scene, v) for v in views]
+    framed = scene if frame == "all" else _at(scene, poses)
+    spans = [_limits(framed, v) for v in views]
     across = len(poses) == 1  # one pose: its views side by side
-    rows, cols = (1, len(views)) if across else (len(views), len(poses))
-    fig, axes = plt.subplots(rows, cols, figsize=(2.7 * cols + 0.6, 2.8 * rows + 0.5), squeeze=False)
+    if across:  # one scale for every view: the largest span, each view about its own centre
+        span = max(b[2] for b in spans)
+        spans = [(_about(xlim, span), _about(ylim, span), span) for xlim, ylim, _ in spans]
+        cols = min(columns or len(views), len(views))
+        rows = -(-len(views) // cols)
+        size = (3.2 * cols + 0.4, 3.2 * rows + 0.4)
+    else:
+        rows, cols = len(views), len(poses)
+        size = (2.7 * cols + 0.6, 2.8 * rows + 0.5)
+    fig, axes = plt.subplots(rows, cols, figsize=size, squeeze=False)
+    panels = []
     for r, view in enumerate(views):
         for c, pose in enumerate(poses):
-            ax = axes[0][r] if across else axes[r][c]
-            draw(ax, scene, pose, view, labels=(c == 0), limits=spans[r])
+            ax = axes.flat[r] if across else axes[r][c]
+            draw(ax, scene, pose, view, labels=False, limits=spans[r])
             ax.set_title(f"{titles[c]}, {view} view" if (r == 0 or across) else f"{view} view", fontsize=8)
             if c:
                 ax.set_ylabel("")
-    return _legend_and_title(fig, axes[0][0], title)
+            if c == 0 or across:
+                panels.append((ax, pose, view))
+    spare = list(axes.flat)[len(views):] if across else []
+    for ax in spare:
+        ax.set_axis_off()
+    fig = _legend_and_title(fig, [axes.flat[0]], title, into=spare[0] if spare else None)
+    for ax, pose, view in panels:  # once laid out: the labels' places are in pixels
+        label_springs(ax, scene, pose, view)
+    return fig
 
 
-def _legend_and_title(fig, ax, title: str):
-    """The figure's legend (from ``ax``, below the panels) and title, then its layout."""
-    handles, names = ax.get_legend_handles_labels()
-    fig.legend(handles, names, loc="lower center", ncol=min(4, len(names)), fontsize=7, frameon=False)
+def _about(limits, span: float) -> tuple[float, float]:
+    centre = sum(limits) / 2
+    return centre - span / 2, centre + span / 2
+
+
+def _at(scene: Scene, poses) -> Scene:
+    """``scene`` at ``poses`` alone (the same column and path)."""
+    k = list(poses)
+    pick = lambda a: None if a is None else a[k]  # noqa: E731
+    return replace(scene, links=[link[k] for link in scene.links],
+                   springs={n: (A[k], B[k]) for n, (A, B) in scene.springs.items()},
+                   extras={n: e[k] for n, e in scene.extras.items()}, brackets=pick(scene.brackets),
+                   masses=pick(scene.masses))
+
+
+def _legend_and_title(fig, axes, title: str, into=None):
+    """The figure's legend (every name drawn on ``axes``, once; in the empty axes ``into``, else
+    below the panels) and title, then its layout."""
+    legend = {}
+    for ax in axes:
+        for handle, name in zip(*ax.get_legend_handles_labels(), strict=True):
+            legend.setdefault(name, handle)
+    handles, names = list(legend.values()), list(legend)
+    if into is not None:
+        into.legend(handles, names, loc="center", ncol=1 + len(names) // 9, fontsize=8, frameon=False)
+        rect = (0, 0, 1, 1)
+    else:
+        legend = fig.legend(handles, names, loc="lower center", ncol=min(4, len(names)), fontsize=7, frameon=False)
+        below = legend.get_window_extent(fig.canvas.get_renderer()).height / fig.bbox.height  # the legend's share
+        rect = (0, below + 0.01, 1, 1)
     if title:
         fig.suptitle(title, fontsize=10)
-    fig.tight_layout(rect=(0, 0.04 + 0.035 * ((len(names) + 3) // 4), 1, 1))
+    tight(fig, rect=rect, h_pad=2.0)
     return fig
+
+
+def tight(fig, **layout) -> None:
+    """``fig.tight_layout(**layout)`` twice: equal axes change their boxes once laid out, which
+    the first pass cannot see (its labels may then reach a legend below the panels)."""
+    for _ in range(2):
+        fig.tight_layout(**layout)
+        fig.canvas.draw()
 
 
 def scenes_figure(panels: dict, *, view: str = "front", columns: int = 2, title: str = ""):
@@ -299,19 +409,28 @@ def scenes_figure(panels: dict, *, view: str = "front", columns: int = 2, title:
     span = max(b[2] for b in boxes)
     rows = -(-len(panels) // columns)
     fig, axes = plt.subplots(rows, columns, figsize=(3.1 * columns, 3.0 * rows + 0.5), squeeze=False)
+    names = list(dict.fromkeys(label for scene, _ in panels.values() for label in scene.springs))
+    colours = {label: SPRING_COLOURS[k % len(SPRING_COLOURS)] for k, label in enumerate(names)}  # one per name
+    drawn = []
     for ax, (name, (scene, pose)), (xlim, ylim, _) in zip(axes.flat, panels.items(), boxes, strict=False):
         cx, cy = sum(xlim) / 2, sum(ylim) / 2
-        draw(ax, scene, pose, view, limits=((cx - span / 2, cx + span / 2), (cy - span / 2, cy + span / 2), span))
+        draw(ax, scene, pose, view, labels=False, colours=colours,
+             limits=((cx - span / 2, cx + span / 2), (cy - span / 2, cy + span / 2), span))
         ax.set_title(name, fontsize=8)
+        drawn.append((ax, scene, pose))
     for ax in list(axes.flat)[len(panels):]:
         ax.set_visible(False)
-    return _legend_and_title(fig, axes[0][0], title)
+    fig = _legend_and_title(fig, [ax for ax, _, _ in drawn], title)
+    for ax, scene, pose in drawn:  # once laid out: the labels' places are in pixels
+        label_springs(ax, scene, pose, view, colours=colours)
+    return fig
 
 
-def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = "", times=None):
+def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = "", times=None, note: str = ""):
     """Write a GIF of scenes side by side, one frame per pose: ``panels`` is {panel title:
     (Scene, view)}, the scenes with one common number of poses. Panels of the same view share
-    one scale. ``times`` (s), one per pose, is shown in the title. Returns the GIF's path.
+    one scale (:func:`shared_limits`). ``times`` (s), one per pose, is shown in the title, and
+    ``note`` on a second line under it. Returns the GIF's path.
 
     :raises SpringlabError: when the scenes have different numbers of poses, or none
     """
@@ -323,16 +442,7 @@ def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = ""
     if not scenes or len(counts) != 1:
         raise SpringlabError(f"animate needs scenes with one common number of poses, got {sorted(counts)}")
     frames = counts.pop()
-    limits = {}
-    for _, scene, view in scenes:  # one scale per view: the union of its panels' extents
-        xlim, ylim, span = _limits(scene, view)
-        if view in limits:
-            (x0, x1), (y0, y1), old = limits[view]
-            xlim, ylim = (min(x0, xlim[0]), max(x1, xlim[1])), (min(y0, ylim[0]), max(y1, ylim[1]))
-            span = max(xlim[1] - xlim[0], ylim[1] - ylim[0])
-            cx, cy = sum(xlim) / 2, sum(ylim) / 2
-            xlim, ylim = (cx - span / 2, cx + span / 2), (cy - span / 2, cy + span / 2)
-        limits[view] = (xlim, ylim, span)
+    limits = shared_limits(panels)
     fig, axes = plt.subplots(1, len(scenes), figsize=(3.4 * len(scenes), 3.9), squeeze=False)
     axes = axes[0]
 
@@ -347,7 +457,7 @@ def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = ""
             if i and scenes[i - 1][2] == view:  # one scale, one axis label
                 ax.set_ylabel("")
         stamp = f" (t = {times[k]:.2f} s)" if times is not None else ""
-        fig.suptitle(f"{title}{stamp}", fontsize=9)
+        fig.suptitle(f"{title}{stamp}" + (f"\n{note}" if note else ""), fontsize=9)
         return []
 
     path = Path(path)
@@ -366,14 +476,88 @@ def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = ""
     return str(path)
 
 
-def hold_animation(chain, springs, motion, path, *, title: str = "exudyn hold test") -> str:
-    """The hold test's motion (:func:`springlab.energy.simulation.hold_motion`) as a GIF: the
-    balanced arm beside the control, one scale, in the front view."""
+def shared_limits(panels: dict) -> dict:
+    """{view: (xlim, ylim, span)} for ``panels`` {title: (Scene, view)}: one square frame per
+    view, the union of its panels' extents over all their poses (m)."""
+    limits = {}
+    for scene, view in panels.values():
+        xlim, ylim, span = _limits(scene, view)
+        if view in limits:
+            (x0, x1), (y0, y1), old = limits[view]
+            xlim, ylim = (min(x0, xlim[0]), max(x1, xlim[1])), (min(y0, ylim[0]), max(y1, ylim[1]))
+            span = max(xlim[1] - xlim[0], ylim[1] - ylim[0])
+            xlim, ylim = _about(xlim, span), _about(ylim, span)
+        limits[view] = (xlim, ylim, span)
+    return limits
+
+
+def lowest(scene: Scene) -> np.ndarray:
+    """(N,) the height (m, along ``up``) of the lowest drawn point of the mechanism at each pose:
+    links, springs' ends, pseudobases, brackets and centres of mass (not the ground column)."""
+    parts = [link.reshape(scene.poses, -1, 3) for link in scene.links]
+    parts += [np.stack(ab, axis=1) for ab in scene.springs.values()]
+    parts += [e.reshape(scene.poses, -1, 3) for e in scene.extras.values()]
+    parts += [b.reshape(scene.poses, -1, 3) for b in (scene.brackets, scene.masses) if b is not None]
+    return np.min(np.concatenate(parts, axis=1) @ scene.up, axis=1)
+
+
+@dataclass(frozen=True)
+class HoldScenes:
+    """What :func:`hold_animation` draws: the balanced arm and the control at the same times.
+
+    :ivar balanced, control: the two scenes, their ground column standing on the drawn floor
+    :ivar t: (F,) the frames' times (s)
+    :ivar floor: the drawn floor's height (m along up; no floor is simulated)
+    :ivar duration: the simulated time (s); ``t[-1] < duration`` when the control reached the floor
+    """
+
+    balanced: Scene
+    control: Scene
+    t: np.ndarray
+    floor: float
+    duration: float
+
+    @property
+    def stopped(self) -> bool:
+        return bool(self.t[-1] < self.duration)
+
+
+def hold_scenes(chain, springs, motion, *, frames: int = 21, clearance: float | None = None) -> HoldScenes:
+    """The hold test's motion (:func:`springlab.energy.simulation.hold_motion`) made drawable.
+
+    The simulation has no floor: the floor is drawn ``clearance`` (m; default 0.15 of the arm's
+    reach, the sum of its link lengths) below the lowest point of the released arm (or of its
+    column), and the motion is shown up to the last stored step at which no point of the
+    control lies below it (the whole run when it never gets there), at ``frames`` evenly
+    spaced stored steps."""
     scale = motion.control_scale
-    panels = {"balanced": (chain_scene(chain, springs, motion.balanced), "front"),
-              f"springs x {scale:g} (control)": (chain_scene(chain, [s.scaled(scale) for s in springs],
-                                                             motion.control), "front")}
-    return animate(panels, path, times=motion.t, title=title)
+    balanced = chain_scene(chain, springs, motion.balanced)
+    control = chain_scene(chain, [s.scaled(scale) for s in springs], motion.control)
+    clearance = 0.15 * float(np.sum(chain.r)) if clearance is None else float(clearance)
+    floor = min(balanced.column[0], float(lowest(balanced)[0]), float(lowest(control)[0])) - clearance
+    below = np.flatnonzero((lowest(control) < floor) | (lowest(balanced) < floor))
+    last = int(below[0]) - 1 if below.size else len(motion.t) - 1
+    k = np.unique(np.linspace(0, last, frames).round().astype(int))
+    return HoldScenes(replace(_at(balanced, k), column=(floor, balanced.column[1])),
+                      replace(_at(control, k), column=(floor, control.column[1])), np.asarray(motion.t)[k], floor,
+                      float(motion.t[-1]))
+
+
+def hold_animation(chain, springs, motion, path, *, title: str = "exudyn hold test", frames: int = 21,
+                   clearance: float | None = None, dpi: int = 110) -> str:
+    """The hold test's motion (:func:`springlab.energy.simulation.hold_motion`) as a GIF: the
+    balanced arm beside the control, one scale framed on the arms, in the front view, up to
+    where the control reaches the drawn floor (:func:`hold_scenes`; the second title line says
+    so)."""
+    shown = hold_scenes(chain, springs, motion, frames=frames, clearance=clearance)
+    panels = {"balanced": (shown.balanced, "front"),
+              f"springs x {motion.control_scale:g} (control)": (shown.control, "front")}
+    if shown.stopped:
+        note = (f"shown to t = {shown.t[-1]:.2f} s of {shown.duration:g} s, where the control reaches the floor "
+                "drawn below the arm (none is simulated)")
+    else:
+        note = f"the whole {shown.duration:g} s run"
+    return animate(panels, path, times=shown.t, title=title, note=note, dpi=dpi)
 
 
 def trajectory_animation(scene: Scene, path, times, *, views=("front", "side"), title: str = "") -> str:

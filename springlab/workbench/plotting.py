@@ -145,30 +145,67 @@ def moment_figure(phi, curves: dict, *, title: str, ylabel: str = "moment (N m)"
 
 
 def dyad_figure(comp, dyad, phis, *, title: str = ""):
-    """The compensator drawn to scale at a few link angles (rad): link OS, crank OA,
-    rod AB, slider B on the vertical through O, spring from O's level to B."""
+    """The compensator drawn to scale, two panels at one scale with one legend below them:
+    its parts at the middle of the link angles ``phis`` (rad), each named (link OS with its
+    centre of mass S, crank OA, rod AB, slider B on the vertical guide through O, the spring
+    from O's level to B beside its free length l0), and the link, dyad and slider at every
+    angle of ``phis``, shaded light to dark, each angle written beyond its link's end."""
     import numpy as np
 
     from springlab.mechanisms.dyad.model import slider_height
+    from springlab.workbench.drawing import tight, zigzag
 
-    fig, ax = plt.subplots(figsize=(5.0, 4.6))
-    shades = np.linspace(0.7, 0.0, len(phis))
-    for phi, shade in zip(phis, shades, strict=True):
-        colour = (shade, shade, shade)
+    phis = np.atleast_1d(np.asarray(phis, dtype=float))
+    fig, (parts, sweep) = plt.subplots(1, 2, figsize=(6.4, 5.6), sharex=True, sharey=True)
+
+    def points(phi):
         S = comp.s * np.array([np.sin(phi), np.cos(phi)])
         A = dyad.r * np.array([np.sin(phi - dyad.beta), np.cos(phi - dyad.beta)])
-        B = np.array([0.0, float(slider_height(dyad, phi))])
-        ax.plot([0, S[0]], [0, S[1]], "-", color=colour, linewidth=2.4)
-        ax.plot(*S, "o", color=colour, markersize=6)
-        ax.plot([0, A[0], B[0]], [0, A[1], B[1]], "-o", color="tab:blue", alpha=1 - 0.7 * shade, markersize=3)
-        ax.text(S[0], S[1] + 0.03, f"{np.degrees(phi):.0f} deg", ha="center", fontsize=7)
-    ax.plot([0, 0], [0, comp.l0], color="tab:red", linestyle=":", linewidth=1.0, label=f"spring free length l0 = {comp.l0:g} m")
-    ax.plot(0, 0, "k^", markersize=8)
-    ax.set_aspect("equal")
-    ax.set_xlabel("horizontal (m)")
-    ax.set_ylabel("vertical (m)")
-    ax.set_title(title)
-    ax.legend(loc="lower right")
+        return S, A, np.array([0.0, float(slider_height(dyad, phi))])
+
+    top = max(comp.l0, max(points(phi)[2][1] for phi in phis)) + 0.05
+    for ax in (parts, sweep):
+        ax.plot([0, 0], [-0.05, top], color="0.6", linewidth=1.0, linestyle="--", zorder=1,
+                label="slider guide, vertical through O")
+        ax.plot(0, -0.035, "k^", markersize=9, zorder=5, label="pivot O (frame)")
+    phi = phis[len(phis) // 2]
+    S, A, B = points(phi)
+    parts.plot(*zigzag((0.0, 0.0), B, coils=7, width=0.035).T, color="tab:red", linewidth=1.3, zorder=3,
+               label=f"spring O-B, k = {comp.k:g} N/m")
+    parts.plot([0, 0], [B[1], comp.l0], color="tab:red", linestyle=":", linewidth=1.3, zorder=2,
+               label=f"spring's free length l0 = {comp.l0:g} m")
+    parts.plot([0, S[0]], [0, S[1]], color="0.25", linewidth=3.0, solid_capstyle="round", zorder=3, label="link OS")
+    parts.plot(*S, "o", color="0.25", markersize=7, zorder=4, label=f"centre of mass S (G = {comp.G:g} N)")
+    parts.plot([0, A[0]], [0, A[1]], color="tab:blue", linewidth=2.2, zorder=4, label=f"crank OA, r = {dyad.r:g} m")
+    parts.plot([A[0], B[0]], [A[1], B[1]], color="tab:green", linewidth=2.2, zorder=4, label=f"rod AB, l = {dyad.l:g} m")
+    parts.plot(*B, "s", markerfacecolor="white", markeredgecolor="k", markersize=8, zorder=5, label="slider B")
+    for name, at, off, ha in (("O", (0, 0), (-7, -2), "right"), ("A", A, (3, -10), "left"), ("B", B, (-7, 0), "right"),
+                              ("S", S, (4, 6), "left")):
+        parts.annotate(name, at, textcoords="offset points", xytext=off, ha=ha, fontsize=8, fontweight="bold")
+    parts.set_title(f"its parts, at {np.degrees(phi):.0f} deg", fontsize=9)
+    for phi, shade in zip(phis, np.linspace(0.7, 0.0, len(phis)), strict=True):
+        S, A, B = points(phi)
+        sweep.plot([0, S[0]], [0, S[1]], color=(shade,) * 3, linewidth=2.4, solid_capstyle="round", zorder=3)
+        sweep.plot(*S, "o", color=(shade,) * 3, markersize=6, zorder=4)
+        sweep.plot([0, A[0]], [0, A[1]], color="tab:blue", alpha=1 - 0.7 * shade, linewidth=1.6, zorder=4)
+        sweep.plot([A[0], B[0]], [A[1], B[1]], color="tab:green", alpha=1 - 0.7 * shade, linewidth=1.6, zorder=4)
+        sweep.plot(*B, "s", markerfacecolor="white", markeredgecolor=(shade,) * 3, markersize=6, zorder=5)
+        out = S / np.linalg.norm(S)  # the angle beyond the link's end, along it
+        sweep.annotate(f"{np.degrees(phi):.0f} deg", S, textcoords="offset points", xytext=tuple(11 * out), fontsize=7,
+                       ha="left" if out[0] > 0.3 else "center", va="bottom" if out[1] > 0.3 else "top" if out[1] < -0.3 else "center")
+    sweep.set_title(f"{np.degrees(phis[0]):.0f}-{np.degrees(phis[-1]):.0f} deg, light to dark", fontsize=9)
+    for ax in (parts, sweep):
+        ax.set_aspect("equal")
+        ax.set_xlabel("horizontal (m)")
+    parts.set_xlim(-0.2, comp.s + 0.3)
+    parts.set_ylim(-comp.s - 0.12, top + 0.05)
+    parts.set_ylabel("vertical (m)")
+    handles, names = parts.get_legend_handles_labels()
+    legend = fig.legend(handles, names, loc="lower center", ncol=2, fontsize=7, frameon=False)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    below = legend.get_window_extent(fig.canvas.get_renderer()).height / fig.bbox.height  # the legend's share
+    tight(fig, rect=(0, below + 0.01, 1, 1))
     return fig
 
 
@@ -194,6 +231,30 @@ def two_spring_layouts_figure(designs: dict, forearm_length: float, *, shoulder_
               (chain_scene(arm.chain(forearm_length), to_chain_springs(arm, d), X), 0)
               for title, (arm, d) in designs.items()}
     return scenes_figure(panels, view="front")
+
+
+def planar_designs_figure(designs: dict, theta_deg, *, title: str = "", columns: int = 2):
+    """Paper 003's planar arms with their springs, drawn to scale in their vertical plane, one
+    panel per design {panel title: (PlanarArm, springs)}, every panel at one scale
+    (:func:`springlab.workbench.drawing.scenes_figure`): the ground column, links and joints,
+    springs S(i,j) as zigzags (one colour per spring name across the panels), centres of mass.
+
+    :param theta_deg: 003's joint angles theta_2, theta_3, ... (deg); an arm of n links takes
+        the first n - 1
+    :raises SpringlabError: for a spring attached off the joint lines (it has no 000 form,
+        :func:`springlab.mechanisms.planar.model.to_spatial`)
+    """
+    import numpy as np
+
+    from springlab.mechanisms.planar import model as pl
+    from springlab.workbench.drawing import chain_scene, scenes_figure
+
+    panels = {}
+    for name, (arm, springs) in designs.items():
+        chain, spatial = pl.to_spatial(arm, springs)
+        X = chain.directions(pl.spatial_angles(np.radians(np.asarray(theta_deg, dtype=float)[None, : arm.n - 1])))
+        panels[name] = (chain_scene(chain, spatial, X), 0)
+    return scenes_figure(panels, view="front", columns=columns, title=title)
 
 
 def joint_angles_figure(t, angles, *, printed=None, title: str = "", events=None):
