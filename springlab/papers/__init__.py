@@ -14,6 +14,8 @@ PAPERS = {
         "venue": "Mechanism and Machine Theory 191, 105497",
         "doi": "10.1016/j.mechmachtheory.2023.105497",
         "key_figure": "fig16_spatial.png",
+        "key_caption": "Fig. 16 recomputed: the gravity, spring and total potential energy (J) along Table 4's "
+                       "spatial trajectory; the total stays constant",
     },
     "lin2010_pseudobases": {
         "key": "001",
@@ -23,15 +25,19 @@ PAPERS = {
         "venue": "Journal of Mechanisms and Robotics 2, 031003",
         "doi": "10.1115/1.4001816",
         "key_figure": "fig9_energies.png",
+        "key_caption": "Fig. 9 recomputed by direct geometry: the gravity, spring and total potential energy (J) of "
+                       "the six-link arm along Eq. (26)",
     },
     "springlab_design_your_arm": {
         "key": None,  # built on 000 and 003, not a paper
-        "authors": "springlab, from papers 000 and 003",
+        "authors": "springlab, from papers 000 and 003",  # the book names them (springlab.workbench.prose)
         "year": 2026,
         "title": "Design springs for your own arm: ranked, verified designs, a tolerance study, an exudyn check",
         "venue": "",
         "doi": None,
         "key_figure": "best_design.png",
+        "key_caption": "The best design for the example arm, drawn at a random pose: the links, the ground column "
+                       "and each spring between its attachment points",
     },
     "zhang2023_dyad": {
         "key": "002",
@@ -41,6 +47,8 @@ PAPERS = {
         "venue": "",
         "doi": None,  # the paper's text gives none
         "key_figure": "exudyn_drive.png",
+        "key_caption": "Design B driven slowly in exudyn: the input torque (N m) against the link angle (deg) "
+                       "equals virtual work's unbalanced moment, not the printed Eqs. (20)-(30)",
     },
     "juang2022_spring_efficiency": {
         "key": "003",
@@ -51,6 +59,8 @@ PAPERS = {
         "venue": "Mechanical Sciences (2022)",
         "doi": None,  # the text does not print the paper's own DOI
         "key_figure": "fig7a_attachments.png",
+        "key_caption": "Fig. 7a recomputed: the efficiency index over the attachment ratios A_S(1,4) and A_S(2,4), "
+                       "Table 4's design marked",
     },
     "lenzo2017_two_spring_arm": {
         "key": "004",
@@ -61,9 +71,11 @@ PAPERS = {
         "doi": None,  # the text prints none; it gives the archive's address below
         "url": "http://shura.shu.ac.uk/16806/",
         "key_figure": "fig5_layouts.png",
+        "key_caption": "The four layouts of Fig. 5 drawn to scale: the two springs of each on the illustrative arm",
     },
 }
-"""Notebook stem -> the paper it reproduces (authors, year, title, venue, DOI) and its key figure."""
+"""Notebook stem -> the paper it reproduces (authors, year, title, venue, DOI) and its key figure
+(a file in ``figures/<stem>/``, with a caption that is also its alt text)."""
 
 BY_KEY = {entry["key"]: {"notebook": stem, **entry} for stem, entry in PAPERS.items() if entry["key"]}
 """Paper key ("000".."004") -> its registry entry and notebook stem."""

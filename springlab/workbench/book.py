@@ -34,6 +34,7 @@ from docutils.nodes import make_id
 
 from springlab.errors import SolverError
 from springlab.papers import PAPERS
+from springlab.workbench import prose
 from springlab.workbench.claims import REPORT_COLUMNS, html_table, report_column
 
 CONF_DIR = Path(__file__).resolve().parent / "bookconf"
@@ -75,6 +76,38 @@ def sections(notebook: dict) -> tuple[list[str], dict[int, int]]:
         elif cell["cell_type"] == "code" and cell.get("execution_count"):
             where[cell["execution_count"]] = current
     return titles, where
+
+
+def paper_names(stems) -> dict[str, tuple[str, str]]:
+    """{paper key: (chapter stem, 'Juang et al. (2023)')} for the papers among ``stems``."""
+    return {PAPERS[s]["key"]: (s, short_name(s)) for s in stems if PAPERS.get(s, {}).get("key")}
+
+
+def equation_labels(notebooks: dict[str, dict]) -> set[tuple[str, str]]:
+    """{(paper key, equation number)}: the numbered display equations the chapters show."""
+    return {(PAPERS[stem]["key"], number) for stem, nb in notebooks.items() if PAPERS.get(stem, {}).get("key")
+            for cell in nb["cells"] if cell["cell_type"] == "markdown"
+            for number in prose.equation_numbers("".join(cell["source"]))}
+
+
+def readable(notebook: dict, stem: str, names: dict, labels: set) -> dict:
+    """A copy of the notebook as the book shows it (:mod:`springlab.workbench.prose`): its
+    numbered equations anchored, papers named by authors and year and linked, equation
+    mentions linked, in its Markdown cells and its cells' Markdown and HTML outputs."""
+    notebook = json.loads(json.dumps(notebook))
+    key = PAPERS.get(stem, {}).get("key")
+    for cell in notebook["cells"]:
+        if cell["cell_type"] == "markdown":
+            text = "".join(cell["source"])
+            cell["source"] = prose.link_markdown(prose.anchor_equations(text, key) if key else text, key, names, labels)
+            continue
+        for output in cell.get("outputs", []):
+            data = output.get("data", {})
+            if "text/markdown" in data:
+                data["text/markdown"] = prose.link_markdown("".join(data["text/markdown"]), key, names, labels)
+            if "text/html" in data:
+                data["text/html"] = prose.link_html("".join(data["text/html"]), key, names, labels, page=stem)
+    return notebook
 
 
 def labelled(notebook: dict, stem: str) -> dict:
@@ -137,21 +170,22 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
              "springs) does not depend on the pose; springlab checks that three independent ways: the "
              "papers' algebra (the quadratic form), direct geometry, and a multibody simulation (exudyn).",
              "", "## The papers", ""]
+    names = paper_names(stems)
     for stem in stems:
         paper = PAPERS.get(stem, {"authors": "", "year": "", "title": stem, "venue": "", "doi": None})
-        key = f"paper {paper['key']}: " if paper.get("key") else ""
         doi = (f"doi:[{paper['doi']}](https://doi.org/{paper['doi']})" if paper.get("doi")
                else (f"no DOI (the text prints none; {paper['url']})" if paper.get("url")
                      else "no DOI (the text prints none)") if paper.get("key") else "")
         run = _run_time(notebooks[stem])
-        lines += [f"**{key}{_md(paper['authors'])} ({paper['year']})**, *{_md(paper['title'])}*. "
+        lines += [f"**{prose.link_markdown(_md(paper['authors']), None, names, set())} ({paper['year']})**, *{_md(paper['title'])}*. "
                   f"{_md(paper.get('venue') or '')} {doi}", "",
                   f"- chapter: {{doc}}`{stem}`; run time {run:.1f} s" if run is not None else
                   f"- chapter: {{doc}}`{stem}`; run time unknown",
                   f"- claims: {_tally(claims.get(stem, []))}", ""]
-        if stem in thumbs:
-            lines += [f"```{{image}} thumbs/{stem}.png", f":alt: key figure of {stem}", ":width: 320px",
-                      f":target: {stem}.html", "```", ""]
+        if stem in thumbs:  # at the column's width, its caption also its alt text
+            caption = paper.get("key_caption", "")
+            lines += [f"```{{figure}} thumbs/{stem}.png", f":alt: {caption}", f":target: {stem}.html", "",
+                      prose.link_markdown(_md(caption), paper.get("key"), names, set()), "```", ""]
     lines += ["## How to read a claim", "",
               "Every number a notebook reproduces is a *claim*: the quantity, where the paper prints it, "
               "the paper's value, ours, the difference, the tolerance and why it is what it is, and a status:",
@@ -179,9 +213,12 @@ def _section_number(title: str, k: int) -> str:
     return f"§{number.group(1) if number else k}"
 
 
-def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, list[dict]]) -> str:
+def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, list[dict]],
+                labels: set = frozenset()) -> str:
     """The reproduction report (MyST Markdown): counts per paper and status, then every claim
-    with a link to the section of its notebook that makes it."""
+    with a link to the section of its notebook that makes it (and, where it cites one of the
+    ``labels``' equations, to the equation)."""
+    names = paper_names(stems)
     lines = ["# Reproduction report", "",
              "Every number the notebooks reproduce, beside the paper's, from `figures/<notebook>/claims.json` "
              "(the same claims as `figures/REPRODUCTION.md`). The last column links to the notebook section "
@@ -204,8 +241,10 @@ def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, 
             k = where.get(r.get("cell"))  # None: recorded outside a kernel, or in no numbered cell
             made.append((f"{stem}.html#{make_id(section_label(stem, k))}", _section_number(titles[k], k))
                         if k is not None else None)
-        lines += ["", f"## {_md(paper.get('authors', stem))} ({paper.get('year', '')})", "",
-                  f"Chapter: {{doc}}`{stem}`.", "", html_table(records, made_in=made)]
+        lines += ["", f"## {prose.link_markdown(_md(paper.get('authors', stem)), None, names, set())} "
+                      f"({paper.get('year', '')})", "",
+                  f"Chapter: {{doc}}`{stem}`.", "",
+                  prose.link_html(html_table(records, made_in=made), paper.get("key"), names, labels)]
     return "\n".join(lines) + "\n"
 
 
@@ -268,8 +307,10 @@ def stage(notebooks_dir, figures_dir, src, *, api: bool = True) -> list[str]:
     notebooks = {s: json.loads(found[s].read_text()) for s in stems}
     claims = load_claims(figures_dir)
     thumbs = set()
+    names, labels = paper_names(stems), equation_labels(notebooks)
     for stem in stems:
-        _write_if_changed(src / f"{stem}.ipynb", json.dumps(labelled(notebooks[stem], stem), indent=1))
+        shown = readable(labelled(notebooks[stem], stem), stem, names, labels)
+        _write_if_changed(src / f"{stem}.ipynb", json.dumps(shown, indent=1))
         figure = PAPERS.get(stem, {}).get("key_figure")
         if figure and (figures_dir / stem / figure).exists():
             _write_if_changed(src / "thumbs" / f"{stem}.png", (figures_dir / stem / figure).read_bytes())
@@ -277,7 +318,7 @@ def stage(notebooks_dir, figures_dir, src, *, api: bool = True) -> list[str]:
     for gone in set(p.stem for p in src.glob("*.ipynb")) - set(stems):
         (src / f"{gone}.ipynb").unlink()
     _write_if_changed(src / "index.md", front_page(stems, notebooks, claims, api=api, thumbs=frozenset(thumbs)))
-    _write_if_changed(src / "report.md", report_page(stems, notebooks, claims))
+    _write_if_changed(src / "report.md", report_page(stems, notebooks, claims, labels))
     if api:
         for name, text in api_pages().items():
             _write_if_changed(src / "api" / name, text)
@@ -306,6 +347,8 @@ def build_book(notebooks_dir="build/notebooks", figures_dir="figures", site_dir=
         # next build reads them again and fails again until the cause is fixed
         shutil.rmtree(work_dir / "doctrees", ignore_errors=True)
         raise SolverError(f"the book did not build: Sphinx's warnings above (sources in {work_dir / 'src'})")
+    for stem in stems:  # the download button gives the notebook as papermill executed it (not the staged copy)
+        shutil.copyfile(Path(notebooks_dir) / f"{stem}.ipynb", site_dir / "_sources" / f"{stem}.ipynb")
     target = site_dir / "_static" / "mathjax"
     if not (target / MATHJAX_SCRIPT).exists():
         shutil.copytree(mathjax_dir(), target, dirs_exist_ok=True)

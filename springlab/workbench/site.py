@@ -70,13 +70,16 @@ _REF = re.compile(r'<(img|script|link|a)\b[^>]*?\s(src|href)="([^"]*)"', re.I)
 
 
 def check_links(page) -> list[str]:
-    """Problems with what an HTML page references: a local file that does not exist,
-    or a script, image or stylesheet fetched from the internet. Links (<a>) to other
-    sites are allowed; in-page anchors and data: URIs are fine."""
+    """Problems with what an HTML page references: a local file that does not exist (a link
+    to a folder counts as missing unless the folder holds an index.html: a download that
+    points to a folder downloads nothing), an in-page or cross-page anchor (``#id``) that no
+    element carries, or a script, image or stylesheet fetched from the internet. Links (<a>)
+    to other sites are allowed; data: URIs are fine."""
     page = Path(page)
+    text = page.read_text()
     problems = []
-    for tag, _attr, ref in _REF.findall(page.read_text()):
-        if not ref or ref.startswith(("#", "data:", "mailto:")):
+    for tag, _attr, ref in _REF.findall(text):
+        if not ref or ref.startswith(("data:", "mailto:")):
             if not ref:
                 problems.append(f"<{tag}> with an empty reference")
             continue
@@ -84,10 +87,27 @@ def check_links(page) -> list[str]:
             if tag.lower() != "a":
                 problems.append(f"<{tag}> fetches {ref} from the internet")
             continue
-        target = (page.parent / ref.split("?")[0].split("#")[0]).resolve()
-        if not target.exists():
+        path, _, fragment = ref.split("?")[0].partition("#")
+        target = (page.parent / path).resolve() if path else page.resolve()
+        if target.is_dir() and not (target / "index.html").is_file():
+            problems.append(f"<{tag}> points to a folder, not a file: {ref}")
+        elif not target.exists():
             problems.append(f"<{tag}> points to a missing file: {ref}")
+        elif fragment and target.suffix == ".html" and not _has_id(target, fragment):
+            problems.append(f"<{tag}> points to an anchor that is not there: {ref}")
     return problems
+
+
+_IDS: dict[tuple[Path, float], set[str]] = {}
+
+
+def _has_id(page: Path, fragment: str) -> bool:
+    from urllib.parse import unquote
+
+    key = (page, page.stat().st_mtime)
+    if key not in _IDS:
+        _IDS[key] = set(re.findall(r'\sid="([^"]+)"', page.read_text()))
+    return unquote(fragment) in _IDS[key]
 
 
 def main(argv=None) -> int:
@@ -167,6 +187,34 @@ return {math: document.querySelectorAll('span.math, div.math').length,
 """
 
 
+_READER = r"""
+const article = document.querySelector('article.bd-article') || document.body;
+const column = article.clientWidth;
+const pipes = Array.from(article.querySelectorAll('p, li'))
+    .filter(e => /\|\s*:?-{3,}:?\s*\|/.test(e.textContent)).map(e => e.textContent.slice(0, 80));
+const leaks = [];
+const walker = document.createTreeWalker(article, NodeFilter.SHOW_TEXT);
+const tex = /\\[A-Za-z]{2,}|\\[()[\]]|\$\$|\$[^$\s][^$\n]*\$/;
+while (walker.nextNode()) {
+    const node = walker.currentNode, el = node.parentElement;
+    if (!el || el.closest('mjx-container, script, style, code, .cell_input, .highlight, .doctest, dl.py'))
+        continue;
+    if (el.closest('pre') && !el.closest('.cell_output')) continue;
+    const m = node.textContent.match(tex);
+    if (m) leaks.push(node.textContent.slice(Math.max(0, m.index - 20), m.index + 40).trim());
+}
+const wide = [];
+for (const el of article.querySelectorAll('.cell_output > *, mjx-container[display="true"]')) {
+    const width = Math.max(el.scrollWidth, ...Array.from(el.querySelectorAll('pre, table, svg'))
+                                                  .map(e => Math.max(e.scrollWidth, e.getBoundingClientRect().width)));
+    if (width > 2 * column) wide.push([Math.round(width), el.textContent.trim().slice(0, 60)]);
+}
+const numbered = Array.from(article.querySelectorAll('mjx-container [data-mml-node="mlabeledtr"]')).length;
+const labels = Array.from(article.querySelectorAll('[id^="equation-"], [id^="eq-"]')).map(e => e.id);
+return {column, pipes, leaks, wide, numbered, labels};
+"""
+
+
 def _driver(found):
     from selenium import webdriver
     from selenium.webdriver.chrome.options import Options
@@ -176,7 +224,7 @@ def _driver(found):
     options.binary_location = found[0]
     for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                "--no-first-run", "--window-size=1400,1000", "--allow-file-access-from-files"):
+                "--no-first-run", "--window-size=1280,1000", "--allow-file-access-from-files"):
         options.add_argument(arg)
     options.set_capability("goog:loggingPrefs", {"performance": "ALL"})  # the network log
     return webdriver.Chrome(service=Service(found[1]), options=options)
@@ -218,12 +266,16 @@ def _wait(driver, script: str, timeout: float):
         time.sleep(0.1)
 
 
-def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, search=None,
+def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, search=None, numbered=(),
                   math_timeout: float = 30.0) -> dict[str, list[str]]:
     """Open each page in headless Chromium and list what a reader would see broken: an image
-    that did not load, a link to a missing local file, a traceback in an output, TeX that
-    MathJax left unrendered or could not parse, and any request that leaves the machine
-    (Chromium's network log: every request must be ``file://`` or inline).
+    that did not load, a link to a missing local file, folder or anchor (:func:`check_links`:
+    a download included), a traceback in an output, TeX that MathJax left unrendered or could
+    not parse, TeX with a doubled backslash (``\\\\tfrac``), a paragraph that is a raw Markdown
+    table (pipes and ``---``), TeX shown as text outside the math (``\\frac``, ``$...$``, in
+    prose and in outputs), an output (or a display equation) more than twice as wide as the
+    text column, and any request that leaves the machine (Chromium's network log: every
+    request must be ``file://`` or inline).
 
     :param screenshots: {page: png path}: screenshots to save (the page as a reader first sees it)
     :param network_log: a file to write every request to, page by page
@@ -231,6 +283,8 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
         sidebar must link; a missing one is a problem of the first page
     :param search: (term, page name): searching the book for ``term`` must list that page
         (reported under "search")
+    :param numbered: page names (``zhang2023_dyad.html``) that must show a numbered display
+        equation (a ``\\tag``: a paper's own equation number)
     :returns: {page: problems}, each page named by its path from the first page's folder
     :raises SolverError: when Chromium and its driver are not installed
     """
@@ -265,6 +319,13 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
                 problems.append(f"{math['raw']} equation(s) left as raw TeX")
             if math["errors"]:
                 problems.append(f"{math['errors']} equation(s) MathJax could not parse")
+            problems += [f"TeX with a doubled backslash (a command read as a line break): {t}" for t in math["doubled"]]
+            reader = driver.execute_script(_READER)
+            problems += [f"a raw Markdown table in a paragraph: {t}" for t in reader["pipes"]]
+            problems += [f"TeX left as text: {t}" for t in reader["leaks"]]
+            problems += [f"an output {w} px wide in a {reader['column']} px column: {t}" for w, t in reader["wide"]]
+            if page.name in numbered and not reader["numbered"]:
+                problems.append("no numbered equation (a display equation with the paper's number, \\tag{...})")
             if k == 0 and chapters:
                 linked = {Path(h.split("#")[0]).name for h in driver.execute_script(
                     "return Array.from(document.querySelectorAll('nav.bd-docs-nav a')).map(a => a.href)")}

@@ -63,7 +63,8 @@ html_theme_options = {
     "collapse_navbar": True,
 }
 html_show_sourcelink = False
-html_copy_source = False
+html_copy_source = True  # the download button: the executed notebook (the builder puts papermill's copy there)
+html_sourcelink_suffix = ""
 
 # the book links each citation in a docstring (a paper's key before an equation, table or figure) to its chapter
 CHAPTERS = dict(item.split("=", 1) for item in os.environ.get("SPRINGLAB_BOOK_CHAPTERS", "").split(";") if item)
@@ -95,6 +96,20 @@ def _plain_text(app, what, name, obj, options, lines):
         k += 1
 
 
+def _data_stays_home(app, modname, attribute):
+    """viewcode takes a documented constant's source from its value's module: ``CITATION``
+    (a compiled pattern) from ``re``, paper 004's ``ARM`` from the module of its class. A
+    constant is defined where it is documented; classes and functions keep their own module."""
+    import importlib
+    import inspect
+
+    obj = getattr(importlib.import_module(modname), attribute, None)
+    if inspect.isclass(obj) or inspect.isroutine(obj) or inspect.ismodule(obj):
+        return getattr(obj, "__module__", None) or modname
+    return modname
+
+
 def setup(app):
+    app.connect("viewcode-follow-imported", _data_stays_home)
     app.connect("autodoc-process-docstring", _plain_text)
     app.connect("autodoc-process-docstring", _link_citations)
