@@ -1,12 +1,14 @@
 """The book (build/site): built by Sphinx from executed notebooks, every claim linked to its
 section, citations linked to chapters, and the browser check: headless Chromium (Debian's
-chromium and chromium-driver) opens every page, searches, reads the sidebar and records the
-network log. `.ci/run` installs Chromium and sets SPRINGLAB_REQUIRE_BROWSER=1, so CI always
-runs the browser tests; elsewhere they are skipped when Chromium is not installed.
+chromium and chromium-driver) opens every page as a reader would (1280 px wide), searches, reads
+the sidebar and records the network log. `.ci/run` installs Chromium and sets
+SPRINGLAB_REQUIRE_BROWSER=1, so CI always runs the browser tests; elsewhere they are skipped
+when Chromium is not installed.
 
-The book here is built from two notebooks run with quick=True (the full book is built by
-`make figures`, with the same -W). Its screenshots and network log stay under
-build/book-check/ for the reader of the CI log."""
+The book here is the whole book, built (with the API reference and -W, as `make figures` builds
+it) from every notebook's quick run, the runs the notebook tests check (tests/quickruns.py). Its
+screenshots (every chapter) and network log stay under build/book-check/ for the reader of the
+CI log."""
 
 import json
 import os
@@ -15,14 +17,15 @@ import shutil
 from pathlib import Path
 
 import pytest
+from quickruns import FIGURES, OUT as RUNS, STEMS as ALL_STEMS, quick_run
 
 from springlab.errors import SolverError
-from springlab.workbench import book, site
-from springlab.workbench.notebooks import run_notebook
+from springlab.papers import PAPERS
+from springlab.workbench import book, prose, site
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build" / "book-check"
-STEMS = ("lenzo2017_two_spring_arm", "zhang2023_dyad")
+STEMS = ("lenzo2017_two_spring_arm", "zhang2023_dyad")  # the chapters the tests below read closely
 REQUIRED = os.environ.get("SPRINGLAB_REQUIRE_BROWSER") == "1"
 needs_browser = pytest.mark.skipif(site.find_browser() is None and not REQUIRED,
                                    reason="headless Chromium not installed (apt-get install chromium chromium-driver)")
@@ -30,9 +33,9 @@ needs_browser = pytest.mark.skipif(site.find_browser() is None and not REQUIRED,
 
 @pytest.fixture(scope="module")
 def built():
-    """build/book-check/site: the book of two quick notebooks, with the API reference, built
-    once per test run: the first worker to get here builds it, under a lock, and the others
-    (pytest-xdist) read it."""
+    """build/book-check/site: the book of every notebook's quick run, with the API reference,
+    built once per test run: the first worker to get here builds it, under a lock, and the
+    others (pytest-xdist) read it."""
     import fcntl
 
     run = os.environ.get("PYTEST_XDIST_TESTRUNUID", f"pid {os.getpid()}")
@@ -42,12 +45,13 @@ def built():
         done = OUT / "built-by"
         if not (done.exists() and done.read_text() == run):
             shutil.rmtree(OUT, ignore_errors=True)
-            notebooks, figures = OUT / "notebooks", OUT / "figures"
-            for stem in STEMS:
-                run_notebook(ROOT / "notebooks" / f"{stem}.ipynb", notebooks / f"{stem}.ipynb",
-                             {"quick": True, "figures_dir": str(figures / stem)})
-                assert site.executed_errors(notebooks / f"{stem}.ipynb") == []
-            site.build_site(notebooks, OUT / "site", figures, OUT / "work")
+            for stem in ALL_STEMS:
+                assert site.executed_errors(quick_run(stem)) == []
+            notebooks = OUT / "notebooks"
+            notebooks.mkdir(parents=True)
+            for stem in ALL_STEMS:
+                shutil.copyfile(RUNS / f"{stem}.ipynb", notebooks / f"{stem}.ipynb")
+            site.build_site(notebooks, OUT / "site", FIGURES, OUT / "work")
             done.write_text(run)
     return OUT / "site"
 
@@ -56,12 +60,12 @@ def test_every_page_resolves_and_fetches_nothing_from_the_internet(built):
     pages = [p for p in built.rglob("*.html") if p.relative_to(built).parts[0] != "_static"]
     assert len(pages) > 20  # chapters, report, API pages, module sources, search, index
     assert {p: site.check_links(p) for p in pages if site.check_links(p)} == {}
-    assert (built / "_static" / "mathjax" / "MathJax.js").exists()  # MathJax served by the site
+    assert (built / "_static" / "mathjax" / book.MATHJAX_SCRIPT).exists()  # MathJax served by the site
 
 
 def test_the_front_page_gives_dois_run_times_and_claims_by_status(built):
     text = (built / "index.html").read_text()
-    assert "10.1016/j.mechmachtheory.2023.105497" not in text  # 000 is not in this book
+    assert "10.1016/j.mechmachtheory.2023.105497" in text  # 000 prints its DOI
     assert "no DOI (the text prints none" in text  # 002 and 004 print none
     assert "http://shura.shu.ac.uk/16806/" in text  # 004's archive, as its text gives it
     for stem in STEMS:
@@ -73,7 +77,7 @@ def test_the_front_page_gives_dois_run_times_and_claims_by_status(built):
 def test_every_claim_in_the_report_links_to_the_section_that_makes_it(built):
     report = (built / "report.html").read_text()
     for stem in STEMS:
-        claims = json.loads((OUT / "figures" / stem / "claims.json").read_text())
+        claims = json.loads((FIGURES / stem / "claims.json").read_text())
         assert all(isinstance(c["cell"], int) for c in claims)  # each recorded in a cell
         links = re.findall(rf'href="{stem}\.html#({stem.replace("_", "-")}-s\d+)"', report)
         assert len(links) == len(claims)
@@ -134,17 +138,19 @@ def test_the_book_reads_in_chromium_offline(built):
              built / "_modules" / "springlab" / "mechanisms" / "dyad" / "synthesis.html"]
     assert len(pages) >= 17
     shots = OUT / "screenshots"
+    chapters = [built / f"{stem}.html" for stem in ALL_STEMS]
     term = _term_in_one_page_only(built, "zhang2023_dyad")
     result = site.browser_check(
         pages, network_log=OUT / "network.log",
-        screenshots={built / "index.html": shots / "front-page.png", built / "zhang2023_dyad.html": shots / "chapter.png",
-                     built / "report.html": shots / "report.png"},
-        chapters=[f"{s}.html" for s in STEMS] + ["report.html", "index.html"], search=(term, "zhang2023_dyad.html"))
+        screenshots={built / "index.html": shots / "front-page.png", built / "report.html": shots / "report.png",
+                     **{page: shots / f"{page.stem}.png" for page in chapters}},
+        chapters=[p.name for p in chapters] + ["report.html", "index.html"], search=(term, "zhang2023_dyad.html"),
+        numbered=[f"{stem}.html" for stem in ALL_STEMS if PAPERS.get(stem, {}).get("key")])
     assert result == {**{str(p.relative_to(built)): [] for p in pages}, "search": []}, term
     log = (OUT / "network.log").read_text().splitlines()
-    assert any("_static/mathjax/MathJax.js" in line for line in log)  # the log holds every request
+    assert any(f"_static/mathjax/{book.MATHJAX_SCRIPT}" in line for line in log)  # the log holds every request
     assert all(line.split("\t")[1].startswith(site.LOCAL_SCHEMES) for line in log)
-    assert all((shots / f"{name}.png").stat().st_size > 20_000 for name in ("front-page", "chapter", "report"))
+    assert all((shots / f"{page.stem}.png").stat().st_size > 20_000 for page in [*chapters, built / "index.html"])
 
 
 @needs_browser
@@ -163,3 +169,64 @@ def test_the_browser_check_catches_a_broken_page(tmp_path, built):
     # a search that lists nothing is caught too
     found = site.browser_check([built / "index.html"], search=("zzqqxxnotaword", "zhang2023_dyad.html"))
     assert found["search"] and "does not list" in found["search"][0]
+
+
+@needs_browser
+def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, built):
+    """Each defect the full book once had, on a page of its own kind: the check must name it;
+    the same page without the defects (the control) passes."""
+    mathjax = (built / "_static" / "mathjax" / book.MATHJAX_SCRIPT).as_uri()
+    (tmp_path / "_sources").mkdir()
+
+    def page(name, body):
+        path = tmp_path / name
+        path.write_text('<html><head><script>window.MathJax = {options: {processHtmlClass: "math"}};</script>'
+                        f'<script src="{mathjax}"></script></head><body><article class="bd-article" style="width: 600px">'
+                        f"{body}</article></body></html>")
+        return path
+
+    broken = page("broken.html",
+                  "<p>| quantity | paper | |---|---| | k | 718.67 |</p>"  # a table left as pipes
+                  "<p>the energy $\\tfrac12 k|AB|^2$ as text</p>"  # TeX outside the math
+                  '<p><span class="math">\\(\\\\tfrac12 k\\)</span></p>'  # a doubled backslash
+                  '<p><span class="math">\\(\\frac{a}\\)</span></p>'  # TeX MathJax cannot parse
+                  '<div class="cell_output"><pre style="white-space: pre">' + "Claim(quantity=...) " * 120 + "</pre></div>"
+                  '<a href="_sources/">.ipynb</a>')  # a download of a folder
+    good = page("good.html", "<p>A table:</p><table><tr><td>k</td><td>718.67</td></tr></table>"
+                             '<p><span class="math">\\(\\tfrac12 k\\)</span></p>'
+                             '<div class="math">\\[h_j = d_j \\tag{8}\\]</div>'
+                             '<div class="cell_output"><pre>short</pre></div>')
+    result = site.browser_check([broken, good], numbered=["broken.html", "good.html"])
+    problems = "\n".join(result["broken.html"])
+    for expected in ("raw Markdown table", "TeX left as text: ", "doubled backslash", "could not parse",
+                     "px wide in a 600 px column", "points to a folder", "no numbered equation"):
+        assert expected in problems, (expected, problems)
+    assert result["good.html"] == []
+
+
+def test_the_prose_names_papers_and_links_equations_but_leaves_code_and_math_alone():
+    names = {"000": ("juang2023_spatial_balance", "Juang et al. (2023)"),
+             "003": ("juang2022_spring_efficiency", "Juang et al. (2022)")}
+    labels = {("000", "41"), ("003", "7")}
+    text = "000's Eq. (41) forbids it; Eq. (7) holds; Eq. (8) is not shown; `000` and $000$ stay; 0.004 m"
+    assert prose.link_markdown(text, "003", names, labels) == (
+        "{doc}`Juang et al. (2023) <juang2023_spatial_balance>`'s {ref}`Eq. (41) <eq-000-41>` forbids it; "
+        "{ref}`Eq. (7) <eq-003-7>` holds; Eq. (8) is not shown; `000` and $000$ stay; 0.004 m")
+    # a paper's own chapter names it without a link to itself; HTML keeps its tags
+    assert prose.link_markdown("paper 003's Table 2", "003", names, labels) == "Juang et al. (2022)'s Table 2"
+    assert prose.link_html('<td title="000">Section 5, Eq. (7)</td>', "003", names, labels,
+                           page="juang2022_spring_efficiency") == '<td title="000">Section 5, <a href="#eq-003-7">Eq. (7)</a></td>'
+    anchored = prose.anchor_equations("Eq. (41) as printed:\n$$\nk a b = m g d \\tag{41}\n$$\n", "000")
+    assert "\n\n(eq-000-41)=\n$$\nk a b" in anchored
+    assert prose.equation_numbers(anchored) == ["41"]
+    assert prose.equation_numbers("inline $$x \\tag{9}$$ in a sentence") == []  # not a block of its own
+
+
+def test_the_book_links_equations_and_names_papers(built):
+    lenzo = (built / "lenzo2017_two_spring_arm.html").read_text()
+    numbers = [n for cell in json.loads((ROOT / "notebooks" / "lenzo2017_two_spring_arm.ipynb").read_text())["cells"]
+               if cell["cell_type"] == "markdown" for n in prose.equation_numbers("".join(cell["source"]))]
+    assert numbers and all(f'id="{prose.equation_label("004", n)}"' in lenzo for n in numbers)
+    text = re.sub(r"(?s)<(script|style|pre|code)\b.*?</\1>|<[^>]+>", " ", (built / "springlab_design_your_arm.html").read_text())
+    assert not re.search(r"(?<![\w.,/-])00[0-4](?!\w)", text)  # no paper by its key
+    assert 'href="juang2023_spatial_balance.html"' in (built / "springlab_design_your_arm.html").read_text()

@@ -1,13 +1,17 @@
 """The notebooks are tests: each runs with quick=True, and each has a parameters cell."""
 
 import json
+import re
 from pathlib import Path
 
 import papermill as pm
 import pytest
+from quickruns import FIGURES, quick_run
 
+from springlab.papers import PAPERS
+from springlab.workbench import prose
 from springlab.workbench.claims import STATUSES
-from springlab.workbench.notebooks import notebook_paths, run_notebook
+from springlab.workbench.notebooks import notebook_paths
 
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = notebook_paths(ROOT / "notebooks")
@@ -58,9 +62,9 @@ def test_notebook_is_committed_without_outputs(path):
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
-def test_notebook_runs_quick(path, tmp_path):
-    figures = tmp_path / "figures"
-    run_notebook(path, tmp_path / path.name, {"quick": True, "figures_dir": str(figures)})
+def test_notebook_runs_quick(path):
+    quick_run(path.stem)  # the book test builds the whole book from the same runs
+    figures = FIGURES / path.stem
     claims = json.loads((figures / "claims.json").read_text())
     assert claims and all(c["status"] in STATUSES for c in claims)
     assert all(c["status"] != "discrepancy" or c["note"] for c in claims), "a discrepancy needs a note"
@@ -83,3 +87,42 @@ def test_no_section_heading_is_repeated(path):
     """The book's contents and the report's links go by section: each heading once."""
     found = headings(json.loads(path.read_text()))
     assert len(found) == len(set(found)), [h for h in found if found.count(h) > 1]
+
+
+def markdown_problems(nb: dict) -> list[str]:
+    """A notebook's Markdown that the book would show broken: a TeX command written with a
+    doubled backslash (``\\\\tfrac``: MathJax reads a line break, then the letters), and a paper
+    equation number shown twice (its anchor in the book must be unique)."""
+    problems, numbers = [], []
+    for k, cell in enumerate(nb["cells"]):
+        if cell["cell_type"] != "markdown":
+            continue
+        text = "".join(cell["source"])
+        problems += [f"cell {k}: doubled backslash in {m.group(0)!r}" for m in re.finditer(r"\\\\[A-Za-z]+", text)]
+        numbers += prose.equation_numbers(text)
+    problems += [f"equation ({n}) is shown twice" for n in sorted({n for n in numbers if numbers.count(n) > 1})]
+    return problems
+
+
+def test_the_markdown_check_finds_a_doubled_backslash_and_a_repeated_number():
+    cells = [{"cell_type": "markdown", "source": "$\\\\tfrac12 k$\n\n$$\nx \\tag{8}\n$$\n"},
+             {"cell_type": "markdown", "source": "$$\ny \\tag{8}\n$$\n"}]
+    assert markdown_problems({"cells": cells}) == ["cell 0: doubled backslash in '\\\\\\\\tfrac'",
+                                                   "equation (8) is shown twice"]
+    cells = [{"cell_type": "markdown", "source": "$\\tfrac12 k$, $a \\\\ b$\n\n$$\nx \\tag{8}\n$$\n"}]
+    assert markdown_problems({"cells": cells}) == []  # a line break before a space is one
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
+def test_the_markdown_renders(path):
+    assert markdown_problems(json.loads(path.read_text())) == []
+
+
+@pytest.mark.parametrize("path", [p for p in NOTEBOOKS if PAPERS.get(p.stem, {}).get("key")], ids=lambda p: p.stem)
+def test_a_paper_chapter_shows_its_key_equations_numbered_as_printed(path):
+    """Each paper's notebook shows the equations it reproduces as display math with the paper's
+    own numbers (\\tag{23b}); the book anchors and links them."""
+    nb = json.loads(path.read_text())
+    numbers = [n for cell in nb["cells"] if cell["cell_type"] == "markdown"
+               for n in prose.equation_numbers("".join(cell["source"]))]
+    assert len(numbers) >= 4, numbers

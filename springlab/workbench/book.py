@@ -336,8 +336,18 @@ def build_book(notebooks_dir="build/notebooks", figures_dir="figures", site_dir=
     """
     from sphinx.cmd.build import build_main
 
+    from springlab.workbench.cache import PACKAGE, digest
+
     site_dir, work_dir = Path(site_dir), Path(work_dir)
     stems = stage(notebooks_dir, figures_dir, work_dir / "src", api=api)
+    # viewcode keeps each module's tags from the build that first read it: after a change to
+    # the code, a page could link an anchor the new source page no longer has. The API is read
+    # afresh whenever the package changed (a build with the same code reuses everything).
+    code = digest(sorted(p for p in PACKAGE.rglob("*.py") if "__pycache__" not in p.parts))
+    stamp = work_dir / "package.sha256"
+    if not stamp.exists() or stamp.read_text() != code:
+        shutil.rmtree(work_dir / "doctrees", ignore_errors=True)
+        shutil.rmtree(site_dir / "_modules", ignore_errors=True)
     os.environ["SPRINGLAB_BOOK_CHAPTERS"] = ";".join(
         f"{PAPERS[s]['key']}={s}" for s in stems if PAPERS.get(s, {}).get("key"))
     args = ["-b", "html", "-c", str(CONF_DIR), "-d", str(work_dir / "doctrees"), "-W", "--keep-going", "-q",
@@ -346,7 +356,9 @@ def build_book(notebooks_dir="build/notebooks", figures_dir="figures", site_dir=
         # a warning is reported only when its page is read: forget the read pages, so the
         # next build reads them again and fails again until the cause is fixed
         shutil.rmtree(work_dir / "doctrees", ignore_errors=True)
+        stamp.unlink(missing_ok=True)
         raise SolverError(f"the book did not build: Sphinx's warnings above (sources in {work_dir / 'src'})")
+    stamp.write_text(code)
     for stem in stems:  # the download button gives the notebook as papermill executed it (not the staged copy)
         shutil.copyfile(Path(notebooks_dir) / f"{stem}.ipynb", site_dir / "_sources" / f"{stem}.ipynb")
     target = site_dir / "_static" / "mathjax"

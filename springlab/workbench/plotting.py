@@ -47,9 +47,28 @@ def save_figure(fig, name: str, directory) -> list[Path]:
         saved_dpi = fig.dpi if saved_dpi == "figure" else saved_dpi
         with PILImage.open(png) as im:
             width = round(im.width * mpl.rcParams["figure.dpi"] / saved_dpi)
-        display(Image(data=png.read_bytes(), format="png", width=width))
+        display(Image(data=png.read_bytes(), format="png", width=width, metadata={"alt": describe(fig)}))
         plt.close(fig)
     return [png, svg]
+
+
+def describe(fig) -> str:
+    """A figure's alt text, from what it says: its title (or its panels' titles), then each
+    labelled panel's y label against its x label.
+
+    >>> fig, ax = plt.subplots()
+    >>> _ = ax.set(title="Fig. 16", xlabel="time t (s)", ylabel="energy (J)")
+    >>> describe(fig)
+    'Fig. 16: energy (J) against time t (s)'
+    >>> plt.close(fig)
+    """
+    title = fig._suptitle.get_text() if getattr(fig, "_suptitle", None) else ""
+    axes = [ax for ax in fig.axes if ax.get_visible() and (ax.get_xlabel() or ax.get_ylabel() or ax.get_title())]
+    titles = [ax.get_title() for ax in axes if ax.get_title()]
+    head = title or "; ".join(dict.fromkeys(titles))
+    plots = [f"{ax.get_ylabel()} against {ax.get_xlabel()}" for ax in axes if ax.get_xlabel() and ax.get_ylabel()]
+    body = "; ".join(dict.fromkeys(plots))
+    return ": ".join(p for p in (head.replace("\n", " "), body) if p) or "figure"
 
 
 def _in_kernel() -> bool:

@@ -88,7 +88,12 @@ def check_links(page) -> list[str]:
                 problems.append(f"<{tag}> fetches {ref} from the internet")
             continue
         path, _, fragment = ref.split("?")[0].partition("#")
-        target = (page.parent / path).resolve() if path else page.resolve()
+        if path.startswith("file://"):
+            from urllib.parse import unquote, urlparse
+
+            target = Path(unquote(urlparse(path).path))
+        else:
+            target = (page.parent / path).resolve() if path else page.resolve()
         if target.is_dir() and not (target / "index.html").is_file():
             problems.append(f"<{tag}> points to a folder, not a file: {ref}")
         elif not target.exists():

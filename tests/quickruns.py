@@ -1,0 +1,40 @@
+"""Each notebook run once per test run with quick=True, by whichever test needs it first.
+
+The notebook tests (tests/test_notebooks.py) check every quick run, and the book test
+(tests/test_book.py) builds the whole book from the same runs and opens it in Chromium. Under
+pytest-xdist the two may sit on different workers: a file lock per notebook lets the first
+caller run it and the others wait for it and read its output. A run is kept for the test run
+that made it (xdist's run id) and made again in the next."""
+
+import fcntl
+import os
+import shutil
+from pathlib import Path
+
+from springlab.workbench.notebooks import notebook_paths, run_notebook
+
+ROOT = Path(__file__).resolve().parents[1]
+OUT = ROOT / "build" / "test-notebooks"
+FIGURES = OUT / "figures"
+STEMS = tuple(p.stem for p in notebook_paths(ROOT / "notebooks"))
+
+
+def _run_id() -> str:
+    return os.environ.get("PYTEST_XDIST_TESTRUNUID", f"pid {os.getpid()}")
+
+
+def quick_run(stem: str) -> Path:
+    """``build/test-notebooks/<stem>.ipynb``, notebook ``stem`` executed with quick=True in this
+    test run (its figures and claims in ``build/test-notebooks/figures/<stem>``)."""
+    OUT.mkdir(parents=True, exist_ok=True)
+    executed, done = OUT / f"{stem}.ipynb", OUT / f"{stem}.run"
+    with open(OUT / f"{stem}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not (done.exists() and done.read_text() == _run_id()):
+            done.unlink(missing_ok=True)
+            executed.unlink(missing_ok=True)
+            shutil.rmtree(FIGURES / stem, ignore_errors=True)
+            run_notebook(ROOT / "notebooks" / f"{stem}.ipynb", executed,
+                         {"quick": True, "figures_dir": str(FIGURES / stem)})
+            done.write_text(_run_id())
+    return executed
