@@ -47,6 +47,21 @@ class Table:
     def markdown(self) -> str:
         return markdown_table(self.headers, self.rows)
 
+    def transposed(self) -> Table:
+        """The table on its side: a row per column after the first (its header, then its
+        cells), a column per row (headed by the row's first cell). A wide table of a few rows
+        reads down a page's column instead of running off it.
+
+        >>> print(Table(["spring", "k (N/m)", "L0 (mm)"], [["S(1,2)", 294, 40.0], ["S(1,4)", 719, 52.5]]).transposed())
+        | spring | S(1,2) | S(1,4) |
+        |---|---|---|
+        | k (N/m) | 294 | 719 |
+        | L0 (mm) | 40.0 | 52.5 |
+        """
+        rows = [[row.get(h) for h in self.headers] if isinstance(row, dict) else list(row) for row in self.rows]
+        return Table([self.headers[0], *(str(row[0]) for row in rows)],
+                     [[header, *(row[k] for row in rows)] for k, header in enumerate(self.headers) if k])
+
     def _repr_markdown_(self) -> str:
         return self.markdown()
 

@@ -216,9 +216,13 @@ def test_the_prose_names_papers_and_links_equations_but_leaves_code_and_math_alo
     assert prose.link_markdown("paper 003's Table 2", "003", names, labels) == "Juang et al. (2022)'s Table 2"
     assert prose.link_html('<td title="000">Section 5, Eq. (7)</td>', "003", names, labels,
                            page="juang2022_spring_efficiency") == '<td title="000">Section 5, <a href="#eq-003-7">Eq. (7)</a></td>'
-    anchored = prose.anchor_equations("Eq. (41) as printed:\n$$\nk a b = m g d \\tag{41}\n$$\n", "000")
-    assert "\n\n(eq-000-41)=\n$$\nk a b" in anchored
-    assert prose.equation_numbers(anchored) == ["41"]
+    printed = "Eq. (41) as printed:\n$$\nk a b = m g d \\tag{41}\n$$\n"
+    assert prose.equation_numbers(printed) == ["41"]
+    assert prose.anchor_equations(printed, "000") == (
+        "Eq. (41) as printed:\n\n(eq-000-41)=\n```{math}\n:nowrap:\n\\[k a b = m g d \\tag{41}\\]\n```\n")
+    # an AMS environment goes to MathJax as it is (Sphinx would put a line break's lines in split)
+    assert "\n\\begin{align}a &= b \\tag{5} \\\\ c &= d \\tag{6}\\end{align}\n" in prose.anchor_equations(
+        "$$\\begin{align}a &= b \\tag{5} \\\\ c &= d \\tag{6}\\end{align}$$", "002")
     assert prose.equation_numbers("inline $$x \\tag{9}$$ in a sentence") == []  # not a block of its own
 
 

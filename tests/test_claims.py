@@ -132,3 +132,23 @@ def test_a_claim_outside_a_kernel_has_no_cell():
     claims = Claims("test")
     claims.input("x", "here", None, 1.0, unit="m", note="fed in")
     assert claims.records[0].cell is None
+
+
+def test_the_html_table_shows_every_claim_with_its_details_under_it():
+    from springlab.workbench.claims import HTML_COLUMNS, html_table
+
+    c = Claims("t")
+    c.compare("k_S(1,4) <spring>", "Table 3", 718.67, 2156 / 3, unit="N/m", tolerance=0.005,
+              tolerance_basis="half a unit", decimals=2, note="printed rounded")
+    c.compare("n", "Table 1", 15, 21, unit="configurations", tolerance=0, tolerance_basis="a count: exact",
+              expect="discrepancy", cause="rows omitted")
+    records = c.to_records()
+    table = html_table(records, made_in=[("x.html#x-s1", "§1"), None])
+    assert table.count('<tr class="claim ') == 2 and table.count('<tr class="claim-details') == 2
+    assert "&lt;spring&gt;" in table and "<spring>" not in table  # text is escaped
+    assert "tolerance 0.005 N/m (half a unit)" in table and "Cause: rows omitted" in table
+    assert "discrepancy, cause found" in table and '<a href="x.html#x-s1">§1</a>' in table
+    assert table.count("<th>") == len(HTML_COLUMNS) + 1 and "\n" not in table  # one HTML block in Markdown
+    # a notebook shows the claims, and a claim a cell ends with, as this table (not a repr)
+    assert c._repr_html_() == html_table(records)
+    assert c.records[0]._repr_html_().count('<tr class="claim ') == 1

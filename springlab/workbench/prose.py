@@ -53,14 +53,24 @@ def equation_numbers(text: str) -> list[str]:
     return [tag.strip() for block in _BLOCK.findall(text) for tag in _TAG.findall(block)]
 
 
+_ENVIRONMENT = re.compile(r"\\begin\{(equation|align|alignat|gather|multline|flalign)\*?\}")
+
+
 def anchor_equations(text: str, key: str) -> str:
-    """``text`` with a MyST target ``(eq-<key>-<number>)=`` before each display equation that
-    carries a ``\\tag`` (one per tag), set off by a blank line so the target stands alone."""
+    """``text`` with each display equation that carries a ``\\tag`` set as Sphinx math that
+    MathJax receives unchanged (``nowrap``), after a MyST target ``(eq-<key>-<number>)=`` per tag.
+
+    Sphinx would wrap a display with a line break (``\\\\``) in ``split``, where MathJax refuses
+    ``\\tag``; unwrapped, the block is ``\\[...\\]``, or an AMS environment (``align``) as it is.
+    """
     def anchor(match):
         tags = [t.strip() for t in _TAG.findall(match.group(0))]
         if not tags:
             return match.group(0)
-        return "\n" + "".join(f"({equation_label(key, t)})=\n" for t in tags) + match.group(0).lstrip()
+        body = match.group(0).strip()[2:-2].strip()
+        math = body if _ENVIRONMENT.match(body) else f"\\[{body}\\]"
+        targets = "".join(f"({equation_label(key, t)})=\n" for t in tags)
+        return f"\n{targets}```{{math}}\n:nowrap:\n{math}\n```"
     return _BLOCK.sub(anchor, text)
 
 
