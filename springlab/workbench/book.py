@@ -93,7 +93,8 @@ def equation_labels(notebooks: dict[str, dict]) -> set[tuple[str, str]]:
 def readable(notebook: dict, stem: str, names: dict, labels: set) -> dict:
     """A copy of the notebook as the book shows it (:mod:`springlab.workbench.prose`): its
     numbered equations anchored, papers named by authors and year and linked, equation
-    mentions linked, in its Markdown cells and its cells' Markdown and HTML outputs."""
+    mentions linked, in its Markdown cells and its cells' Markdown and HTML outputs (papers named,
+    unlinked, in its printed outputs)."""
     notebook = json.loads(json.dumps(notebook))
     key = PAPERS.get(stem, {}).get("key")
     for cell in notebook["cells"]:
@@ -102,7 +103,11 @@ def readable(notebook: dict, stem: str, names: dict, labels: set) -> dict:
             cell["source"] = prose.link_markdown(prose.anchor_equations(text, key) if key else text, key, names, labels)
             continue
         for output in cell.get("outputs", []):
+            if output.get("output_type") == "stream":
+                output["text"] = prose.name_papers("".join(output["text"]), key, names)
             data = output.get("data", {})
+            if "text/plain" in data and len(data) == 1:
+                data["text/plain"] = prose.name_papers("".join(data["text/plain"]), key, names)
             if "text/markdown" in data:
                 data["text/markdown"] = prose.link_markdown("".join(data["text/markdown"]), key, names, labels)
             if "text/html" in data:

@@ -24,12 +24,15 @@ from __future__ import annotations
 import re
 from html import escape
 
-__all__ = ["equation_label", "equation_numbers", "anchor_equations", "link_markdown", "link_html"]
+__all__ = ["equation_label", "equation_numbers", "anchor_equations", "link_markdown", "link_html", "name_papers"]
 
 _BLOCK = re.compile(r"(?ms)^[ \t]*\$\$.*?\$\$[ \t]*$")
 """A display equation that is a block of its own: ``$$`` opens a line, ``$$`` closes one."""
 _TAG = re.compile(r"\\tag\{([^{}]+)\}")
-_EQ = r"Eqs?\.\s?(?:\((?P<{0}1>\d+[a-z]?)\)|(?P<{0}2>\d+[a-z]?)\b(?![\-–~]))"
+_EQ = (r"Eqs?\.\s?(?:\((?P<{0}1>\d+[a-z]?)(?:[\-–][a-z]|[\-–]\d+[a-z]?)?\)|(?P<{0}2>\d+[a-z]?)\b)"
+       r"(?:[\-–](?:\(\d+[a-z]?\)|\d+[a-z]?\b|[a-z]\b\)?))?")
+"""An equation mention, "Eq. (23b)" or "Eq. 8", or a range, "Eqs. (20)-(30)", "Eqs. 8-18",
+"Eqs. (48a-f)": a range links to its first equation."""
 _MENTION = re.compile(
     r"(?<![\w.,/\-])(?:[Pp]apers?\s+)?(?P<key>00[0-9])(?![\w]|[.,]\d)(?P<poss>(?:['’]|&#x27;|&#39;)s)?"
     r"(?:(?P<gap>\s+)(?P<eq>" + _EQ.format("n") + r")|\s+(?P<other>Table|Fig|Section))?"
@@ -103,6 +106,11 @@ def _rewrite(text: str, here: str | None, names: dict, labels: set, paper, equat
             return f"{name}{'' if match.group('poss') else ','} {match.group('other')}"
         return name
     return _MENTION.sub(one, text)
+
+
+def name_papers(text: str, here: str | None, names: dict) -> str:
+    """Plain ``text`` (a printed output) with each paper's key replaced by its authors and year."""
+    return _rewrite(text, here, names, set(), lambda key, shown: shown, lambda key, number, shown: shown)
 
 
 def link_markdown(text: str, here: str | None, names: dict, labels: set) -> str:
