@@ -3,7 +3,15 @@ registry of the notebooks that reproduce them (used by the site and the report).
 
 A paper's key ("000" .. "004", the order in which the project took the papers up) is how
 the code cites it, the key before the equation's own number. :data:`BY_KEY` maps a key to its
-entry."""
+entry.
+
+References
+----------
+001: P.-Y. Lin, W.-B. Shieh, D.-Z. Chen (2010), Design of a Gravity-Balanced General Spatial
+Serial-Type Manipulator (cited in its key figure's caption).
+002: Y. Zhang, V. Arakelian (2023), Design and Synthesis of the Gravity Compensator with a
+Non-zero Length Spring (cited in its key figure's caption).
+"""
 
 PAPERS = {
     "juang2023_spatial_balance": {
@@ -26,7 +34,7 @@ PAPERS = {
         "doi": "10.1115/1.4001816",
         "key_figure": "fig9_energies.png",
         "key_caption": "Fig. 9 recomputed by direct geometry: the gravity, spring and total potential energy (J) of "
-                       "the six-link arm along Eq. (26)",
+                       "the six-link arm along 001 Eq. (26)",
     },
     "springlab_design_your_arm": {
         "key": None,  # built on 000 and 003, not a paper
@@ -48,7 +56,7 @@ PAPERS = {
         "doi": None,  # the paper's text gives none
         "key_figure": "exudyn_drive.png",
         "key_caption": "Design B driven slowly in exudyn: the input torque (N m) against the link angle (deg) "
-                       "equals virtual work's unbalanced moment, not the printed Eqs. (20)-(30)",
+                       "equals virtual work's unbalanced moment, not the printed 002 Eqs. (20)-(30)",
     },
     "juang2022_spring_efficiency": {
         "key": "003",

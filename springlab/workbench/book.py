@@ -189,7 +189,8 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
                   f"- claims: {_tally(claims.get(stem, []))}", ""]
         if stem in thumbs:  # at the column's width, its caption also its alt text
             caption = paper.get("key_caption", "")
-            lines += [f"```{{figure}} thumbs/{stem}.png", f":alt: {caption}", f":target: {stem}.html", "",
+            lines += [f"```{{figure}} thumbs/{stem}.png", f":alt: {prose.name_papers(caption, None, names)}",
+                      f":target: {stem}.html", "",
                       prose.link_markdown(_md(caption), paper.get("key"), names, set()), "```", ""]
     lines += ["## How to read a claim", "",
               "Every number a notebook reproduces is a *claim*: the quantity, where the paper prints it, "
