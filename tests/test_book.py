@@ -214,8 +214,13 @@ def test_the_prose_names_papers_and_links_equations_but_leaves_code_and_math_alo
     assert prose.link_markdown(text, "003", names, labels) == (
         "{doc}`Juang et al. (2023) <juang2023_spatial_balance>`'s {ref}`Eq. (41) <eq-000-41>` forbids it; "
         "{ref}`Eq. (7) <eq-003-7>` holds; Eq. (8) is not shown; `000` and $000$ stay; 0.004 m")
-    # a paper's own chapter names it without a link to itself; HTML keeps its tags
-    assert prose.link_markdown("paper 003's Table 2", "003", names, labels) == "Juang et al. (2022)'s Table 2"
+    # in its own chapter a paper is "the paper" and its equations need no name; headings get no links
+    assert prose.link_markdown("Paper 003's Table 2, 003 Eq. (7)", "003", names, labels) == \
+        "The paper's Table 2, {ref}`Eq. (7) <eq-003-7>`"
+    assert prose.link_markdown("## 4. The tie to 000\n000 and the paper-000 arm", "003", names, labels) == \
+        "## 4. The tie to Juang et al. (2023)\n{doc}`Juang et al. (2023) <juang2023_spatial_balance>` and the " \
+        "{doc}`Juang et al. (2023) <juang2023_spatial_balance>` arm"
+    # HTML keeps its tags
     assert prose.link_html('<td title="000">Section 5, Eq. (7)</td>', "003", names, labels,
                            page="juang2022_spring_efficiency") == '<td title="000">Section 5, <a href="#eq-003-7">Eq. (7)</a></td>'
     printed = "Eq. (41) as printed:\n$$\nk a b = m g d \\tag{41}\n$$\n"

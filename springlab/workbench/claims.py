@@ -136,7 +136,7 @@ def html_table(records: list[dict], made_in: list | None = None) -> str:
     head = "".join(f"<th>{escape(c)}</th>" for c in columns)
     rows = []
     for k, r in enumerate(records):
-        status = r["status"] + (", cause found" if r["status"] == "discrepancy" and r.get("cause") else "")
+        status = report_column(r)  # a discrepancy says whether its cause was found
         cells = [f'{escape(r["quantity"])}<br><span class="claim-where">{escape(r["where"])}</span>',
                  number_text(r["paper"]), number_text(r["ours"]), number_text(r.get("difference")),
                  escape(r["unit"]), f"<strong>{escape(status)}</strong>"]

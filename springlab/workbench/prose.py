@@ -34,7 +34,7 @@ _EQ = (r"Eqs?\.\s?(?:\((?P<{0}1>\d+[a-z]?)(?:[\-–][a-z]|[\-–]\d+[a-z]?)?\)|(
 """An equation mention, "Eq. (23b)" or "Eq. 8", or a range, "Eqs. (20)-(30)", "Eqs. 8-18",
 "Eqs. (48a-f)": a range links to its first equation."""
 _MENTION = re.compile(
-    r"(?<![\w.,/\-])(?:[Pp]apers?\s+)?(?P<key>00[0-9])(?![\w]|[.,]\d)(?P<poss>(?:['’]|&#x27;|&#39;)s)?"
+    r"(?<![\w.,/\-])(?P<paper>[Pp]apers?[\s-]+)?(?P<key>00[0-9])(?![\w]|[.,]\d)(?P<poss>(?:['’]|&#x27;|&#39;)s)?"
     r"(?:(?P<gap>\s+)(?P<eq>" + _EQ.format("n") + r")|\s+(?P<other>Table|Fig|Section))?"
     r"|(?<![\w])(?P<eq0>" + _EQ.format("m") + r")")
 """A paper's key ("000", "paper 000's", "papers 000"), perhaps followed by an equation mention
@@ -96,11 +96,17 @@ def _rewrite(text: str, here: str | None, names: dict, labels: set, paper, equat
         key = match.group("key")
         if key not in names:
             return match.group(0)
-        name = paper(key, names[key][1]) + (match.group("poss") or "")
         if match.group("eq"):
             number = match.group("n1") or match.group("n2")
             shown = match.group("eq")
             eq = equation(key, number, shown) if (key, number) in labels else shown
+            if key == here:  # the chapter's own paper: its equation needs no name
+                return eq
+        if key == here:  # "the paper", "The paper's"
+            name = ("The paper" if match.group(0)[0].isupper() else "the paper") + (match.group("poss") or "")
+        else:
+            name = paper(key, names[key][1]) + (match.group("poss") or "")
+        if match.group("eq"):
             return f"{name}{'' if match.group('poss') else ','}{match.group('gap')}{eq}"
         if match.group("other"):
             return f"{name}{'' if match.group('poss') else ','} {match.group('other')}"
@@ -115,15 +121,24 @@ def name_papers(text: str, here: str | None, names: dict) -> str:
 
 def link_markdown(text: str, here: str | None, names: dict, labels: set) -> str:
     """MyST ``text`` of the chapter of paper ``here`` (None: no paper's chapter) with paper keys
-    named and linked (``names``: {key: (chapter stem, "Juang et al. (2023)")}; a paper's own
-    chapter names it unlinked) and equation mentions linked to the ``labels`` ({(key, number)})."""
+    named and linked (``names``: {key: (chapter stem, "Juang et al. (2023)")}; in its own
+    chapter a paper is "the paper", and its equations need no name) and equation mentions
+    linked to the ``labels`` ({(key, number)}). Headings name papers without links."""
     def paper(key, shown):
         return shown if key == here else f"{{doc}}`{shown} <{names[key][0]}>`"
 
     def equation(key, number, shown):
         return f"{{ref}}`{shown} <{equation_label(key, number)}>`"
 
-    return _outside(text, _PROTECTED_MD, lambda t: _rewrite(t, here, names, labels, paper, equation))
+    def line(text_line):
+        if text_line.lstrip().startswith("#"):  # a heading names papers, unlinked (it is a link in the contents)
+            return _outside(text_line, _PROTECTED_MD, lambda t: _rewrite(t, here, names, set(), lambda k, s: s,
+                                                                          lambda k, n, s: s))
+        return _outside(text_line, _PROTECTED_MD, lambda t: _rewrite(t, here, names, labels, paper, equation))
+
+    blocks = re.split(r"(```.*?```)", text, flags=re.S)  # a fence spans lines: kept whole
+    return "".join(b if b.startswith("```") else "".join(line(x) for x in b.splitlines(keepends=True))
+                   for b in blocks)
 
 
 def link_html(text: str, here: str | None, names: dict, labels: set, *, page: str = "") -> str:
