@@ -9,14 +9,15 @@ the book's sources are staged (:mod:`springlab.workbench.book`):
   (``$$ ... \\tag{23b} $$``, a block of its own) gets an anchor ``eq-<key>-<number>``
   (:func:`anchor_equations`);
 * in Markdown cells and in the cells' Markdown and HTML outputs, a paper's key becomes its
-  authors and year, linked to its chapter, and an equation mention ("Eq. (23b)", "Eq. 8",
-  "000's Eq. (41)") a link to the equation where the book shows it with that number
+  authors and year, linked to its chapter, and an equation mention (in the chapter of paper
+  000 "Eq. (23b)" or "Eq. 23b"; anywhere "000 Eq. (23b)") a link to the equation where the book
+  shows it with that number
   (:func:`link_markdown`, :func:`link_html`). Code, math, links and HTML tags are left as
   they are; an equation the book does not show stays plain text.
 
 >>> names = {"000": ("juang2023_spatial_balance", "Juang et al. (2023)")}
->>> link_markdown("as in 000 Eq. (23b) and Eq. 8", "003", names, {("000", "23b")})
-'as in {doc}`Juang et al. (2023) <juang2023_spatial_balance>`, {ref}`Eq. (23b) <eq-000-23b>` and Eq. 8'
+>>> link_markdown("as in 000 Eq. (23b) and 000 Table 3", "003", names, {("000", "23b")})
+'as in {doc}`Juang et al. (2023) <juang2023_spatial_balance>`, {ref}`Eq. (23b) <eq-000-23b>` and {doc}`Juang et al. (2023) <juang2023_spatial_balance>`, Table 3'
 """
 
 from __future__ import annotations
