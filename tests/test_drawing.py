@@ -344,3 +344,116 @@ def test_the_hold_animation_frames_the_arms_and_stops_at_the_floor(arm, exact_sp
     assert arm_fill(balanced, whole) < 0.6  # and the still arm is lost in the frame of the fall
     gif = drawing.hold_animation(arm, exact_springs, motion, tmp_path / "hold.gif", frames=9)
     assert Image.open(gif).n_frames == len(shown.t) and Image.open(gif).size[0] >= 700  # the column's width
+
+
+def smallest_label_gap(fig) -> float:
+    """The smallest space (px) between two spring labels' texts in one panel (inf: none)."""
+    renderer = fig.canvas.get_renderer()
+    fig.canvas.draw()
+    gaps = [np.inf]
+    for ax in fig.axes:
+        boxes = [t.get_window_extent(renderer) for t in ax.texts if t.get_text().startswith("S")]
+        for k, a in enumerate(boxes):
+            for b in boxes[k + 1:]:
+                gaps.append(max(max(a.x0, b.x0) - min(a.x1, b.x1), max(a.y0, b.y0) - min(a.y1, b.y1)))
+    return float(min(gaps))
+
+
+def smallest_label_in_book(fig) -> float:
+    """The height (px) of the smallest spring label's font as the book shows the figure (see
+    :func:`panel_widths_in_book`)."""
+    renderer = fig.canvas.get_renderer()
+    fig.canvas.draw()
+    shrink = min(1.0, BOOK_COLUMN / (fig.get_tightbbox(renderer).width * NOTEBOOK_DPI))
+    return min(t.get_fontsize() for ax in fig.axes for t in ax.texts) * NOTEBOOK_DPI / 72 * shrink
+
+
+@pytest.fixture(scope="module")
+def fig15_poses(arm):
+    """Paper 000's Fig. 15: the arm at the start, middle and end of Table 4's trajectory."""
+    from springlab.model.trajectories import linear_sweep
+    from springlab.papers import juang2023 as paper
+
+    t, angles = linear_sweep(paper.TABLE_4_INITIAL, paper.TABLE_4_ROTATION, paper.DURATION, 301)
+    X = arm.directions(angles)
+    return t[[0, 150, 300]], X[[0, 150, 300]], arm.tip_position(X)
+
+
+def test_paper_000s_fig15_reads_at_the_books_width(arm, exact_springs, fig15_poses, styled):
+    """A row per instant, its two views side by side: every panel at least 280 px wide in the
+    book and not shrunk, 8 pt labels (11 px), never closer than 4 px, every spring named by
+    colour in the legend and on most panels."""
+    import matplotlib.pyplot as plt
+
+    from springlab.workbench.plotting import arm_figure
+
+    t, X, tip = fig15_poses
+    titles = [f"t = {s:.0f} s" for s in t]
+    fig = arm_figure(arm, exact_springs, X, tip, titles=titles, title="Fig. 15")
+    widths = panel_widths_in_book(fig)
+    assert len(widths) == 6 and min(widths) >= 280, widths
+    assert overlapping_texts(fig) == [] and outside_texts(fig) == []
+    assert smallest_label_gap(fig) >= 4 and smallest_label_in_book(fig) >= 11
+    labels = {f"S({s.i},{s.j})" for s in exact_springs}
+    assert labels <= {t.get_text() for lg in fig.legends for t in lg.get_texts()}
+    assert all(len({t.get_text() for t in ax.texts} & labels) >= 3 for ax in fig.axes)
+    plt.close(fig)
+    # the old drawing, poses side by side and a row per view: panels of about 170 px, labels of 9 px, touching
+    old = drawing.mechanism_figure(drawing.chain_scene(arm, exact_springs, X, tip), [0, 1, 2], titles=titles,
+                                   title="Fig. 15")
+    assert max(panel_widths_in_book(old)) < 200 and smallest_label_gap(old) < 4 and smallest_label_in_book(old) < 10
+    plt.close(old)
+
+
+def mechanism_fill(scene: drawing.Scene, view: str, limits) -> float:
+    """The share of a panel's frame (xlim, ylim, _) taken by the box round the mechanism over
+    every pose (links, springs, pseudobases: not the column or its floor)."""
+    pts = np.concatenate([link.reshape(-1, 3) for link in scene.links] + [np.vstack(ab) for ab in scene.springs.values()]
+                         + [e.reshape(-1, 3) for e in scene.extras.values()])
+    extent = np.ptp(scene.project(pts, view), axis=0)
+    (x0, x1), (y0, y1), _ = limits
+    return float(extent[0] * extent[1] / ((x1 - x0) * (y1 - y0)))
+
+
+def test_paper_001s_animation_is_framed_on_the_mechanism_with_a_legend(lin2010_scene, styled, tmp_path):
+    """The trajectory GIF: the column's width, each view framed on the mechanism over every pose
+    (half its frame or more; the square frames it replaces: under a third), the arm at least
+    400 px long, a legend naming every spring, labels that never overlap, its springs' own
+    colours, the same bytes every time."""
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import to_rgb
+    from PIL import Image
+
+    panels = {f"{view} view": (lin2010_scene, view) for view in ("front", "side")}
+    style = {k: v for k, v in drawing.TRAJECTORY_GIF.items() if k != "fps"}
+    fig, frame, frames = drawing.animation_figure(panels, times=[0.0, 5.0, 10.0], title="Eq. (26)", **style)
+    assert 700 <= fig.canvas.get_width_height()[0] <= 760
+    assert set(lin2010_scene.springs) <= {t.get_text() for lg in fig.legends for t in lg.get_texts()}
+    framed, square = drawing.framed_limits(panels), drawing.shared_limits(panels)
+    for ax, (name, (scene, view)) in zip(fig.axes, panels.items(), strict=False):
+        assert mechanism_fill(scene, view, framed[name]) >= 0.5, name
+        assert mechanism_fill(scene, view, square[view]) < 0.35, name  # the old frames: the arm in a corner
+        reach = float(np.ptp(scene.project(scene.links[0].reshape(-1, 3), view)[:, 0]))
+        assert reach / framed[name][2] * ax.get_window_extent().width >= 400, name  # px
+    for k in range(frames):
+        frame(k)
+        assert overlapping_texts(fig) == [] and outside_texts(fig) == []
+    plt.close(fig)
+    one = drawing.trajectory_animation(lin2010_scene, tmp_path / "one.gif", [0.0, 5.0, 10.0], title="Eq. (26)")
+    two = drawing.trajectory_animation(lin2010_scene, tmp_path / "two.gif", [0.0, 5.0, 10.0], title="Eq. (26)")
+    assert Path(one).read_bytes() == Path(two).read_bytes()
+    with Image.open(one) as gif:
+        assert gif.n_frames == 3 and 700 <= gif.size[0] <= 760
+        colours = {c for _, c in gif.convert("RGB").getcolors(1 << 16)}
+    drawn = [tuple(round(255 * v) for v in to_rgb(drawing._colour(label, k)))
+             for k, label in enumerate(lin2010_scene.springs)]
+    assert all(c in colours for c in drawn)  # each spring's colour kept exactly (legend, zigzag, label)
+
+
+@pytest.mark.parametrize("gif", sorted((ROOT / "figures").glob("*/*.gif")), ids=lambda p: p.parent.name)
+def test_committed_animations_fill_the_column(gif):
+    """Shown at its own size in the book: about the text column's width (740 px), not less."""
+    from PIL import Image
+
+    with Image.open(gif) as im:
+        assert 700 <= im.size[0] <= 760, im.size

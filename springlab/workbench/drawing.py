@@ -12,7 +12,9 @@ paper's figure:
 
 :func:`animate` writes the same drawing, frame by frame, as a GIF (Pillow,
 headless, deterministic: the same scene gives the same bytes; each frame drawn once by Agg and
-quantised to 64 colours by Pillow). Builders: :func:`chain_scene`
+quantised by Pillow, to 64 colours or to the drawing's own :func:`palette`);
+:func:`trajectory_animation` frames it on the mechanism at the book's column width, with a
+legend. Builders: :func:`chain_scene`
 (the serial chain of papers 000/003 and a user's arm), :func:`pseudobase_scene` (paper 001's
 arm with its pseudobases).
 
@@ -199,9 +201,11 @@ def _limits(scene: Scene, view: str, margin: float = 0.08):
     return (centre[0] - span / 2, centre[0] + span / 2), (centre[1] - span / 2, centre[1] + span / 2), span
 
 
-def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=None, colours=None) -> list:
+def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=None, colours=None,
+         label_style: dict | None = None) -> list:
     """Draw ``scene`` at ``pose`` in ``view`` on ``ax``; returns the artists (for animation).
-    ``colours``: {spring label: colour}, by default :data:`SPRING_COLOURS` in the scene's order."""
+    ``colours``: {spring label: colour}, by default :data:`SPRING_COLOURS` in the scene's order;
+    ``label_style``: :func:`label_springs`'s keywords (fontsize, gap, clear)."""
     xlim, ylim, span = limits or _limits(scene, view)
     artists = []
     if view != "top":  # the floor and the base column, seen from the side
@@ -249,7 +253,7 @@ def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=
     ax.set_xlabel(xl)
     ax.set_ylabel(yl)
     if labels:
-        artists += label_springs(ax, scene, pose, view, colours=colours)
+        artists += label_springs(ax, scene, pose, view, colours=colours, **(label_style or {}))
     return artists
 
 
@@ -257,12 +261,15 @@ def _colour(label: str, k: int, colours=None):
     return (colours or {}).get(label, SPRING_COLOURS[k % len(SPRING_COLOURS)])
 
 
-def label_springs(ax, scene: Scene, pose: int, view: str, *, colours=None) -> list:
+def label_springs(ax, scene: Scene, pose: int, view: str, *, colours=None, fontsize: float = 7,
+                  gap: float = 2.0, clear=(3.0,)) -> list:
     """Name each spring S(i,j) beside its zigzag, where the name overlaps no other and stays in
-    the axes; returns the texts.
+    the axes; returns the texts. ``fontsize`` (pt); ``gap``: the least space (px) between two
+    labels' texts (their white backgrounds reach about 1 px past the text, so a gap of 2 px
+    lets them touch); ``clear``: the distances (px) from the zigzag tried, nearest first.
 
     Each label tries places along its spring (its middle first, then towards the ends), on
-    either side, just clear of the zigzag, in the axes' current pixels (so call it once the
+    either side, ``clear`` px from the zigzag, in the axes' current pixels (so call it once the
     figure is laid out): first a place clear of every spring too, then one clear of the other
     labels only. A label that finds no free place is left out: the legend names every spring
     by its colour."""
@@ -285,15 +292,15 @@ def label_springs(ax, scene: Scene, pose: int, view: str, *, colours=None) -> li
         u = d / length if length > 1e-9 else np.array([1.0, 0.0])
         normal = np.array([-u[1], u[0]])
         colour = _colour(label, k, colours)
-        places = [(t, side) for t in (0.5, 0.3, 0.7, 0.1, 0.9) for side in (1.0, -1.0)]
-        for avoid_springs, (t, side) in [(a, place) for a in (True, False) for place in places]:
+        places = [(t, side, c) for c in clear for t in (0.5, 0.3, 0.7, 0.1, 0.9) for side in (1.0, -1.0)]
+        for avoid_springs, (t, side, c) in [(a, place) for a in (True, False) for place in places]:
             off = side * normal
-            at = ax.transData.inverted().transform(P + t * d + (w + 3.0) * off)  # 3 px clear of the zigzag
-            text = ax.text(*at, label, color=colour, fontsize=7, zorder=7,
+            at = ax.transData.inverted().transform(P + t * d + (w + c) * off)  # c px clear of the zigzag
+            text = ax.text(*at, label, color=colour, fontsize=fontsize, zorder=7,
                            ha="left" if off[0] > 0.35 else "right" if off[0] < -0.35 else "center",
                            va="bottom" if off[1] > 0.35 else "top" if off[1] < -0.35 else "center",
                            bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.75, "pad": 0.4})
-            box = text.get_window_extent(renderer).padded(1.0)
+            box = text.get_window_extent(renderer).padded(gap / 2)
             blocked = placed + ([b for j, b in enumerate(springs) if j != k] if avoid_springs else [])
             if (inside.x0 <= box.x0 and box.x1 <= inside.x1 and inside.y0 <= box.y0 and box.y1 <= inside.y1
                     and not any(box.overlaps(other) for other in blocked)):
@@ -305,14 +312,20 @@ def label_springs(ax, scene: Scene, pose: int, view: str, *, colours=None) -> li
 
 
 def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=None, title: str = "",
-                     columns: int | None = None, frame: str = "all"):
+                     columns: int | None = None, frame: str = "all", rows: str = "views",
+                     label_style: dict | None = None):
     """``scene`` at ``poses`` (indices, at most 4) side by side, one row per view, every panel
     at one scale. Returns the matplotlib figure.
 
     One pose: its views side by side, ``columns`` to a row (default all); the legend takes
     the first free panel, if any, else goes below. ``frame``: "all" frames the panels on
     every pose of the scene (so that drawings of its poses share their limits), "shown" on
-    the poses drawn (a larger drawing)."""
+    the poses drawn (a larger drawing).
+
+    ``rows="poses"``: one row per pose instead, its views side by side (two views: two panels
+    to a row, each about 330 px wide at the book's width, every panel at one scale and its
+    springs named on it), the legend below. ``label_style``: :func:`label_springs`'s keywords
+    (fontsize, gap, clear)."""
     import matplotlib.pyplot as plt
 
     poses = [int(p) for p in np.atleast_1d(poses)]
@@ -320,21 +333,26 @@ def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=Non
         raise SpringlabError(f"poses must be 1 to 4 indices in 0..{scene.poses - 1}, got {poses}")
     if frame not in ("all", "shown"):
         raise SpringlabError(f"frame must be 'all' or 'shown', got {frame!r}")
+    if rows not in ("views", "poses"):
+        raise SpringlabError(f"rows must be 'views' or 'poses', got {rows!r}")
     views = tuple(views)
     titles = list(titles) if titles is not None else [f"pose {p + 1}" for p in poses]
     framed = scene if frame == "all" else _at(scene, poses)
     spans = [_limits(framed, v) for v in views]
+    label_style = label_style or {}
+    if rows == "poses":
+        return _poses_in_rows(scene, poses, views, spans, titles, title, label_style)
     across = len(poses) == 1  # one pose: its views side by side
     if across:  # one scale for every view: the largest span, each view about its own centre
         span = max(b[2] for b in spans)
         spans = [(_about(xlim, span), _about(ylim, span), span) for xlim, ylim, _ in spans]
         cols = min(columns or len(views), len(views))
-        rows = -(-len(views) // cols)
-        size = (3.2 * cols + 0.4, 3.2 * rows + 0.4)
+        n_rows = -(-len(views) // cols)
+        size = (3.2 * cols + 0.4, 3.2 * n_rows + 0.4)
     else:
-        rows, cols = len(views), len(poses)
-        size = (2.7 * cols + 0.6, 2.8 * rows + 0.5)
-    fig, axes = plt.subplots(rows, cols, figsize=size, squeeze=False)
+        n_rows, cols = len(views), len(poses)
+        size = (2.7 * cols + 0.6, 2.8 * n_rows + 0.5)
+    fig, axes = plt.subplots(n_rows, cols, figsize=size, squeeze=False)
     panels = []
     for r, view in enumerate(views):
         for c, pose in enumerate(poses):
@@ -350,7 +368,31 @@ def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=Non
         ax.set_axis_off()
     fig = _legend_and_title(fig, [axes.flat[0]], title, into=spare[0] if spare else None)
     for ax, pose, view in panels:  # once laid out: the labels' places are in pixels
-        label_springs(ax, scene, pose, view)
+        label_springs(ax, scene, pose, view, **label_style)
+    return fig
+
+
+def _poses_in_rows(scene: Scene, poses, views, spans, titles, title: str, label_style: dict):
+    """:func:`mechanism_figure`'s ``rows="poses"``: a row per pose, its views side by side at
+    one scale (the largest span, each view about its own centre), the legend below, every
+    panel's springs named."""
+    import matplotlib.pyplot as plt
+
+    span = max(b[2] for b in spans)
+    spans = [(_about(xlim, span), _about(ylim, span), span) for xlim, ylim, _ in spans]
+    cols = len(views)
+    fig, axes = plt.subplots(len(poses), cols, figsize=(3.2 * cols + 0.4, 3.5 * len(poses) + 0.9), squeeze=False)
+    for r, pose in enumerate(poses):
+        for c, view in enumerate(views):
+            ax = axes[r][c]
+            draw(ax, scene, pose, view, labels=False, limits=spans[c])
+            ax.set_title(f"{titles[r]}, {view} view", fontsize=9)
+            if c and scene.axis_labels(views[c - 1])[1] == scene.axis_labels(view)[1]:  # one scale, one label
+                ax.set_ylabel("")
+    fig = _legend_and_title(fig, [axes[0][0]], title, fontsize=8)
+    for r, pose in enumerate(poses):  # once laid out: the labels' places are in pixels
+        for c, view in enumerate(views):
+            label_springs(axes[r][c], scene, pose, view, **label_style)
     return fig
 
 
@@ -369,9 +411,9 @@ def _at(scene: Scene, poses) -> Scene:
                    masses=pick(scene.masses))
 
 
-def _legend_and_title(fig, axes, title: str, into=None):
+def _legend_and_title(fig, axes, title: str, into=None, fontsize: float = 7):
     """The figure's legend (every name drawn on ``axes``, once; in the empty axes ``into``, else
-    below the panels) and title, then its layout."""
+    below the panels, in ``fontsize`` pt) and title, then its layout."""
     legend = {}
     for ax in axes:
         for handle, name in zip(*ax.get_legend_handles_labels(), strict=True):
@@ -381,7 +423,8 @@ def _legend_and_title(fig, axes, title: str, into=None):
         into.legend(handles, names, loc="center", ncol=1 + len(names) // 9, fontsize=8, frameon=False)
         rect = (0, 0, 1, 1)
     else:
-        legend = fig.legend(handles, names, loc="lower center", ncol=min(4, len(names)), fontsize=7, frameon=False)
+        legend = fig.legend(handles, names, loc="lower center", ncol=min(4, len(names)), fontsize=fontsize,
+                            frameon=False)
         below = legend.get_window_extent(fig.canvas.get_renderer()).height / fig.bbox.height  # the legend's share
         rect = (0, below + 0.01, 1, 1)
     if title:
@@ -426,54 +469,133 @@ def scenes_figure(panels: dict, *, view: str = "front", columns: int = 2, title:
     return fig
 
 
-def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = "", times=None, note: str = ""):
+def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = "", times=None, note: str = "",
+            layout: str = "row", label_style: dict | None = None):
     """Write a GIF of scenes side by side, one frame per pose: ``panels`` is {panel title:
     (Scene, view)}, the scenes with one common number of poses. Panels of the same view share
     one scale (:func:`shared_limits`). ``times`` (s), one per pose, is shown in the title, and
     ``note`` on a second line under it. Returns the GIF's path.
+
+    ``layout="column"``: the panels one above the other instead, each framed on its mechanism
+    over every pose (:func:`framed_limits`, not a square), all at one scale, with the legend
+    below them, the GIF about 740 px wide (the book's column) at ``dpi`` 110
+    (:func:`animation_figure`), its colours those drawn (:func:`palette`: a spring's label and
+    legend entry keep its colour). ``label_style``: :func:`label_springs`'s keywords.
 
     :raises SpringlabError: when the scenes have different numbers of poses, or none
     """
     import matplotlib.pyplot as plt
     from PIL import Image
 
+    fig, frame, frames = animation_figure(panels, dpi=dpi, title=title, times=times, note=note, layout=layout,
+                                          label_style=label_style)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    images, colours = [], palette() if layout == "column" else None
+    for k in range(frames):  # one draw per frame (matplotlib's writers draw each frame three times)
+        frame(k)
+        fig.canvas.draw()
+        rgb = Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3])
+        if colours is not None:  # each pixel to the nearest drawn colour or its tint
+            images.append(rgb.quantize(palette=colours, dither=Image.Dither.NONE))
+        else:
+            images.append(rgb.quantize(colors=64, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE))
+    plt.close(fig)
+    images[0].save(path, save_all=True, append_images=images[1:], duration=round(1000 / fps), loop=0)
+    return str(path)
+
+
+def animation_figure(panels: dict, *, dpi: int = 90, title: str = "", times=None, note: str = "",
+                     layout: str = "row", label_style: dict | None = None, width: float = 6.7):
+    """The figure :func:`animate` draws its frames on, laid out with its first frame: returns
+    (figure, frame(k) that draws pose k, number of poses).
+
+    ``layout="row"``: the panels side by side, square, each view's panels on one frame
+    (:func:`shared_limits`), laid out once with the first frame's labels. ``layout="column"``:
+    one above the other, ``width`` inches wide, each framed on its mechanism over every pose
+    (:func:`framed_limits`) at one scale for all, the legend (every name drawn, once) below.
+    """
+    import matplotlib.pyplot as plt
+
     scenes = [(name, scene, view) for name, (scene, view) in panels.items()]
     counts = {s.poses for _, s, _ in scenes}
     if not scenes or len(counts) != 1:
         raise SpringlabError(f"animate needs scenes with one common number of poses, got {sorted(counts)}")
+    if layout not in ("row", "column"):
+        raise SpringlabError(f"layout must be 'row' or 'column', got {layout!r}")
     frames = counts.pop()
-    limits = shared_limits(panels)
-    fig, axes = plt.subplots(1, len(scenes), figsize=(3.4 * len(scenes), 3.9), squeeze=False)
-    axes = axes[0]
-
+    stacked = layout == "column"
+    if stacked:
+        limits = framed_limits(panels)
+        heights = [float(np.ptp(limits[name][1])) for name, _, _ in scenes]
+        span = limits[scenes[0][0]][2]
+        panel = (width - 0.9) / span  # in per m: the panels' width (less the axis labels) over their span
+        size = (width, sum(panel * h + 0.75 for h in heights) + 0.55 + 0.2 * (3 + len(scenes[0][1].springs) // 4))
+        fig, axes = plt.subplots(len(scenes), 1, figsize=size, squeeze=False, gridspec_kw={"height_ratios": heights})
+        axes = axes[:, 0]
+    else:
+        limits = shared_limits(panels)
+        fig, axes = plt.subplots(1, len(scenes), figsize=(3.4 * len(scenes), 3.9), squeeze=False)
+        axes = axes[0]
     drawn = [[] for _ in scenes]
 
     def frame(k):
         for i, (ax, (name, scene, view)) in enumerate(zip(axes, scenes, strict=True)):
             for artist in drawn[i]:  # the axes stay; the last frame's mechanism goes
                 artist.remove()
-            drawn[i] = draw(ax, scene, k, view, labels=True, limits=limits[view])
-            ax.set_title(name, fontsize=8)
-            if i and scenes[i - 1][2] == view:  # one scale, one axis label
+            drawn[i] = draw(ax, scene, k, view, labels=True, limits=limits[name if stacked else view],
+                            label_style=label_style)
+            ax.set_title(name, fontsize=9 if stacked else 8)
+            if not stacked and i and scenes[i - 1][2] == view:  # one scale, one axis label
                 ax.set_ylabel("")
         stamp = f" (t = {times[k]:.2f} s)" if times is not None else ""
-        fig.suptitle(f"{title}{stamp}" + (f"\n{note}" if note else ""), fontsize=9)
+        fig.suptitle(f"{title}{stamp}" + (f"\n{note}" if note else ""), fontsize=10 if stacked else 9)
         return []
 
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     fig.set_dpi(dpi)
     frame(0)
-    fig.tight_layout()  # laid out once, with the first frame's labels
-    images = []
-    for k in range(frames):  # one draw per frame (matplotlib's writers draw each frame three times)
-        frame(k)
-        fig.canvas.draw()
-        rgb = Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3])
-        images.append(rgb.quantize(colors=64, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE))
-    plt.close(fig)
-    images[0].save(path, save_all=True, append_images=images[1:], duration=round(1000 / fps), loop=0)
-    return str(path)
+    if stacked:  # the legend below the panels, then the layout
+        _legend_and_title(fig, [axes[0]], "", fontsize=8)
+    else:
+        fig.tight_layout()  # laid out once, with the first frame's labels
+    return fig, frame, frames
+
+
+def palette():
+    """A fixed GIF palette (a Pillow "P" image) of the colours :func:`draw` uses: each spring's,
+    the pseudobases' and centres' blue, each with three tints towards white (antialiased edges,
+    labels' backgrounds), and 16 greys from black to white (links, column, text, grid). Unlike a
+    palette fitted to each frame, it keeps a small spring's colour exactly."""
+    from matplotlib.colors import to_rgb
+    from PIL import Image
+
+    rgb = []
+    for colour in (*SPRING_COLOURS, "tab:blue"):
+        c = np.array(to_rgb(colour))
+        rgb += [c * (1 - f) + f for f in (0.0, 0.3, 0.55, 0.8)]
+    rgb += [np.full(3, g) for g in np.linspace(0.0, 1.0, 16)]
+    flat = [int(round(255 * v)) for c in rgb for v in c]
+    image = Image.new("P", (1, 1))
+    image.putpalette(flat + flat[-3:] * (256 - len(rgb)))
+    return image
+
+
+def framed_limits(panels: dict) -> dict:
+    """{panel title: (xlim, ylim, span)} for ``panels`` {title: (Scene, view)}: each panel framed
+    on its mechanism over all its poses (its floor and column too), 5 % of the larger extent
+    clear, not a square; every panel as wide as the widest (about its own centre, one scale for
+    all when they are drawn equally wide); ``span`` the common width (m)."""
+    boxes = {}
+    for name, (scene, view) in panels.items():
+        pts = scene.project(scene.all_points(), view)
+        low, high = pts.min(axis=0), pts.max(axis=0)
+        extent = float(max(high - low)) or 1.0
+        pad = 0.05 * extent
+        if view != "top":  # the floor's hatching, below the column (see draw)
+            low[1] = min(low[1], scene.column[0] - 0.04 * extent)
+        boxes[name] = ((low[0] - pad, high[0] + pad), (low[1] - pad, high[1] + pad))
+    span = max(x1 - x0 for (x0, x1), _ in boxes.values())
+    return {name: (_about(xlim, span), ylim, span) for name, (xlim, ylim) in boxes.items()}
 
 
 def shared_limits(panels: dict) -> dict:
@@ -560,6 +682,17 @@ def hold_animation(chain, springs, motion, path, *, title: str = "exudyn hold te
     return animate(panels, path, times=shown.t, title=title, note=note, dpi=dpi)
 
 
+TRAJECTORY_GIF = {"fps": 8, "dpi": 110, "layout": "column",
+                  "label_style": {"fontsize": 8, "gap": 4.0, "clear": (3.0, 10.0)}}
+"""How :func:`trajectory_animation` calls :func:`animate`: about 740 px wide (the book's
+column), the views one above the other, framed on the mechanism, the legend below, 8 pt
+spring labels at least 4 px apart."""
+
+
 def trajectory_animation(scene: Scene, path, times, *, views=("front", "side"), title: str = "") -> str:
-    """``scene`` along its poses (one per entry of ``times``, s) as a GIF, one panel per view."""
-    return animate({f"{view} view": (scene, view) for view in views}, path, times=times, title=title, fps=8)
+    """``scene`` along its poses (one per entry of ``times``, s) as a GIF about 740 px wide (the
+    book's column), one panel per view, one above the other, each framed on the mechanism over
+    every pose at one scale, the legend below and the springs named in 8 pt labels
+    (:data:`TRAJECTORY_GIF`)."""
+    return animate({f"{view} view": (scene, view) for view in views}, path, times=times, title=title,
+                   **TRAJECTORY_GIF)

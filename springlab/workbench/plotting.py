@@ -18,6 +18,8 @@ from pathlib import Path
 
 import matplotlib as mpl
 import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.colors import to_hex
 
 STYLE = Path(__file__).with_name("springlab.mplstyle")
 
@@ -81,6 +83,58 @@ def _in_kernel() -> bool:
     return shell is not None and hasattr(shell, "kernel")
 
 
+def covered_lines(ax, legend=None, *, pad: float = 5.0) -> list[str]:
+    """The lines of ``ax`` (their labels, or "line k") that cross its legend's box, ``pad`` px
+    around it, in display coordinates: every drawn segment (and marker) of each visible line,
+    not only its data points.
+
+    >>> fig, ax = plt.subplots()
+    >>> _ = ax.plot([0, 1], [0, 1], label="diagonal")
+    >>> covered_lines(ax, ax.legend(loc="center"))
+    ['diagonal']
+    >>> plt.close(fig)
+    """
+    legend = legend or ax.get_legend()
+    if legend is None:
+        return []
+    box = legend.get_window_extent(ax.figure.canvas.get_renderer()).padded(pad)
+    out = []
+    for k, line in enumerate(ax.lines):
+        if not line.get_visible() or len(line.get_xdata()) == 0:
+            continue
+        path = line.get_transform().transform_path(line.get_path())
+        if path.intersects_bbox(box, filled=False):
+            label = line.get_label()
+            out.append(label if not label.startswith("_") else f"line {k}")
+    return out
+
+
+def clear_legend(ax, *, fallback: str = "right", pad: float = 5.0, **legend_kw):
+    """``ax``'s legend where it covers no line (:func:`covered_lines`): the first free place
+    inside the axes, tried from the top down along the right edge, then the left, then the
+    middle; if none is free, outside the axes: to their right (``fallback="right"``) or below
+    them, under the x label (``"below"``). Call it once the axes have their final size (after
+    ``tight_layout``). Returns the legend."""
+    fig = ax.figure
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    inside = ax.get_window_extent(renderer)
+    tops = np.linspace(1.0, 0.0, 41)
+    for loc, x in (("upper right", 1.0), ("upper left", 0.0), ("upper center", 0.5)):
+        for y in tops:
+            legend = ax.legend(loc=loc, bbox_to_anchor=(x, y), **legend_kw)
+            box = legend.get_window_extent(renderer)
+            if box.y0 < inside.y0 or box.y1 > inside.y1:
+                continue
+            if not covered_lines(ax, legend, pad=pad):
+                return legend
+    if fallback == "below":
+        below = ax.xaxis.get_tightbbox(renderer) or inside
+        y = (below.y0 - inside.y0) / inside.height
+        return ax.legend(loc="upper center", bbox_to_anchor=(0.5, y), **legend_kw)
+    return ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), **legend_kw)
+
+
 def energy_figure(t, gravity, springs, total, *, title: str, reference=None, reference_label=None,
                   markers=None, marker_every: int = 6, marker_label: str = "markers: exudyn; lines: route 2",
                   xlabel: str = "time t (s)"):
@@ -109,29 +163,31 @@ def energy_figure(t, gravity, springs, total, *, title: str, reference=None, ref
     ax.plot(t, total, color="k", label="total energy")
     ax.set_ylabel("energy (J)")
     ax.set_title(title)
-    ax.legend(loc="center right")
     if markers is not None:
         for key, colour in (("gravity", "C0"), ("springs", "C1"), ("total", "k")):
             ax.plot(t[::marker_every], np.asarray(markers[key])[::marker_every], "o", color=colour, markersize=3,
                     markerfacecolor="none")
         ax.plot([], [], "o", color="gray", markerfacecolor="none", label=marker_label)
-        ax.legend(loc="center right")
     if reference is not None:
         low = axes[1]
         low.plot(t, 1e3 * (np.asarray(total) - total[0]), color="k", label="total, exact springs")
         low.plot(t, 1e3 * (np.asarray(reference) - reference[0]), color="k", linestyle="--",
                  linewidth=1.0, label=reference_label)
         low.set_ylabel("total - initial (mJ)")
-        low.legend(loc="best")
     axes[-1].set_xlabel(xlabel)
     axes[-1].set_xlim(t[0], t[-1])
+    for panel in axes:  # once the limits are set: where no curve runs
+        clear_legend(panel)
     return fig
 
 
 def arm_figure(chain, springs, X_frames, tip_path=None, *, title: str = "", titles=None):
-    """The arm at a few poses side by side (at most 4), in front and side views at one scale:
-    the ground column, links as thick segments with joints, springs as zigzags labelled
-    S(i,j) with their attachment points (:func:`springlab.workbench.drawing.mechanism_figure`).
+    """The arm at a few poses (at most 4), in front and side views at one scale: the ground
+    column, links as thick segments with joints, springs as zigzags labelled S(i,j) with their
+    attachment points (:func:`springlab.workbench.drawing.mechanism_figure`). One pose: its
+    two views side by side; several: a row per pose, its two views side by side (so that the
+    figure reads at the book's width, not shrunk), every panel's springs named in 8 pt labels
+    at least 5 px apart (3 or else 12 px from their zigzags), the legend below.
 
     :param X_frames: poses (F, n, 3) to draw (link directions)
     :param tip_path: optional (T, 3) tip positions (m), drawn dashed
@@ -140,7 +196,10 @@ def arm_figure(chain, springs, X_frames, tip_path=None, *, title: str = "", titl
     from springlab.workbench.drawing import chain_scene, mechanism_figure
 
     scene = chain_scene(chain, springs, X_frames, tip_path)
-    return mechanism_figure(scene, range(scene.poses), titles=titles, title=title)
+    if scene.poses == 1:
+        return mechanism_figure(scene, [0], titles=titles, title=title)
+    return mechanism_figure(scene, range(scene.poses), titles=titles, title=title, rows="poses",
+                            label_style={"fontsize": 8, "gap": 5.0, "clear": (3.0, 12.0)})
 
 
 def moment_figure(phi, curves: dict, *, title: str, ylabel: str = "moment (N m)", styles: dict | None = None):
@@ -330,10 +389,16 @@ def joint_torques_figure(t, balanced, unbalanced, *, title: str = "", hold=None)
     return fig
 
 
+TILT_COLOURS = ("k", "tab:brown", "0.55", "tab:cyan")
+"""The simulations' colours in :func:`fold_figure`'s lower panel: none of the modules' (the
+style's first five), so that a colour names one thing in the figure."""
+
+
 def fold_figure(t, margin, labels, *, tilt=None, title: str = ""):
     """RSSR modules' fold margins against time (upper), and the largest pseudobase tilt
     from vertical in simulations on a log scale (lower, optional ``tilt`` =
-    {label: (t, (T,) rad)})."""
+    {label: (t, (T,) rad)}, in :data:`TILT_COLOURS`, colours the modules do not use). Each
+    panel's legend where it covers no curve (:func:`clear_legend`), else to its right."""
     import numpy as np
 
     panels = 2 if tilt else 1
@@ -344,16 +409,19 @@ def fold_figure(t, margin, labels, *, tilt=None, title: str = ""):
     ax.axhline(0.0, color="k", linewidth=0.8)
     ax.set_ylabel("fold margin (-)")
     ax.set_title(title)
-    ax.legend(loc="best", ncol=3, fontsize=7)
     if tilt:
         low = axes[1, 0]
-        for label, (tt, values) in tilt.items():
-            low.semilogy(tt, np.maximum(values, 1e-18), label=label)
+        used = {to_hex(line.get_color()) for line in ax.lines if not line.get_label().startswith("_")}
+        free = [c for c in TILT_COLOURS if to_hex(c) not in used]
+        for k, (label, (tt, values)) in enumerate(tilt.items()):
+            low.semilogy(tt, np.maximum(values, 1e-18), color=free[k % len(free)], label=label)
         low.set_ylabel("largest pseudobase tilt (rad)")
-        low.legend(loc="best", fontsize=7)
     axes[-1, 0].set_xlabel("time t (s)")
     axes[-1, 0].set_xlim(t[0], t[-1])
     fig.tight_layout()
+    for panel in axes[:, 0]:
+        clear_legend(panel, fontsize=7)
+    fig.tight_layout()  # room for a legend put beside its panel
     return fig
 
 
