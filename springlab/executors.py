@@ -15,6 +15,9 @@ from springlab.errors import SpringlabError
 
 def check_executor(executor):
     """``executor`` if it is None or has ``submit`` (a concurrent.futures.Executor, or dask's)."""
+    if isinstance(executor, type):  # the class has an (unbound) submit too
+        raise SpringlabError(f"executor must be an executor instance, got the class {executor.__name__}: "
+                             f"pass {executor.__name__}() (e.g. ThreadPoolExecutor(max_workers=2)), or None to run serially")
     if executor is not None and not callable(getattr(executor, "submit", None)):
         raise SpringlabError(f"executor must be a concurrent.futures.Executor (with submit), or None to run "
                              f"serially; got {type(executor).__name__}")

@@ -121,3 +121,67 @@ def test_bad_trajectory(kwargs, fragment):
 def test_bad_random_pose_request():
     with pytest.raises(SpringlabError, match="n must be"):
         random_directions(1, 10)
+
+
+def test_a_payload_that_is_not_a_number_is_refused_by_name():
+    with pytest.raises(SpringlabError, match="payload mass must be a real number, got '0.5'"):
+        chain_with().with_payload("0.5")
+    with pytest.raises(SpringlabError, match="payload mass must be finite and >= 0"):
+        chain_with().with_payload(-1.0)
+    assert chain_with().with_payload(0.5).m[-1] == pytest.approx(3.7)
+
+
+def test_a_sample_count_below_zero_or_too_large_is_refused_by_name():
+    chain = chain_with()
+    with pytest.raises(SpringlabError, match="size must be an integer >= 0, got -3"):
+        chain.random_angles(-3)
+    with pytest.raises(SpringlabError, match=r"random_angles\(size=1000000000000\) would need .* ask for fewer"):
+        chain.random_angles(10**12)
+    assert chain.random_angles(0, rng=1).shape == (0, 2, 3)
+
+
+def test_an_attachment_whose_energy_overflows_is_named():
+    chain = chain_with()
+    with pytest.raises(SpringlabError, match=r"a of S\(1,3\) = 1e\+200 m .* give the attachment in m"):
+        geometry.energies(chain, [Spring(1, 3, 1e200, 0.1, 100.0)], random_directions(chain.n, 2, rng=0))
+    with pytest.raises(SpringlabError, match=r"b of S\(1,3\) = -1e\+160 m"):
+        geometry.energies(chain, [Spring(1, 3, 0.1, -1e160, 100.0)], random_directions(chain.n, 2, rng=0))
+    with pytest.raises(SpringlabError, match=r"k of S\(1,3\) = 1e\+308 N/m overflows"):  # the rate, not the ends
+        geometry.energies(chain, [Spring(1, 3, 1.0, 0.1, 1e308)], random_directions(chain.n, 2, rng=0))
+
+
+def test_unknown_free_choices_are_named_before_anything_is_solved():
+    import time
+
+    from springlab.mechanisms.planar import synthesis
+    from springlab.papers import juang2022
+
+    start = time.perf_counter()
+    with pytest.raises(SpringlabError, match=r"choices names 'k_S99', not a parameter of 'Λ3-1': choose among k_S12"):
+        synthesis.design(juang2022.ARM, "Λ3-1", {"k_S99": 1.0})
+    with pytest.raises(SpringlabError, match=r"free names 'A_S99'"):
+        synthesis.solve_configuration("Λ3-1", ["A_S99"])
+    assert time.perf_counter() - start < 5.0  # sympy never ran (it took 25-50 s)
+    assert len(synthesis.design(juang2022.ARM, "Λ3-1", juang2022.FREE_CHOICES)) == 4
+
+
+def test_a_search_bound_below_the_feasible_range_names_the_bound_and_the_least_that_works():
+    from springlab.mechanisms.dyad import synthesis
+    from springlab.papers import zhang2023
+
+    phi = np.radians([30.0, 90.0, 150.0])
+    with pytest.raises(SpringlabError, match=r"C_max = 0 J is not above 117\.56 J, the smallest C"):
+        synthesis.choose_C(zhang2023.compensator(), phi, synthesis.C_READINGS[0], C_max=0)
+    with pytest.raises(SpringlabError, match="C_max must be finite"):
+        synthesis.choose_C(zhang2023.compensator(), phi, synthesis.C_READINGS[0], C_max=np.nan)
+
+
+def test_an_executor_class_instead_of_an_instance_says_to_make_one():
+    from concurrent.futures import ThreadPoolExecutor
+
+    from springlab.executors import check_executor
+
+    with pytest.raises(SpringlabError, match=r"got the class ThreadPoolExecutor: pass ThreadPoolExecutor\(\)"):
+        check_executor(ThreadPoolExecutor)
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        assert check_executor(pool) is pool

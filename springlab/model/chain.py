@@ -110,8 +110,7 @@ class Chain:
 
     def with_payload(self, mass: float) -> Chain:
         """The same chain with a payload (kg) at the end link's centre of mass."""
-        if not (np.isfinite(mass) and mass >= 0):
-            raise SpringlabError(f"payload mass must be >= 0 kg, got {mass}")
+        mass = _checks.positive("payload mass", mass, allow_zero=True, unit="kg")
         return Chain(self.r, self.d, self.m[:-1] + (self.m[-1] + float(mass),), self.g, self.joints)
 
     def _check_moving(self, j: int) -> None:
@@ -177,8 +176,10 @@ class Chain:
         [-pi, pi), phi in [-pi/2, pi/2] for spherical joints (not uniform over
         orientations: :func:`random_directions` is, for spherical chains);
         revolute joints turn by an angle uniform in [-pi, pi)."""
-        rng = np.random.default_rng(rng)
-        shape = (int(size), self.n - 1)
+        size = _checks.count("size", size)
+        rng = _checks.rng("rng", rng)
+        _checks.memory(f"random_angles(size={size})", 3.0 * size * (self.n - 1), hint="ask for fewer poses")
+        shape = (size, self.n - 1)
         out = np.stack([rng.uniform(-np.pi, np.pi, shape), rng.uniform(-np.pi / 2, np.pi / 2, shape),
                         rng.uniform(-np.pi, np.pi, shape)], axis=-1)
         for j in range(2, self.n + 1):

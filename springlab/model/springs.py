@@ -159,9 +159,15 @@ def check_springs(chain, springs) -> tuple[Spring, ...]:
             raise SpringlabError(
                 f"{s.label} attaches to link {s.j}, but the chain has only {chain.n} links"
             )
-        if not np.isfinite(s.k * (reach + abs(s.a) + abs(s.b)) ** 2):
-            raise SpringlabError(f"k of {s.label} = {s.k:g} N/m overflows the spring's energy "
-                                 f"(k L^2 with L ~ {reach:g} m): give k in N/m")
+        length = np.float64(reach + abs(s.a) + abs(s.b))  # numpy: an overflow is inf, not an OverflowError
+        with np.errstate(over="ignore"):
+            if not np.isfinite(length * length):
+                end, value = ("a", s.a) if abs(s.a) >= abs(s.b) else ("b", s.b)
+                raise SpringlabError(f"{end} of {s.label} = {value:g} m puts its end so far from its joint that the "
+                                     f"spring's energy overflows: give the attachment in m (the arm reaches {reach:g} m)")
+            if not np.isfinite(s.k * length * length):
+                raise SpringlabError(f"k of {s.label} = {s.k:g} N/m overflows the spring's energy "
+                                     f"(k L^2 with L ~ {float(length):g} m): give k in N/m")
     return springs
 
 

@@ -87,7 +87,13 @@ def choose_C(comp: Compensator, phi, reading: str, *, moment: str = "virtual wor
         raise SpringlabError(f"grid must be an integer >= 3, got {grid}")
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     C_min = float(np.max(comp.gravity_energy(phi)))
-    C_max = C_max if C_max is not None else C_min + 4 * comp.G * comp.s
+    default = C_min + 4 * comp.G * comp.s
+    if C_max is None:
+        C_max = default
+    elif _checks.finite("C_max", C_max, "J") <= C_min:
+        raise SpringlabError(f"C_max = {C_max:g} J is not above {C_min:.6g} J, the smallest C with real slider "
+                             f"positions at these positions (002 Eq. 6): give C_max above it, or None for "
+                             f"{default:.6g} J")
     f = MOMENTS[moment]
 
     def total(C):
@@ -106,7 +112,8 @@ def choose_C(comp: Compensator, phi, reading: str, *, moment: str = "virtual wor
     signed = reading in ("signed sum stationary", "smallest |signed sum|")
     values = np.where(ok, np.sum(m, axis=1) if signed else eq32_objective(m, reading), np.nan)
     if not np.any(ok):
-        raise SpringlabError("no C in the search range gives a dyad that closes at every position")
+        raise SpringlabError(f"no C in the search range {C_min:.6g} to {C_max:.6g} J gives a dyad that closes at "
+                             f"every position: give a larger C_max (the default is {default:.6g} J)")
     if reading == "signed sum stationary":  # 002 Eq. (32) read literally: d(sum M)/dC = 0
         from scipy.optimize import brentq
 

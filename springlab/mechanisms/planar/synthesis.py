@@ -98,6 +98,15 @@ def balance_equations(config, G=None) -> dict:
     return {key: sp.expand(v) for key, v in eqs.items()}
 
 
+def _known_names(name: str, given, allowed, config) -> None:
+    """Refuse names in ``given`` that are no parameter of ``config`` (before sympy: an unknown
+    name would only show after a long solve, and would never be named)."""
+    unknown = sorted(str(x) for x in given if x not in allowed)
+    if unknown:
+        raise SpringlabError(f"{name} names {', '.join(map(repr, unknown))}, not a parameter of {config!r}: "
+                             f"choose among {', '.join(allowed)}")
+
+
 def solve_configuration(config, free, G=None, values=None) -> dict:
     """Solve 003 Eqs. (16) for every parameter not in ``free`` (names like 'A_S14', or sympy
     symbols). With ``values`` ({name: number}) the free parameters are numbers, put in
@@ -111,9 +120,12 @@ def solve_configuration(config, free, G=None, values=None) -> dict:
     if isinstance(free, str) or not hasattr(free, "__iter__"):
         raise SpringlabError(f"free must be a list of parameter names such as ['A_S14'], got {free!r}")
     names = {f if isinstance(f, str) else f.name for f in free}
+    params = sorted(set().union(*[e.free_symbols for e in eqs.values()]), key=lambda x: x.name)
+    allowed = [x.name for x in params if not x.name.startswith("G_")]
+    _known_names("free", names, allowed, config)
+    _known_names("values", values or {}, allowed, config)
     subs = {sp.Symbol(k, positive=True): sp.nsimplify(v) for k, v in (values or {}).items()}
     system = [e.subs(subs) for e in eqs.values()]
-    params = sorted(set().union(*[e.free_symbols for e in eqs.values()]), key=lambda x: x.name)
     unknown = [x for x in params if x.name not in names and not x.name.startswith("G_")]
     sol = sp.solve([e for e in system if e != 0], unknown, dict=True)
     sol = [x for x in sol if all(v.is_positive is not False for v in x.values())]
@@ -156,6 +168,8 @@ def design(arm: PlanarArm, config, choices: dict) -> list[PlanarSpring]:
     cfg = _configuration(config)
     if not isinstance(choices, dict):
         raise SpringlabError(f"choices must be a dict such as {{'A_S14': 0.1, 'k_S12': 4998}}, got {choices!r}")
+    _known_names("choices", choices, [f"{name}_S{i}{j}" for (i, j), _angles in cfg for name in ("k", "A", "B")],
+                  config)
     names = tuple(sorted(choices))
     fast = _symbolic_designer(cfg, names)
     if fast is not None:
