@@ -112,6 +112,125 @@ def test_the_example_urdf_and_its_toml_twin_give_the_same_chain_and_best_design(
         _from_urdf(y_up, "y_up.urdf", False, None)
 
 
+def _long_chain(joints: int, kind: str = "revolute", *, solid: bool = False) -> str:
+    """A URDF of ``joints`` joints of one kind in a row, about 95 bytes a joint: links without inertia
+    at one point, or (``solid``) a planar arm of 0.1 m links on axes along y, their masses on their lines."""
+    shape = '<origin xyz="0 0 0.1"/><axis xyz="0 1 0"/>' if solid else ""
+    body = '<inertial><origin xyz="0 0 0.05"/><mass value="1"/></inertial>' if solid else ""
+    return ('<robot name="long"><link name="l0"/>' + "".join(
+        f'<joint name="j{k}" type="{kind}"><parent link="l{k - 1}"/><child link="l{k}"/>{shape}</joint>'
+        f'<link name="l{k}">{body}</link>' for k in range(1, joints + 1)) + "</robot>")
+
+
+def test_a_urdf_of_100000_links_is_refused_at_once_by_its_count_of_movable_joints(tmp_path, monkeypatch, capsys):
+    import time
+    import xml.etree.ElementTree as ET
+
+    import springlab.model.urdf as urdf
+
+    path = tmp_path / "big.urdf"
+    path.write_text(_long_chain(100_000))  # 9.5 MiB; it once took 40 s to be refused for its 100 001 links
+
+    def built(*args, **kwargs):
+        raise AssertionError("the URDF was parsed into elements before its joints were counted")
+
+    with monkeypatch.context() as patch:  # structural: nothing per link is built before the refusal
+        patch.setattr(urdf, "_parse", built)
+        patch.setattr(ET, "fromstring", built)
+        t0 = time.perf_counter()
+        with pytest.raises(SpringlabError, match=r"big.urdf: 100000 movable joints: an arm of at most 8 links \(ground "
+                           r"included\) has at most 21 .*serial chain \(allow_large=True, --allow-large, reads at most 1000\)"):
+            load_arm(path)
+        seconds = time.perf_counter() - t0
+        with pytest.raises(SpringlabError, match=r"100000 movable joints is more than springlab reads from a URDF "
+                           r"\(1000, with allow_large=True\)"):
+            load_arm(path, allow_large=True)
+    assert seconds < 5, f"the refusal took {seconds:.1f} s"  # measured: 0.4 s
+    t0 = time.perf_counter()
+    assert main(["design", str(path), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert "100000 movable joints" in err and "--allow-large" in err and err.count("\n") == 1, err
+    assert time.perf_counter() - t0 < 5
+    # the class: just over the limit, a chain of fixed bodies past MAX_BODIES, a file past MAX_FILE_BYTES
+    from springlab.model.armfile import _from_urdf
+
+    with pytest.raises(SpringlabError, match=r"22 movable joints: an arm of at most 8 links.*or pass allow_large=True"):
+        _from_urdf(_long_chain(22), "22.urdf", False, None)
+    with pytest.raises(SpringlabError, match=r"10 links \(ground included\) is more than 8"):  # 9 joints: read, then refused
+        _from_urdf(_long_chain(9, solid=True), "9.urdf", False, None)
+    assert _from_urdf(_long_chain(9, solid=True), "9.urdf", True, None).n == 10
+    with pytest.raises(SpringlabError, match=r"10002 links is more than springlab reads from a URDF \(10000\)"):
+        _from_urdf(_long_chain(10_001, "fixed"), "fixed.urdf", False, None)
+    huge = tmp_path / "huge.urdf"
+    with huge.open("wb") as f:
+        f.truncate(17 * 2 ** 20)  # sparse: refused by its size, never read
+    with pytest.raises(SpringlabError, match=r"huge.urdf: 17.0 MiB is more than an arm file springlab reads \(16 MiB"):
+        load_arm(huge)
+
+
+def _with_fixed_bodies(count: int, where: str) -> str:
+    """The example URDF with ``count`` small bodies fixed in a row along the arm's line: beyond its
+    tool frame (a long tool), or hanging off the upper arm at its shoulder (a cable carrier)."""
+    parent = {"tool": "tool0", "side": "upper_arm"}[where]
+    bodies = "".join(
+        f'<joint name="f{k}" type="fixed"><parent link="{parent if k == 1 else f"b{k - 1}"}"/><child link="b{k}"/>'
+        f'<origin xyz="0 0 {0.0005 if where == "tool" else 0}"/></joint>'
+        f'<link name="b{k}"><inertial><mass value="0.001"/></inertial></link>' for k in range(1, count + 1))
+    return URDF.replace('<link name="tool0"/>', '<link name="tool0"/>' + bodies)
+
+
+@pytest.mark.parametrize("where", ["tool", "side"])
+def test_a_tool_of_2000_bodies_fixed_together_loads(tmp_path, capsys, where):
+    # the fixed-joint merge once recursed a level a body: a RecursionError, "internal error", exit 3
+    path = tmp_path / "long_tool.urdf"
+    path.write_text(_with_fixed_bodies(2000, where))
+    spec, plain = load_arm(path), load_arm(ARMS / "example_arm.urdf")
+    if where == "tool":  # the last link runs to the deepest frame, 2000 x 0.5 mm beyond tool0, and carries 2 kg more
+        assert spec.r[:3] == plain.r[:3] and spec.m[:3] == plain.m[:3]
+        assert spec.r[3] == pytest.approx(plain.r[3] + 1.0, rel=1e-9) and spec.m[3] == pytest.approx(plain.m[3] + 2.0)
+    else:  # 2 kg at the shoulder, on the upper arm's line
+        assert spec.r == plain.r and spec.m[1] == pytest.approx(plain.m[1] + 2.0) and spec.m[2:] == plain.m[2:]
+        assert spec.d[1] == pytest.approx(plain.m[1] * plain.d[1] / (plain.m[1] + 2.0), rel=1e-9)
+    code = main(["design", str(path), "--json", str(tmp_path / "d.json"), "--method", "ground springs", "--quiet",
+                 "--max-designs", "1"])
+    assert code == 0, capsys.readouterr().err
+
+
+Y_UP = URDF.replace('<origin xyz="0 0 0.10" rpy="0 0 0"/>', '<origin xyz="0 0 0.10" rpy="-1.5707963267948966 0 0"/>')
+
+
+@pytest.mark.parametrize("rpy, up, looks", [
+    ("-1.5707963267948966 0 0", "0,1,0", "y-up"), ("0 1.5707963267948966 0", "1,0,0", "x-up"),
+    ("1.5707963267948966 0 0", "0,-1,0", "-y-up"),
+])
+def test_a_urdf_exported_with_another_up_is_refused_with_the_up_that_reads_it(tmp_path, capsys, rpy, up, looks):
+    path = tmp_path / "turned.urdf"
+    path.write_text(URDF.replace('<origin xyz="0 0 0.10" rpy="0 0 0"/>', f'<origin xyz="0 0 0.10" rpy="{rpy}"/>'))
+    with pytest.raises(SpringlabError, match=rf"joint 'base_yaw': .*same angle.*The file looks {looks}: .*--up {up} "):
+        load_arm(path)  # without up: read z-up, the column lies down (an "offset shoulder")
+    spec, plain = load_arm(path, up=[float(x) for x in up.split(",")]), load_arm(ARMS / "example_arm.urdf")
+    for key in ("r", "d", "m"):
+        assert np.abs(np.subtract(getattr(spec, key), getattr(plain, key))).max() <= 1e-12
+    assert main(["design", str(path), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert f"pass --up {up}" in err and err.count("\n") == 1, err
+    code = main(["design", str(path), "--up", up, "--json", str(tmp_path / "d.json"), "--method", "ground springs",
+                 "--quiet", "--max-designs", "1"])
+    assert code == 0, capsys.readouterr().err
+    # the wrong up given explicitly: the same advice
+    with pytest.raises(SpringlabError, match=rf"--up {up} "):
+        load_arm(path, up=[0, 0, -1])
+    # a refusal that no up lifts gives no such advice
+    with pytest.raises(SpringlabError, match=r"20\.0 mm off the line") as refused:
+        load_arm(_write(tmp_path / "off.urdf", _revolute_arm(20.0)))
+    assert "--up" not in str(refused.value)
+
+
+def _write(path: Path, text: str) -> Path:
+    path.write_text(text)
+    return path
+
+
 def _revolute_arm(offset_mm: float) -> str:
     """A three-link arm on horizontal axes whose forearm's centre of mass is offset_mm off its line."""
     link = ('<link name="{n}"><inertial><origin xyz="{x} 0 {z}"/><mass value="{m}"/>'

@@ -11,7 +11,7 @@ import math
 import time
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from springlab.design.rank import VERIFY_TOLERANCE
@@ -70,12 +70,13 @@ def run(argv) -> tuple[int, str, str, float]:
     return code, out.getvalue(), err.getvalue(), time.perf_counter() - t0
 
 
-def check_outcome(code, out, err, seconds, design_file):
+def check_outcome(code, out, err, seconds, design_file, refuse_within=60):
     assert "Traceback" not in out + err and "internal error" not in err, err
     assert seconds < 60, f"took {seconds:.0f} s"
     if code == 2:
         lines = err.strip().splitlines()
         assert len(lines) == 1 and lines[0].startswith("springlab: "), err
+        assert seconds < refuse_within, f"the refusal took {seconds:.1f} s: {err}"
     elif code == 1:
         assert "no design found" in err, err
     else:
@@ -99,6 +100,74 @@ def test_malformed_arm_files_design_or_exit_with_one_line(tmp_path, data):
     code, out, err, seconds = run(["design", str(arm), "--quiet", "--max-designs", "1", "--time-limit", "20",
                                    "--json", str(design_file)])
     check_outcome(code, out, err, seconds, design_file)
+
+
+UP_RPY = {"0,0,1": "0 0 0", "0,1,0": "-1.5707963267948966 0 0", "1,0,0": "0 1.5707963267948966 0",
+          "0,-1,0": "1.5707963267948966 0 0", "-1,0,0": "0 -1.5707963267948966 0"}
+"""A base joint's rpy that stands an arm built along +z along each up (a CAD export's frames)."""
+
+
+def urdf_arm(elbows: int, extra: int, tool: int, up: str) -> str:
+    """A URDF arm that loads read with ``up``: a column on a joint about up, ``elbows`` links on
+    parallel level axes, ``extra`` more revolute joints beyond them (links like the elbows' up to 30,
+    beyond that a whole robot's worth at one point, without inertia) and ``tool`` bodies fixed in a row beyond
+    the tool frame."""
+    def joint(name, parent, child, z, axis="0 1 0", kind="revolute", rpy="0 0 0"):
+        return (f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
+                f'<origin xyz="0 0 {z}" rpy="{rpy}"/><axis xyz="{axis}"/></joint>')
+
+    def link(name, com, mass):
+        return f'<link name="{name}"><inertial><origin xyz="0 0 {com}"/><mass value="{mass}"/></inertial></link>'
+
+    parts = ['<robot name="fuzz arm"><link name="base"/>', joint("yaw", "base", "l1", 0.1, "0 0 1", "continuous",
+                                                                  UP_RPY[up]), link("l1", 0.1, 4.0)]
+    for k in range(2, elbows + 2):
+        parts += [joint(f"j{k}", f"l{k - 1}", f"l{k}", 0.3), link(f"l{k}", 0.12, 2.0)]
+    last = f"l{elbows + 1}"
+    for k in range(1, extra + 1):  # a few more links, or a long string of joints without inertia 1 mm apart
+        parts += ([joint(f"x{k}", last, f"x{k}", 0.3), link(f"x{k}", 0.12, 2.0)] if extra <= 30 else
+                  [f'<joint name="x{k}" type="revolute"><parent link="{last}"/><child link="x{k}"/></joint>'
+                   f'<link name="x{k}"/>'])
+        last = f"x{k}"
+    parts += [joint("flange", last, "tool0", 0.3, kind="fixed"), '<link name="tool0"/>']
+    for k in range(1, tool + 1):
+        parts += [joint(f"t{k}", "tool0" if k == 1 else f"t{k - 1}", f"t{k}", 0.0005, kind="fixed"),
+                  link(f"t{k}", 0, 0.001)]
+    return "".join(parts) + "</robot>"
+
+
+@st.composite
+def urdf_case(draw):
+    return {"elbows": draw(st.integers(1, 3)), "extra": draw(st.sampled_from([0, 0, 0, 6, 30, 100_000])),
+            "tool": draw(st.sampled_from([0, 1, 2000])), "up": draw(st.sampled_from(sorted(UP_RPY))),
+            "give_up": draw(st.booleans())}
+
+
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture,
+                                                                  HealthCheck.too_slow])
+@given(case=urdf_case())
+@example(case={"elbows": 2, "extra": 100_000, "tool": 0, "up": "0,0,1", "give_up": False})  # once 40 s to refuse
+@example(case={"elbows": 2, "extra": 0, "tool": 2000, "up": "0,0,1", "give_up": False})  # once a RecursionError
+@example(case={"elbows": 2, "extra": 0, "tool": 0, "up": "0,1,0", "give_up": False})  # once "an offset shoulder"
+def test_urdf_arms_design_or_exit_at_once_saying_what_to_do(tmp_path, case):
+    arm = tmp_path / "arm.urdf"
+    arm.write_text(urdf_arm(case["elbows"], case["extra"], case["tool"], case["up"]))
+    design_file = tmp_path / "arm.design.json"
+    design_file.unlink(missing_ok=True)
+    code, out, err, seconds = run(["design", str(arm), "--quiet", "--max-designs", "1", "--method", "ground springs",
+                                   "--time-limit", "20", "--json", str(design_file)]
+                                  + ([f"--up={case['up']}"] if case["give_up"] else []))
+    check_outcome(code, out, err, seconds, design_file, refuse_within=5)
+    movable = 1 + case["elbows"] + case["extra"]
+    if movable > 21:  # more than 8 links, whatever wrists the joints make: refused by their count
+        assert code == 2 and f"{movable} movable joints" in err and "at most 8 links" in err, err
+    elif case["up"] != "0,0,1" and not case["give_up"]:  # read z-up, its column lies down
+        flag = f"--up={case['up']}" if case["up"].startswith("-") else f"--up {case['up']}"  # as argparse takes it
+        assert code == 2 and f"pass {flag} " in err, err
+    elif 1 + movable > 8:
+        assert code == 2 and "--allow-large" in err, err
+    else:
+        assert code == 0, err
 
 
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])

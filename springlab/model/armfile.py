@@ -56,6 +56,10 @@ KINDS = {  # kind: (pint dimensionality, SI unit, units to suggest)
 right dimension is accepted ('16 in', '2.2 lbf/in', '1 g0'); a bare number is SI."""
 MAX_LINKS = 8
 
+MAX_FILE_BYTES = 16 * 2 ** 20
+"""The largest arm file read (16 MiB), checked before it is read: an arm file, even the URDF of a
+large robot, is well under 1 MiB."""
+
 LINK_RADIUS = 0.025
 """m: a link's radius where the arm file gives none (a 50 mm tube or casting), for clearance."""
 
@@ -378,6 +382,14 @@ def read_arm_data(path) -> tuple[Path, dict | str]:
     if path.suffix not in (".toml", ".json", ".urdf"):
         raise SpringlabError(f"{path}: arm files are .toml, .json or .urdf, got {path.suffix!r}")
     try:
+        size = path.stat().st_size
+    except OSError as err:
+        raise SpringlabError(f"{path}: cannot be read ({err.strerror})") from None
+    if size > MAX_FILE_BYTES:
+        raise SpringlabError(f"{path}: {size / 2 ** 20:.1f} MiB is more than an arm file springlab reads "
+                             f"({MAX_FILE_BYTES / 2 ** 20:g} MiB; an arm file is a few kB a link): give the file of "
+                             "the arm's own serial chain")
+    try:
         text = path.read_text(encoding="utf-8")
     except UnicodeDecodeError:
         raise SpringlabError(f"{path}: not a text file (UTF-8): an arm file is TOML or JSON text") from None
@@ -428,7 +440,7 @@ def _from_urdf(text: str, source: str, allow_large: bool, up) -> ArmSpec:
 
     from springlab.model.urdf import urdf_to_dict
 
-    data, arm = urdf_to_dict(text, source=source, up=up)
+    data, arm = urdf_to_dict(text, source=source, up=up, max_links=None if allow_large else MAX_LINKS)
     spec = arm_from_dict(data, source=source, allow_large=allow_large)
     offsets = tuple(arm.offsets) if any(max(map(abs, o)) > 1e-12 for o in arm.offsets) else ()
     notes = list(arm.notes)

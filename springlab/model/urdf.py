@@ -32,6 +32,12 @@ What becomes of the URDF (all at the zero configuration, every joint at 0):
 Refused with the element named: a file that is not URDF, a branching tree, a closed loop, a
 prismatic, planar or floating joint, a link without ``<inertial>`` that would leave a moving
 link massless, two revolute joints at one point that are not a wrist, a zero-length link.
+Refused at once, before the text is parsed into objects (its elements counted as they stream
+past): a text of more than :data:`springlab.model.armfile.MAX_FILE_BYTES`, more movable joints
+than an arm of ``max_links`` links can have (or than :data:`MAX_MOVABLE_JOINTS`), more than
+:data:`MAX_BODIES` links. A file refused that another up (:data:`UP_AXES`) would read is refused
+with that up named (``--up 0,1,0`` for a y-up export). Trees of fixed bodies are walked with a
+stack, not recursion: a tool of thousands of bodies is merged like one of two.
 """
 
 from __future__ import annotations
@@ -40,6 +46,7 @@ import math
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
+from xml.parsers import expat
 
 import numpy as np
 
@@ -52,6 +59,14 @@ projected onto the line, as a fraction of the link's length (2 %); a farther one
 
 MEET_TOLERANCE = 1e-6
 """m: how close three revolute axes must pass to one point to be one spherical joint."""
+
+MAX_MOVABLE_JOINTS = 1000
+"""The most movable (revolute, continuous) joints springlab reads from a URDF, even with
+``allow_large``: counted before the file is parsed (an arm of more is a whole robot, or a fuzzer's)."""
+
+MAX_BODIES = 10_000
+"""The most ``<link>`` elements springlab reads from a URDF (a tool of thousands of bodies fixed
+together is read; a file of more is refused before it is parsed)."""
 
 
 @dataclass
@@ -193,11 +208,20 @@ def _serial(links: dict, joints: list, source: str) -> tuple[str, list, str]:
                              "a URDF arm has one base link")
     moves: dict[str, bool] = {}
 
-    def carries(link: str, depth: int = 0) -> bool:  # a movable joint somewhere below the link
-        if link not in moves:
-            if depth > len(links):
-                raise SpringlabError(f"{source}: the joints below link {link!r} close a loop")
-            moves[link] = any(j.kind != "fixed" or carries(j.child, depth + 1) for j in by_parent.get(link, []))
+    def carries(link: str) -> bool:  # a movable joint somewhere below the link
+        if link not in moves:  # walk the subtree with a stack (a tool of thousands of fixed bodies is deep)
+            below, stack, seen = [], [link], set()
+            while stack:
+                here = stack.pop()
+                if here in moves:
+                    continue
+                if here in seen:
+                    raise SpringlabError(f"{source}: the joints below link {link!r} close a loop")
+                seen.add(here)
+                below.append(here)
+                stack += [j.child for j in by_parent.get(here, [])]
+            for here in reversed(below):  # each link after every link below it
+                moves[here] = any(j.kind != "fixed" or moves[j.child] for j in by_parent.get(here, []))
         return moves[link]
 
     order, reached, name, last = [], {roots[0]}, roots[0], roots[0]
@@ -251,18 +275,121 @@ def _meet(points, axes) -> np.ndarray | None:
     return x if far <= MEET_TOLERANCE else None
 
 
-def read_urdf(text: str, *, source: str = "arm.urdf", up=None) -> UrdfArm:
+def _count(text: str, source: str) -> tuple[int, int]:
+    """The ``<link>`` elements of a URDF's ``<robot>`` and its joints that are not fixed, counted
+    by expat's callbacks as the text streams past: no element is built, so that a file of a
+    whole robot (or a hundred thousand links) is refused before it is parsed into objects."""
+    counts = [0, 0, 0]  # depth, links, movable joints
+
+    def start(tag, attrs):
+        if counts[0] == 1:
+            if tag == "link":
+                counts[1] += 1
+            elif tag == "joint" and attrs.get("type") != "fixed":
+                counts[2] += 1
+        counts[0] += 1
+
+    def end(tag):
+        counts[0] -= 1
+
+    parser = expat.ParserCreate()
+    parser.StartElementHandler, parser.EndElementHandler = start, end
+    try:
+        parser.Parse(text, True)
+    except expat.ExpatError as err:
+        raise SpringlabError(f"{source}: not valid XML: {err}") from None
+    return counts[1], counts[2]
+
+
+def _check_size(text: str, source: str, max_links: int | None) -> None:
+    """Refuse, before anything is built, a URDF text longer than
+    :data:`springlab.model.armfile.MAX_FILE_BYTES`, one of more than :data:`MAX_BODIES` links, or
+    one with more movable joints than an arm of ``max_links`` links (ground included; None: no
+    such limit) can have, or than :data:`MAX_MOVABLE_JOINTS`."""
+    from springlab import _checks
+    from springlab.model.armfile import MAX_FILE_BYTES
+
+    if max_links is not None:
+        max_links = _checks.count("max_links", max_links, least=2,
+                                  why=" (links with the ground), or None for no limit but MAX_MOVABLE_JOINTS")
+    if len(text) > MAX_FILE_BYTES:
+        raise SpringlabError(f"{source}: {len(text) / 2 ** 20:.1f} MiB of URDF text is more than springlab reads "
+                             f"({MAX_FILE_BYTES / 2 ** 20:g} MiB; an arm's URDF is a few kB a link): give the URDF of "
+                             "the arm's own serial chain")
+    bodies, movable = _count(text, source)
+    most = None if max_links is None else 3 * (max_links - 1)
+    if most is not None and movable > most:
+        large = (", or pass allow_large=True (--allow-large) to try anyway" if movable <= MAX_MOVABLE_JOINTS else
+                 f" (allow_large=True, --allow-large, reads at most {MAX_MOVABLE_JOINTS})")
+        raise SpringlabError(f"{source}: {movable} movable joints: an arm of at most {max_links} links (ground "
+                             f"included) has at most {most} (each moving link on one revolute joint or a spherical "
+                             f"wrist of three), so this one has more than {max_links} links; designs grow "
+                             f"combinatorially with n: give the URDF of the arm's own serial chain{large}")
+    if movable > MAX_MOVABLE_JOINTS:
+        raise SpringlabError(f"{source}: {movable} movable joints is more than springlab reads from a URDF "
+                             f"({MAX_MOVABLE_JOINTS}, with allow_large=True): give the URDF of the arm's own "
+                             "serial chain")
+    if bodies > MAX_BODIES:
+        raise SpringlabError(f"{source}: {bodies} links is more than springlab reads from a URDF ({MAX_BODIES}): "
+                             "give the URDF of the arm's own serial chain, its tool merged into fewer bodies")
+
+
+UP_AXES = {(0, 1, 0): "y-up", (1, 0, 0): "x-up", (0, -1, 0): "-y-up", (-1, 0, 0): "-x-up", (0, 0, -1): "-z-up",
+           (0, 0, 1): "z-up"}
+"""The up directions a refused URDF is read with again, in this order, to say which one it
+looks like (CAD tools often export y-up)."""
+
+
+def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | None = None) -> UrdfArm:
     """The arm in a URDF text, as the fields of an arm file (see the module docstring).
 
     :param up: the up direction in the root link's frame (default +z: URDF's gravity is -z)
+    :param max_links: refuse at once, before the file is parsed into objects, a file with more
+        movable joints than an arm of this many links (ground included) can have (None: only
+        :data:`MAX_MOVABLE_JOINTS`)
     """
     if not isinstance(text, str):
         raise SpringlabError(f"{source}: expected URDF text, got {type(text).__name__}")
+    _check_size(text, source, max_links)
     name, links, joints = _parse(text, source)
     root, chain, last_link = _serial(links, joints, source)
-    up = np.array([0.0, 0.0, 1.0]) if up is None else np.asarray(up, dtype=float)
+    given = up
+    try:
+        up = np.array([0.0, 0.0, 1.0]) if up is None else np.asarray(up, dtype=float)
+    except (TypeError, ValueError):
+        up = np.array([math.nan])
     if up.shape != (3,) or not np.all(np.isfinite(up)) or np.linalg.norm(up) < 1e-12:
-        raise SpringlabError(f"up = {up!r}: give a nonzero 3-vector in the root link's frame, e.g. [0, 0, 1]")
+        raise SpringlabError(f"up = {given!r}: give a nonzero 3-vector in the root link's frame, e.g. [0, 0, 1]")
+    try:
+        return _build(str(name), links, root, chain, last_link, up, source)
+    except SpringlabError as err:  # would the file load read with another up? then say which
+        fits = [axis for axis in UP_AXES if np.linalg.norm(np.subtract(axis, up / np.linalg.norm(up))) > 1e-9
+                and _loads(str(name), links, root, chain, last_link, np.array(axis, dtype=float), source)]
+        if not fits:
+            raise
+        others = "".join(f" (or {_up_flag(axis)})" for axis in fits[1:])
+        assumed = "URDF's default z-up was assumed" if given is None else f"up = {given!r} was given"
+        raise type(err)(f"{err}. The file looks {UP_AXES[fits[0]]}: read with up = {list(fits[0])} it loads "
+                        f"({assumed}): pass {_up_flag(fits[0])}{others} (load_arm(..., up={list(fits[0])}))") from None
+
+
+def _up_flag(axis) -> str:
+    """The command line's option for an up axis: ``--up 0,1,0``, ``--up=0,-1,0`` (argparse takes a
+    value that starts with '-' for an option unless it follows '=')."""
+    value = ",".join(map(str, axis))
+    return f"--up={value}" if value.startswith("-") else f"--up {value}"
+
+
+def _loads(*args) -> bool:
+    try:
+        _build(*args)
+    except SpringlabError:
+        return False
+    return True
+
+
+def _build(name: str, links: dict, root: str, chain: list, last_link: str, up: np.ndarray, source: str) -> UrdfArm:
+    """The springlab arm of a serial URDF tree (:func:`_serial`) read with ``up`` as up."""
     W = _frame_to(up / np.linalg.norm(up)).T  # URDF world -> springlab world (up -> [1, 0, 0])
     # world poses at the zero configuration; bodies grouped by the movable joint they follow
     pose = {root: np.eye(4)}
@@ -292,7 +419,7 @@ def read_urdf(text: str, *, source: str = "arm.urdf", up=None) -> UrdfArm:
         k += 1
     centres = [g[2] for g in groups]
     end = W @ pose[last_link][:3, 3]
-    out = UrdfArm(str(name))
+    out = UrdfArm(name)
     # each body's mass and world COM, assigned to a springlab link (index into groups; -1 ground)
     place = [(gi, pos, len(members)) for gi, (_, members, _) in enumerate(groups) for pos in range(len(members))]
     mass = np.zeros(len(groups))
@@ -391,10 +518,10 @@ def _range(joint, theta0: float, notes: list):
     return None
 
 
-def urdf_to_dict(text: str, *, source: str = "arm.urdf", up=None) -> tuple[dict, UrdfArm]:
+def urdf_to_dict(text: str, *, source: str = "arm.urdf", up=None, max_links: int | None = None) -> tuple[dict, UrdfArm]:
     """The arm file's fields (as :func:`springlab.model.armfile.arm_from_dict` takes them, SI
-    numbers) for a URDF text, and what :func:`read_urdf` found."""
-    arm = read_urdf(text, source=source, up=up)
+    numbers) for a URDF text, and what :func:`read_urdf` found (``max_links``: see there)."""
+    arm = read_urdf(text, source=source, up=up, max_links=max_links)
     links = []
     for r, d, m, joint, lim in zip(arm.r, arm.d, arm.m, arm.joints, arm.limits, strict=True):
         link = {"length": r, "com": d, "mass": m, "joint": joint if joint == "spherical" else list(joint)}
