@@ -27,3 +27,41 @@ def test_find_design_balances_a_random_arm(rng):
     X = random_directions(chain.n, 300, rng)
     assert np.ptp(geometry.total_energy(chain, springs, X)) < 1e-10 * np.ptp(geometry.gravity_energy(chain, X))
     assert [s.pattern for s in springs] == [c.pattern for c in cfg]
+
+
+def test_a_search_past_its_deadline_begins_no_new_start(arm, monkeypatch):
+    """find_design's deadline (and design_arm's time_limit through it): a start on a long arm
+    takes seconds, so the limit is checked before each one (a 20-link arm ran 36 s on a 5 s limit)."""
+    import time
+    from types import SimpleNamespace
+
+    import pytest
+
+    from springlab.design import rank
+    from springlab.errors import SearchExhaustedError
+    from springlab.model.armfile import arm_from_dict
+
+    calls = []
+
+    def no_convergence(fun, z0, **kwargs):  # every start ends far from a design
+        calls.append(1)
+        return SimpleNamespace(fun=np.ones(3), x=z0)
+
+    monkeypatch.setattr(design, "least_squares", no_convergence)
+    slots = ["S(1,4)(+,+)", "S(1,2)(+,+)", "S(2,4)(+,+)", "S(3,4)(+,+)"]
+    with pytest.raises(SearchExhaustedError, match="time limit was reached after 1 of 30 starts"):
+        design.find_design(arm, slots, restarts=30, deadline=time.time() - 1.0)
+    assert len(calls) == 1
+    with pytest.raises(SearchExhaustedError, match="after 30 random starts"):  # the control: no deadline, every start
+        design.find_design(arm, slots, restarts=30)
+    assert len(calls) == 31
+    calls.clear()
+
+    def slow_no_convergence(fun, z0, **kwargs):  # a start of 0.2 s: 30 of them would take 6 s
+        time.sleep(0.2)
+        return no_convergence(fun, z0, **kwargs)
+
+    monkeypatch.setattr(design, "least_squares", slow_no_convergence)
+    spec = arm_from_dict({"name": "six links", "link": [{"length": 0.1, "com": 0.05, "mass": 1.0}] * 6})
+    report = rank.design_arm(spec, method="ground springs", restarts=30, time_limit=0.5, minimise_force=False)
+    assert not report.designs and "time limit" in report.stopped and 1 <= len(calls) <= 6

@@ -20,6 +20,7 @@ spatial articulated manipulators without auxiliary links. Mechanism and Machine 
 
 from __future__ import annotations
 
+import functools
 import re
 import time
 from collections import Counter
@@ -303,7 +304,8 @@ def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, ma
 
     executor = check_executor(executor)
     batch = _checks.count("batch", batch, least=1) if executor is not None else 1
-    finder = finder or find_design
+    # the default finder stops starting anew once the time is up (a start on a long arm takes seconds)
+    finder = finder or functools.partial(find_design, deadline=None if time_limit is None else time.time() + time_limit)
     chain = spec.chain()
     X = workspace_poses(spec, chain)
     report = DesignReport(spec, notes=[workspace_note(spec), *spec.notes])

@@ -20,6 +20,7 @@ spatial articulated manipulators without auxiliary links. Mechanism and Machine 
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -261,7 +262,7 @@ def _stop_when_stalled():
 
 def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float = 1e-13,
                 within_links: bool = True, max_extension: float | None = None,
-                max_stiffness: float | None = None, start=None) -> tuple[Spring, ...]:
+                max_stiffness: float | None = None, start=None, deadline: float | None = None) -> tuple[Spring, ...]:
     """A balanced design of the configuration ``slots``, found numerically.
 
     Least squares over (log k, log|a|, log|b|) of every spring, with the signs
@@ -273,6 +274,8 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         (m; default the longest link). ``False`` asks for the signs only.
     :param max_stiffness: largest k (N/m), or None
     :param start: springs to start from (first), before the random starts
+    :param deadline: a :func:`time.time` value (s; the wall clock, the same in every process of an
+        executor) after which no further start begins; None: no limit
     :raises SearchExhaustedError: when no start converges (not a proof: more ``restarts``
         may find one; :func:`relaxation_margin` <= 0 is the proof that none exists)
     """
@@ -340,7 +343,11 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         z_start = np.array([[np.log(sp_.k / scale_k), np.log(abs(sp_.a) / length), np.log(abs(sp_.b) / length)]
                             for sp_ in start]).ravel()
         starts.append(np.clip(z_start, lower, upper))
+    deadline = None if deadline is None else _checks.finite("deadline", deadline, "s")
     for idx in range(restarts + len(starts)):
+        if deadline is not None and idx and time.time() > deadline:
+            raise SearchExhaustedError(f"the time limit was reached after {idx} of {restarts + len(starts)} starts "
+                                       f"for {' '.join(map(str, slots))}: give the search more time")
         z0 = starts[idx] if idx < len(starts) else np.minimum(rng.uniform(-1.5, 0.5, size=3 * len(slots)), upper - 0.05)
         try:
             with np.errstate(over="ignore", invalid="ignore"):  # a wild trial step: the method backs off

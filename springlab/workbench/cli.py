@@ -108,7 +108,8 @@ def _design(args) -> int:
         for count, why in report.reasons():
             print(f"  {count} x {why}", file=sys.stderr)
         if "time limit" in report.stopped:
-            print("  raise --time-limit, or try --method 'ground springs' (one design for any n)", file=sys.stderr)
+            print("  raise --time-limit" + (", or try --method 'ground springs' (one design for any n)"
+                                           if args.method != "ground springs" else ""), file=sys.stderr)
         return 1
     print(report.table())
     if args.csv:
