@@ -155,6 +155,11 @@ def _tally(records: list[dict]) -> str:
     return ", ".join(f"{count[s]} {s}" for s in REPORT_COLUMNS if count.get(s)) or "none"
 
 
+def _authors(paper: dict, names: dict, default: str = "") -> str:
+    """A registry entry's authors as MyST text, any paper they cite by key named and linked."""
+    return prose.link_markdown(_md(paper.get("authors", default)), None, names, set())
+
+
 def short_name(stem: str) -> str:
     """'Juang et al. (2023)', 'design your arm': a chapter's name in a table."""
     paper = PAPERS.get(stem)
@@ -182,7 +187,7 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
                else (f"no DOI (the text prints none; {paper['url']})" if paper.get("url")
                      else "no DOI (the text prints none)") if paper.get("key") else "")
         run = _run_time(notebooks[stem])
-        lines += [f"**{prose.link_markdown(_md(paper['authors']), None, names, set())} ({paper['year']})**, *{_md(paper['title'])}*. "
+        lines += [f"**{_authors(paper, names)} ({paper['year']})**, *{_md(paper['title'])}*. "
                   f"{_md(paper.get('venue') or '')} {doi}", "",
                   f"- chapter: {{doc}}`{stem}`; run time {run:.1f} s" if run is not None else
                   f"- chapter: {{doc}}`{stem}`; run time unknown",
@@ -247,8 +252,7 @@ def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, 
             k = where.get(r.get("cell"))  # None: recorded outside a kernel, or in no numbered cell
             made.append((f"{stem}.html#{make_id(section_label(stem, k))}", _section_number(titles[k], k))
                         if k is not None else None)
-        lines += ["", f"## {prose.link_markdown(_md(paper.get('authors', stem)), None, names, set())} "
-                      f"({paper.get('year', '')})", "",
+        lines += ["", f"## {_authors(paper, names, stem)} ({paper.get('year', '')})", "",
                   f"Chapter: {{doc}}`{stem}`.", "",
                   prose.link_html(html_table(records, made_in=made), paper.get("key"), names, labels)]
     return "\n".join(lines) + "\n"
