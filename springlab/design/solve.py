@@ -274,7 +274,7 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         (m; default the longest link). ``False`` asks for the signs only.
     :param max_stiffness: largest k (N/m), or None
     :param start: springs to start from (first), before the random starts
-    :param deadline: a :func:`time.time` value (s; the wall clock, the same in every process of an
+    :param deadline: a ``time.time()`` value (s; the wall clock, the same in every process of an
         executor) after which no further start begins; None: no limit
     :raises SearchExhaustedError: when no start converges (not a proof: more ``restarts``
         may find one; :func:`relaxation_margin` <= 0 is the proof that none exists)
