@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 from pathlib import Path
 
 import numpy as np
@@ -379,3 +380,100 @@ def test_cli_designs_a_dh_arm_and_load_arm_points_to_it(tmp_path, capsys):
     assert code == 2 and "--sheet applies to arms for paper 000's method" in capsys.readouterr().err
     with pytest.raises(SpringlabError, match="describes its arm by DH frames"):
         load_arm(ARMS / "paper001_arm.toml")
+
+
+GRIPPER = """  <joint name="finger_left" type="prismatic">
+    <parent link="tool0"/>
+    <child link="finger_l"/>
+    <origin xyz="0 0.02 0.03"/>
+    <axis xyz="0 1 0"/>
+    <limit lower="0" upper="0.04" effort="20" velocity="0.2"/>
+  </joint>
+  <link name="finger_l"><inertial><origin xyz="0 0 0"/><mass value="0.1"/>
+    <inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial></link>
+  <joint name="finger_right" type="prismatic">
+    <parent link="tool0"/>
+    <child link="finger_r"/>
+    <origin xyz="0 -0.02 0.03"/>
+    <axis xyz="0 -1 0"/>
+    <limit lower="0" upper="0.04" effort="20" velocity="0.2"/>
+  </joint>
+  <link name="finger_r"><inertial><origin xyz="0 0 0"/><mass value="0.1"/>
+    <inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial></link>
+</robot>"""
+RAIL = """<robot name="example arm (URDF)">
+  <link name="world"/>
+  <joint name="rail" type="prismatic">
+    <parent link="world"/>
+    <child link="base_link"/>
+    <origin xyz="0.5 0 0"/>
+    <axis xyz="1 0 0"/>
+    <limit lower="0" upper="1" effort="200" velocity="1"/>
+  </joint>"""
+
+
+def _urdf(tmp_path, text, name="arm.urdf"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def test_the_tip_chooses_the_chain_and_locks_a_grippers_fingers(tmp_path):
+    plain = load_arm(ARMS / "example_arm.urdf")
+    gripper = _urdf(tmp_path, URDF.replace("</robot>", GRIPPER))
+    with pytest.raises(SpringlabError, match=r"joint 'finger_left' is prismatic \(choose the arm's chain with --tip"):
+        load_arm(gripper)
+    spec = load_arm(gripper, tip="hand")
+    assert spec.r == pytest.approx(plain.r) and spec.m[:-1] == pytest.approx(plain.m[:-1])
+    assert spec.m[-1] == pytest.approx(plain.m[-1] + 0.2)  # the locked fingers ride on the hand
+    assert spec.d[-1] == pytest.approx((plain.m[-1] * plain.d[-1] + 0.2 * 0.15) / (plain.m[-1] + 0.2))
+    assert any("every other joint is locked at zero" in note for note in spec.notes)
+    # a joint on the chosen path that slides is still refused, naming the tip
+    sliding = _urdf(tmp_path, URDF.replace('"elbow" type="revolute"', '"elbow" type="prismatic"'), "sliding.urdf")
+    with pytest.raises(SpringlabError, match=r"'elbow' is prismatic and lies on the path .* to tip 'hand'"):
+        load_arm(sliding, tip="hand")
+
+
+def test_the_base_leaves_out_what_the_arm_stands_on(tmp_path):
+    plain = load_arm(ARMS / "example_arm.urdf")
+    railed = _urdf(tmp_path, URDF.replace('<robot name="example arm (URDF)">', RAIL))
+    with pytest.raises(SpringlabError, match="'rail' is prismatic"):
+        load_arm(railed)
+    spec = load_arm(railed, base="base_link", tip="tool0")
+    assert spec.r == pytest.approx(plain.r) and spec.m == pytest.approx(plain.m) and spec.d == pytest.approx(plain.d)
+
+
+def test_a_payload_at_the_tip_frame_and_equal_limits_read_as_unlimited(tmp_path):
+    plain = load_arm(ARMS / "example_arm.urdf")
+    spec = load_arm(ARMS / "example_arm.urdf", tip="hand", payload="2 kg")
+    assert spec.m[-1] == pytest.approx(plain.m[-1] + 2.0)
+    assert spec.d[-1] == pytest.approx(plain.m[-1] * plain.d[-1] / (plain.m[-1] + 2.0))  # at the hand frame's origin
+    assert any("payload 2 kg" in note for note in spec.notes)
+    stuck = _urdf(tmp_path, URDF.replace('<limit lower="-1.5" upper="1.5"', '<limit lower="0" upper="0"'))
+    spec = load_arm(stuck)
+    assert spec.limits[0] == load_arm(ARMS / "example_arm.urdf").limits[0]  # the base joint: unlimited in both
+    assert spec.limits[1] is None  # the shoulder, limited in the plain file, has no range
+    assert any("'shoulder'" in note and "read as unlimited" in note for note in spec.notes)
+
+
+@pytest.mark.parametrize("kwargs, fragment", [
+    (dict(tip="nope"), r"tip = 'nope' is not a link of the file: give one of its <link> names"),
+    (dict(tip="column", base="hand"), r"tip = 'column' is not below base = 'hand'"),
+    (dict(tip="hand", payload="-1 kg"), r"payload must be finite and >= 0"),
+    (dict(tip="hand", payload="2 m"), r"payload"),
+    (dict(payload="2 kg"), r"carried at the tip frame: give the tip link too"),
+    (dict(tip=3), r"tip = 3: give a link's name"),
+])
+def test_a_bad_tip_base_or_payload_is_refused_by_name(kwargs, fragment):
+    with pytest.raises(SpringlabError, match=fragment):
+        load_arm(ARMS / "example_arm.urdf", **kwargs)
+
+
+def test_tip_base_and_payload_apply_to_urdf_only_and_reach_the_command_line(tmp_path):
+    with pytest.raises(SpringlabError, match=r"tip = 'hand' applies to URDF files only"):
+        load_arm(ARMS / "example_arm.toml", tip="hand")
+    gripper = _urdf(tmp_path, URDF.replace("</robot>", GRIPPER))
+    code = main(["design", str(gripper), "--tip", "hand", "--payload", "0.5 kg", "--json", str(tmp_path / "d.json"),
+                 "--method", "ground springs", "--quiet", "--max-designs", "1"])
+    assert code == 0 and json.loads((tmp_path / "d.json").read_text())
+    assert main(["design", str(gripper), "--tip", "nope", "--quiet"]) == 2

@@ -419,15 +419,22 @@ def is_dh_arm(data) -> bool:
     return isinstance(data, dict) and "frame" in data
 
 
-def load_arm(path, *, allow_large: bool = False, up=None) -> ArmSpec:
+def load_arm(path, *, allow_large: bool = False, up=None, tip: str | None = None, base: str | None = None,
+             payload=None) -> ArmSpec:
     """Read an arm file (.toml or .json, or a URDF robot description, .urdf: see
-    :mod:`springlab.model.urdf`) into an :class:`ArmSpec`. ``up``: a URDF's up direction in its
-    root link's frame (default +z, against URDF's gravity)."""
+    :mod:`springlab.model.urdf`) into an :class:`ArmSpec`. For a URDF: ``up``, its up direction
+    in its root link's frame (default +z, against URDF's gravity); ``tip`` and ``base``, the
+    links the arm runs between (every other joint locked at zero); ``payload``, a point mass at
+    the tip frame (kg, or a quantity such as '2 kg')."""
     path, data = read_arm_data(path)
-    if up is not None and path.suffix != ".urdf":
-        raise SpringlabError(f"up = {up!r} applies to URDF files only: an arm file's up is its ground link's x_1")
+    for value, what in ((up, "up"), (tip, "tip"), (base, "base"), (payload, "payload")):
+        if value is not None and path.suffix != ".urdf":
+            raise SpringlabError(f"{what} = {value!r} applies to URDF files only (an arm file lists its own links"
+                                 f"{' and its payload' if what == 'payload' else ''})")
     if path.suffix == ".urdf":
-        return _from_urdf(data, str(path), allow_large, up)
+        if payload is not None:
+            payload = parse_quantity(payload, "mass", "payload")
+        return _from_urdf(data, str(path), allow_large, up, tip=tip, base=base, payload=payload)
     if is_dh_arm(data):
         raise SpringlabError(f"{path} describes its arm by DH frames ([[frame]]), for paper 001's pseudobase "
                              "method: `springlab design` designs it, or load it with "
@@ -435,12 +442,13 @@ def load_arm(path, *, allow_large: bool = False, up=None) -> ArmSpec:
     return arm_from_dict(data, source=str(path), allow_large=allow_large)
 
 
-def _from_urdf(text: str, source: str, allow_large: bool, up) -> ArmSpec:
+def _from_urdf(text: str, source: str, allow_large: bool, up, *, tip=None, base=None, payload=None) -> ArmSpec:
     import dataclasses
 
     from springlab.model.urdf import urdf_to_dict
 
-    data, arm = urdf_to_dict(text, source=source, up=up, max_links=None if allow_large else MAX_LINKS)
+    data, arm = urdf_to_dict(text, source=source, up=up, max_links=None if allow_large else MAX_LINKS,
+                             tip=tip, base=base, payload=payload)
     spec = arm_from_dict(data, source=source, allow_large=allow_large)
     offsets = tuple(arm.offsets) if any(max(map(abs, o)) > 1e-12 for o in arm.offsets) else ()
     notes = list(arm.notes)

@@ -7,6 +7,14 @@ refuses entity-expansion bombs.
 
 What becomes of the URDF (all at the zero configuration, every joint at 0):
 
+* with a **tip** (``--tip LINK``), the joints on the path from the **base** (``--base LINK``,
+  default the root) to the tip are the arm; every other joint below the base (a gripper's
+  fingers, prismatic or not) is locked at zero, so its bodies ride on the link they hang from,
+  as Pinocchio's reduced models do; what is not below the base (a rail, a torso) is left out.
+  A **payload** (kg) is a point mass at the tip frame's origin. Without a tip the whole tree
+  must be one serial chain of revolute joints;
+* a revolute joint whose limits read ``lower = upper`` is taken as unlimited, with a note (some
+  exporters write a continuous joint so);
 * the **root link** (with everything fixed to it) is the ground, link 1; its mass is not used;
 * **links joined by fixed joints are merged**: their masses added, their centres of mass combined;
 * **three consecutive revolute joints whose axes meet in one point and span three directions**
@@ -30,7 +38,7 @@ What becomes of the URDF (all at the zero configuration, every joint at 0):
   projection costs (route 2); a larger offset is refused, pointing to paper 001's method.
 
 Refused with the element named: a file that is not URDF, a branching tree, a closed loop, a
-prismatic, planar or floating joint, a link without ``<inertial>`` that would leave a moving
+prismatic, planar or floating joint on the arm's path (or anywhere, without a tip), a link without ``<inertial>`` that would leave a moving
 link massless, two revolute joints at one point that are not a wrist, a zero-length link.
 Refused at once, before the text is parsed into objects (its elements counted as they stream
 past): a text of more than :data:`springlab.model.armfile.MAX_FILE_BYTES`, more movable joints
@@ -50,8 +58,12 @@ from xml.parsers import expat
 
 import numpy as np
 
+from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.model.rotations import rot_axis
+
+SLIDING = ("prismatic", "planar", "floating")
+"""Joint types springlab's arms do not have: refused on the arm's path, locked at zero off it."""
 
 COM_TOLERANCE = 0.02
 """Largest distance of a link's centre of mass from the line between its joints that is
@@ -151,7 +163,7 @@ def _parse(text: str, source: str):
         if mass < 0:
             raise SpringlabError(f"{where} <mass value> = {mass:g} kg must be >= 0")
         links[name] = (mass, _origin(inertial, where)[:3, 3])
-    joints = []
+    joints, notes = [], []
     for el in root.findall("joint"):
         name = el.get("name") or "?"
         where = f"{source}: joint {name!r}"
@@ -162,11 +174,7 @@ def _parse(text: str, source: str):
         for end in (parent.get("link"), child.get("link")):
             if end not in links:
                 raise SpringlabError(f"{where} names link {end!r}, which the file does not define")
-        if kind in ("prismatic", "planar", "floating"):
-            raise SpringlabError(f"{where} is {kind}: springlab balances arms of revolute and spherical joints "
-                                 "only (a sliding joint moves the centre of mass along a line no spring set here "
-                                 "is designed for)")
-        if kind not in ("revolute", "continuous", "fixed"):
+        if kind not in ("revolute", "continuous", "fixed", *SLIDING):
             raise SpringlabError(f"{where}: unknown joint type {kind!r} (URDF: revolute, continuous, fixed, ...)")
         axis_el = el.find("axis")
         axis = _floats(axis_el.get("xyz") if axis_el is not None else None, 3, f"{where}: <axis xyz>", (1, 0, 0))
@@ -180,11 +188,74 @@ def _parse(text: str, source: str):
                 and limit_el.get("upper") is not None:
             lo = _floats(limit_el.get("lower"), 1, f"{where}: <limit lower>")[0]
             hi = _floats(limit_el.get("upper"), 1, f"{where}: <limit upper>")[0]
-            if not lo < hi:
+            if lo == hi:  # some exporters write a continuous joint so
+                notes.append(f"joint {name!r}: <limit lower={lo:g} upper={hi:g}> read as unlimited "
+                             "(some exporters write a continuous joint with equal limits)")
+            elif not lo < hi:
                 raise SpringlabError(f"{where}: <limit lower={lo:g} upper={hi:g}> must have lower < upper (rad)")
-            limit = (lo, hi)
+            else:
+                limit = (lo, hi)
         joints.append(_Joint(name, kind, parent.get("link"), child.get("link"), _origin(el, where), axis, limit))
-    return root.get("name") or Path(source).stem, links, joints
+    return root.get("name") or Path(source).stem, links, joints, notes
+
+
+def _sliding_refusal(joint: _Joint, source: str, why: str = "") -> SpringlabError:
+    return SpringlabError(f"{source}: joint {joint.name!r} is {joint.kind}{why}: springlab balances arms of revolute "
+                          "and spherical joints only (a sliding joint moves the centre of mass along a line no "
+                          "spring set here is designed for)")
+
+
+def _choose(links: dict, joints: list, source: str, base: str | None, tip: str | None) -> tuple[list, str | None]:
+    """The joints of the arm from ``base`` (None: the root) to ``tip`` (None: the whole tree):
+    the path's joints as they are, every other joint below the base locked at zero (made fixed:
+    its bodies ride on the link they hang from, as Pinocchio's reduced models do), the joints
+    outside the base's subtree left out (they carry no load the arm's springs take). Returns the
+    joints and the base link (None: the root)."""
+    if tip is None and base is None:
+        for j in joints:
+            if j.kind in SLIDING:
+                raise _sliding_refusal(j, source, " (choose the arm's chain with --tip LINK to lock it)")
+        return joints, None
+    for name, what in ((tip, "tip"), (base, "base")):
+        if name is not None and name not in links:
+            near = sorted(links)[:12]
+            raise SpringlabError(f"{source}: {what} = {name!r} is not a link of the file: give one of its <link> names "
+                                 f"({', '.join(map(repr, near))}{', ...' if len(links) > 12 else ''})")
+    into = {j.child: j for j in joints}
+    if tip is None:
+        path = []
+    else:
+        path, here = [], tip
+        while here in into and here != base:
+            path.append(into[here])
+            here = into[here].parent
+        if base is not None and here != base:
+            raise SpringlabError(f"{source}: tip = {tip!r} is not below base = {base!r}: the arm runs from the base "
+                                 "link out to the tip link (choose a base on the tip's path to the root)")
+        path.reverse()
+    for j in path:
+        if j.kind in SLIDING:
+            raise _sliding_refusal(j, source, f" and lies on the path from {base or 'the root'!r} to tip {tip!r} "
+                                              "(choose a tip before it)")
+    below = None
+    if base is not None:  # the base's subtree: walked with a stack
+        by_parent: dict[str, list] = {}
+        for j in joints:
+            by_parent.setdefault(j.parent, []).append(j)
+        below, stack = set(), [base]
+        while stack:
+            here = stack.pop()
+            if here not in below:
+                below.add(here)
+                stack += [j.child for j in by_parent.get(here, [])]
+    on_path = {id(j) for j in path}
+    chosen = [j if id(j) in on_path or tip is None else _Joint(j.name, "fixed", j.parent, j.child, j.origin, j.axis, None)
+              for j in joints if below is None or (j.parent in below and j.child in below)]
+    if tip is None:
+        for j in chosen:
+            if j.kind in SLIDING:
+                raise _sliding_refusal(j, source, " (choose the arm's chain with --tip LINK to lock it)")
+    return chosen, base
 
 
 def _serial(links: dict, joints: list, source: str) -> tuple[str, list, str]:
@@ -340,8 +411,15 @@ UP_AXES = {(0, 1, 0): "y-up", (1, 0, 0): "x-up", (0, -1, 0): "-y-up", (-1, 0, 0)
 looks like (CAD tools often export y-up)."""
 
 
-def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | None = None) -> UrdfArm:
+def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | None = None,
+              tip: str | None = None, base: str | None = None, payload: float | None = None) -> UrdfArm:
     """The arm in a URDF text, as the fields of an arm file (see the module docstring).
+
+    :param tip: the arm's last link: the joints on the path from the base to it are the arm,
+        every other joint (a gripper's fingers, prismatic or not) is locked at zero and its
+        bodies ride on the link they hang from (None: the whole tree must be one serial chain)
+    :param base: the link the arm stands on (default the root); ``up`` stays in the root's frame
+    :param payload: a point mass (kg) at the origin of the tip link's frame (with ``tip`` only)
 
     :param up: the up direction in the root link's frame (default +z: URDF's gravity is -z)
     :param max_links: refuse at once, before the file is parsed into objects, a file with more
@@ -350,9 +428,17 @@ def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | 
     """
     if not isinstance(text, str):
         raise SpringlabError(f"{source}: expected URDF text, got {type(text).__name__}")
-    _check_size(text, source, max_links)
-    name, links, joints = _parse(text, source)
-    root, chain, last_link = _serial(links, joints, source)
+    for value, what in ((tip, "tip"), (base, "base")):
+        if value is not None and not isinstance(value, str):
+            raise SpringlabError(f"{what} = {value!r}: give a link's name (a string)")
+    if payload is not None:
+        payload = float(_checks.positive("payload", payload, allow_zero=True, unit="kg"))
+        if tip is None:
+            raise SpringlabError(f"payload = {payload:g} kg is carried at the tip frame: give the tip link too (--tip LINK)")
+    # a chosen chain may be a small part of a whole robot: the count that matters is the path's
+    _check_size(text, source, max_links if tip is None else None)
+    name, links, joints, notes = _parse(text, source)
+    joints, base = _choose(links, joints, source, base, tip)
     given = up
     try:
         up = np.array([0.0, 0.0, 1.0]) if up is None else np.asarray(up, dtype=float)
@@ -360,10 +446,27 @@ def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | 
         up = np.array([math.nan])
     if up.shape != (3,) or not np.all(np.isfinite(up)) or np.linalg.norm(up) < 1e-12:
         raise SpringlabError(f"up = {given!r}: give a nonzero 3-vector in the root link's frame, e.g. [0, 0, 1]")
+    if base is not None:  # up in the base's frame at the zero configuration
+        into = {j.child: j for j in _parse(text, source)[2]}
+        R, here = np.eye(3), base
+        while here in into:
+            R, here = into[here].origin[:3, :3] @ R, into[here].parent
+        up = R.T @ up
+        links = {k: v for k, v in links.items() if k == base or any(j.child == k for j in joints)}
+    if payload:
+        mass, com = links[tip] if links.get(tip) is not None else (0.0, np.zeros(3))
+        links = {**links, tip: (mass + payload, mass * np.asarray(com) / (mass + payload))}  # at the tip frame's origin
+        notes.append(f"payload {payload:g} kg at the origin of link {tip!r}'s frame")
+    root, chain, last_link = _serial(links, joints, source)
+    if tip is not None:
+        notes.append(f"the arm runs from {root!r} to {tip!r}; every other joint is locked at zero, its bodies "
+                     "carried by the link they hang from")
     try:
-        return _build(str(name), links, root, chain, last_link, up, source)
+        arm = _build(str(name), links, root, chain, last_link, up, source)
+        arm.notes[:0] = notes
+        return arm
     except SpringlabError as err:  # would the file load read with another up? then say which
-        fits = [axis for axis in UP_AXES if np.linalg.norm(np.subtract(axis, up / np.linalg.norm(up))) > 1e-9
+        fits = [] if base is not None else [axis for axis in UP_AXES if np.linalg.norm(np.subtract(axis, up / np.linalg.norm(up))) > 1e-9
                 and _loads(str(name), links, root, chain, last_link, np.array(axis, dtype=float), source)]
         if not fits:
             raise
@@ -518,10 +621,11 @@ def _range(joint, theta0: float, notes: list):
     return None
 
 
-def urdf_to_dict(text: str, *, source: str = "arm.urdf", up=None, max_links: int | None = None) -> tuple[dict, UrdfArm]:
+def urdf_to_dict(text: str, *, source: str = "arm.urdf", up=None, max_links: int | None = None,
+                 tip: str | None = None, base: str | None = None, payload: float | None = None) -> tuple[dict, UrdfArm]:
     """The arm file's fields (as :func:`springlab.model.armfile.arm_from_dict` takes them, SI
-    numbers) for a URDF text, and what :func:`read_urdf` found (``max_links``: see there)."""
-    arm = read_urdf(text, source=source, up=up, max_links=max_links)
+    numbers) for a URDF text, and what :func:`read_urdf` found (the keywords: see there)."""
+    arm = read_urdf(text, source=source, up=up, max_links=max_links, tip=tip, base=base, payload=payload)
     links = []
     for r, d, m, joint, lim in zip(arm.r, arm.d, arm.m, arm.joints, arm.limits, strict=True):
         link = {"length": r, "com": d, "mass": m, "joint": joint if joint == "spherical" else list(joint)}

@@ -85,7 +85,8 @@ def _design(args) -> int:
     path, data = read_arm_data(args.arm_file)
     if is_dh_arm(data):
         return _design_dh(args, path)
-    spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up))
+    spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up), tip=args.tip, base=args.base,
+                    payload=args.payload)
     out = _writable(Path(args.json or Path(args.arm_file).with_suffix(".design.json").name), "--json")
     if args.sheet:
         for path in _sheet_paths(out):
@@ -95,7 +96,8 @@ def _design(args) -> int:
     report = design_arm(spec, method=args.method, max_designs=args.max_designs,
                         max_configurations=args.max_configurations, seed=args.seed, progress=not args.quiet,
                         time_limit=args.time_limit)
-    print(f"# {spec.name}: n = {spec.n} links (ground included), payload {spec.payload:g} kg")
+    carried = f"; {args.payload} at the tip frame, in link {spec.n}'s mass" if args.payload else ""
+    print(f"# {spec.name}: n = {spec.n} links (ground included), payload {spec.payload:g} kg{carried}")
     for note in report.notes:
         print(f"note: {note}")
     print(f"{report.configurations_tried} configurations tried in {report.seconds:.1f} s, "
@@ -142,7 +144,8 @@ def _design_dh(args, path: Path) -> int:
     from springlab.mechanisms.pseudobase.armfile import load_dh_arm
     from springlab.tables import Table
 
-    for flag, given in (("--sheet", args.sheet), ("--up", args.up), ("--method", args.method != "fewest springs")):
+    for flag, given in (("--sheet", args.sheet), ("--up", args.up), ("--tip", args.tip), ("--base", args.base),
+                        ("--payload", args.payload), ("--method", args.method != "fewest springs")):
         if given:
             raise SpringlabError(f"{flag} applies to arms for paper 000's method; {path} describes its arm by DH "
                                  "frames, designed by paper 001's pseudobase method")
@@ -237,6 +240,10 @@ def main(argv=None) -> int:
                    help="m, the pulley of a spring realised as a cable over a pulley (--sheet; default 0.01)")
     p.add_argument("--up", help="a URDF arm's up direction in its base link's frame, e.g. 0,1,0 (default 0,0,1: "
                                 "URDF's gravity acts along -z)")
+    p.add_argument("--tip", help="a URDF arm's last link: the joints from the base to it are the arm; every other "
+                                 "joint (a gripper's fingers) is locked at zero, its bodies carried as fixed mass")
+    p.add_argument("--base", help="a URDF arm's base link (default the root link)")
+    p.add_argument("--payload", help="a point mass at the tip frame, e.g. '2 kg' (with --tip)")
     p.add_argument("--allow-large", action="store_true", help="allow arms of more than 8 links")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--debug", action="store_true", help="show the traceback of an unexpected error")
