@@ -382,25 +382,17 @@ def test_cli_designs_a_dh_arm_and_load_arm_points_to_it(tmp_path, capsys):
         load_arm(ARMS / "paper001_arm.toml")
 
 
-GRIPPER = """  <joint name="finger_left" type="prismatic">
-    <parent link="tool0"/>
-    <child link="finger_l"/>
-    <origin xyz="0 0.02 0.03"/>
-    <axis xyz="0 1 0"/>
-    <limit lower="0" upper="0.04" effort="20" velocity="0.2"/>
-  </joint>
-  <link name="finger_l"><inertial><origin xyz="0 0 0"/><mass value="0.1"/>
-    <inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial></link>
-  <joint name="finger_right" type="prismatic">
-    <parent link="tool0"/>
-    <child link="finger_r"/>
-    <origin xyz="0 -0.02 0.03"/>
-    <axis xyz="0 -1 0"/>
-    <limit lower="0" upper="0.04" effort="20" velocity="0.2"/>
-  </joint>
-  <link name="finger_r"><inertial><origin xyz="0 0 0"/><mass value="0.1"/>
-    <inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial></link>
-</robot>"""
+def _finger(side: str, y: float) -> str:
+    """A prismatic finger of 0.1 kg on tool0, sliding along y (a gripper's jaw)."""
+    return (f'  <joint name="finger_{side}" type="prismatic">\n    <parent link="tool0"/>\n'
+            f'    <child link="finger_{side[0]}"/>\n    <origin xyz="0 {y} 0.03"/>\n'
+            f'    <axis xyz="0 {1 if y > 0 else -1} 0"/>\n'
+            '    <limit lower="0" upper="0.04" effort="20" velocity="0.2"/>\n  </joint>\n'
+            f'  <link name="finger_{side[0]}"><inertial><origin xyz="0 0 0"/><mass value="0.1"/>\n'
+            '    <inertia ixx="1e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial></link>\n')
+
+
+GRIPPER = _finger("left", 0.02) + _finger("right", -0.02) + "</robot>"
 RAIL = """<robot name="example arm (URDF)">
   <link name="world"/>
   <joint name="rail" type="prismatic">
