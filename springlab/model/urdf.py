@@ -437,8 +437,8 @@ def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | 
             raise SpringlabError(f"payload = {payload:g} kg is carried at the tip frame: give the tip link too (--tip LINK)")
     # a chosen chain may be a small part of a whole robot: the count that matters is the path's
     _check_size(text, source, max_links if tip is None else None)
-    name, links, joints, notes = _parse(text, source)
-    joints, base = _choose(links, joints, source, base, tip)
+    name, links, every_joint, notes = _parse(text, source)
+    joints, base = _choose(links, every_joint, source, base, tip)
     given = up
     try:
         up = np.array([0.0, 0.0, 1.0]) if up is None else np.asarray(up, dtype=float)
@@ -447,12 +447,13 @@ def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | 
     if up.shape != (3,) or not np.all(np.isfinite(up)) or np.linalg.norm(up) < 1e-12:
         raise SpringlabError(f"up = {given!r}: give a nonzero 3-vector in the root link's frame, e.g. [0, 0, 1]")
     if base is not None:  # up in the base's frame at the zero configuration
-        into = {j.child: j for j in _parse(text, source)[2]}
+        into = {j.child: j for j in every_joint}
         R, here = np.eye(3), base
         while here in into:
             R, here = into[here].origin[:3, :3] @ R, into[here].parent
         up = R.T @ up
-        links = {k: v for k, v in links.items() if k == base or any(j.child == k for j in joints)}
+        kept = {base, *(j.child for j in joints)}
+        links = {k: v for k, v in links.items() if k in kept}
     if payload:
         mass, com = links[tip] if links.get(tip) is not None else (0.0, np.zeros(3))
         links = {**links, tip: (mass + payload, mass * np.asarray(com) / (mass + payload))}  # at the tip frame's origin

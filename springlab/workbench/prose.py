@@ -133,8 +133,7 @@ def link_markdown(text: str, here: str | None, names: dict, labels: set) -> str:
 
     def line(text_line):
         if text_line.lstrip().startswith("#"):  # a heading names papers, unlinked (it is a link in the contents)
-            return _outside(text_line, _PROTECTED_MD, lambda t: _rewrite(t, here, names, set(), lambda k, s: s,
-                                                                          lambda k, n, s: s))
+            return _outside(text_line, _PROTECTED_MD, lambda t: name_papers(t, here, names))
         return _outside(text_line, _PROTECTED_MD, lambda t: _rewrite(t, here, names, labels, paper, equation))
 
     blocks = re.split(r"(```.*?```)", text, flags=re.S)  # a fence spans lines: kept whole

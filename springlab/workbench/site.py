@@ -215,8 +215,7 @@ for (const el of article.querySelectorAll('.cell_output > *, mjx-container[displ
     if (width > 2 * column) wide.push([Math.round(width), el.textContent.trim().slice(0, 60)]);
 }
 const numbered = Array.from(article.querySelectorAll('mjx-container [data-mml-node="mlabeledtr"]')).length;
-const labels = Array.from(article.querySelectorAll('[id^="equation-"], [id^="eq-"]')).map(e => e.id);
-return {column, pipes, leaks, wide, numbered, labels};
+return {column, pipes, leaks, wide, numbered};
 """
 
 
