@@ -19,6 +19,14 @@ import numpy as np
 from springlab import _checks
 from springlab.errors import GeometryError, SpringlabError
 from springlab.model.chain import UP, Chain
+from springlab.model.revolute import (
+    RevoluteChain,
+    body_frames,
+    centres_of_mass,
+    check_point_springs,
+    joint_axes,
+    world_points,
+)
 from springlab.model.springs import Spring, check_springs
 
 DEFAULT_CHUNK = 8192
@@ -197,3 +205,81 @@ def holding_torques(chain: Chain, springs, X, *, out=None) -> np.ndarray:
             f"{s.label}'s ends coincide at pose {pose}: a spring of effective free length {s.effective_free_length:g} m has "
             "no line of action there; move its attachments (a, b) or leave that pose out")
     return out
+
+
+# --- the general model: any revolute chain, springs between any two points ------------------
+def _loads(model: RevoluteChain, springs, q, *, gravity: bool = True):
+    """Per body, the force (N) and its moment about the base origin (N m) of the loads on it:
+    its weight at its centre of mass and the spring forces at its attachment points. Returns
+    (F, M, o, axes), F and M of shape (N, n+1, 3); o the bodies' origins, axes the joints' axes."""
+    springs = check_point_springs(model, springs)
+    R, o = body_frames(model, q)
+    N = R.shape[0]
+    F = np.zeros((N, model.n + 1, 3))
+    M = np.zeros((N, model.n + 1, 3))
+    if gravity:
+        F[:, 1:] = model.mass[1:, None] * model.gravity  # the base's weight is the ground's
+        M[:, 1:] = np.cross(centres_of_mass(model, R, o)[:, 1:], F[:, 1:])
+    for s in springs:
+        ia, ib = model.body(s.link_a), model.body(s.link_b)
+        A, B = world_points(R, o, ia, s.point_a), world_points(R, o, ib, s.point_b)
+        d = B - A
+        l0 = s.effective_free_length
+        k_eff = np.full(N, s.k)
+        if l0:
+            length = np.linalg.norm(d, axis=1)
+            if np.any(length == 0):
+                p = int(np.argmax(length == 0))
+                raise GeometryError(f"{s.label}'s ends coincide at pose {p}: a spring of effective free length {l0:g} m "
+                                    "has no line of action there; move its attachments or leave that pose out")
+            k_eff = s.k * (1.0 - l0 / length)
+        f_b = -k_eff[:, None] * d  # the spring pulls B towards A
+        F[:, ib] += f_b
+        M[:, ib] += np.cross(B, f_b)
+        F[:, ia] -= f_b
+        M[:, ia] -= np.cross(A, f_b)
+    return F, M, o, joint_axes(model, R)
+
+
+def joint_torques(model: RevoluteChain, springs, q) -> np.ndarray:
+    """The torque (N m) each joint must apply to hold each pose against gravity and the springs,
+    (N, n), route 2 on the general model.
+
+    For joint i (at body i's origin o_i, axis w_i) the bodies i..n beyond it carry loads whose
+    moment about o_i is sum_{b>=i} (p - o_i) x f over their weights and spring forces; the joint
+    holds -w_i . that moment. It equals dV/dq_i, the energy's derivative, and Pinocchio's
+    ``computeGeneralizedGravity`` without springs. A spring with both ends beyond the joint
+    loads it not at all (its two forces cancel).
+
+    :param q: joint angles (N, n) or (n,) (rad)
+    """
+    F, M, o, w = _loads(model, springs, q)
+    F_out = np.cumsum(F[:, ::-1], axis=1)[:, ::-1][:, 1:]  # sum over bodies b >= i, i = 1..n
+    M_out = np.cumsum(M[:, ::-1], axis=1)[:, ::-1][:, 1:]
+    about_joint = M_out - np.cross(o[:, 1:], F_out)
+    return -np.einsum("pjc,pjc->pj", about_joint, w)
+
+
+def gravity_torques(model: RevoluteChain, q) -> np.ndarray:
+    """The gravity torques (N m) of each joint, (N, n): :func:`joint_torques` without springs."""
+    return joint_torques(model, (), q)
+
+
+def potential(model: RevoluteChain, springs, q) -> dict[str, np.ndarray]:
+    """Gravity, spring and total potential energy (J) at each pose of the general model, route 2:
+    {'gravity', 'springs', 'total'}, each (N,). The gravity energy's zero is the base frame's
+    origin: -sum_b m_b gravity . c_b; a spring's is k (l - l0)^2 / 2, l0 its effective free length.
+
+    :param q: joint angles (N, n) or (n,) (rad)
+    """
+    springs = check_point_springs(model, springs)
+    R, o = body_frames(model, q)
+    c = centres_of_mass(model, R, o)
+    grav = -np.einsum("pjc,j,c->p", c[:, 1:], model.mass[1:], model.gravity)
+    elastic = np.zeros(R.shape[0])
+    for s in springs:
+        A = world_points(R, o, model.body(s.link_a), s.point_a)
+        B = world_points(R, o, model.body(s.link_b), s.point_b)
+        length = np.linalg.norm(B - A, axis=1)
+        elastic += 0.5 * s.k * (length - s.effective_free_length) ** 2
+    return {"gravity": grav, "springs": elastic, "total": grav + elastic}

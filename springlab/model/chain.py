@@ -113,6 +113,51 @@ class Chain:
         mass = _checks.positive("payload mass", mass, allow_zero=True, unit="kg")
         return Chain(self.r, self.d, self.m[:-1] + (self.m[-1] + float(mass),), self.g, self.joints)
 
+    def revolute_chain(self, name: str = "chain"):
+        """This chain as the general model of an arm, a :class:`~springlab.model.revolute.RevoluteChain`
+        (the papers' chains are special cases of it).
+
+        Body 'ground' is link 1 (its frame is the world's, x_1 = UP); body 'link j' is link j, its
+        frame at its proximal joint J_{j-1} with x along the link, the centre of mass at (d_j, 0, 0)
+        and a slender rod's inertia (m r^2 / 12 across, 1 % of it about the link's own axis). A
+        revolute joint turns about its axis; a spherical joint is three revolute joints through
+        J_{j-1}, about x, the new y and the new z (the order of
+        :func:`~springlab.model.rotations.rot_xyz`), carrying two massless bodies 'link j (x)',
+        'link j (y)'. Joint coordinates: :meth:`joint_coordinates`; springs:
+        :func:`springlab.model.springs.point_springs`.
+        """
+        from springlab.model.revolute import RevoluteChain
+        from springlab.model.springs import chain_body
+
+        bodies, joints, placements, axes, mass, com, inertia = ["ground"], [], [], [], [0.0], [np.zeros(3)], [np.zeros((3, 3))]
+        for j in range(2, self.n + 1):
+            P = np.eye(4)
+            P[0, 3] = self.r[j - 3] if j >= 3 else 0.0  # J_{j-1} = J_{j-2} + r_{j-1} x_{j-1}
+            axis = self.joint(j)
+            turns = [("", axis)] if axis != SPHERICAL else [(" (x)", (1.0, 0.0, 0.0)), (" (y)", (0.0, 1.0, 0.0)),
+                                                            (" (z)", (0.0, 0.0, 1.0))]
+            for k, (suffix, u) in enumerate(turns):
+                last = k == len(turns) - 1
+                joints.append(f"joint {j}{suffix}")
+                bodies.append(chain_body(j) if last else f"{chain_body(j)}{suffix}")
+                placements.append(P if k == 0 else np.eye(4))
+                axes.append(u)
+                m = self.m[j - 2] if last else 0.0
+                transverse = m * self.r[j - 2] ** 2 / 12.0
+                mass.append(m)
+                com.append(np.array([self.d[j - 2] if last else 0.0, 0.0, 0.0]))
+                inertia.append(np.diag([0.01 * transverse, transverse, transverse]))
+        return RevoluteChain(name, tuple(bodies), tuple(joints), np.array(placements), np.array(axes), np.array(mass),
+                             np.array(com), np.array(inertia), -self.g * UP)
+
+    def joint_coordinates(self, angles) -> np.ndarray:
+        """Joint angles (N, n-1, 3) (rad, see :meth:`frames`) as the coordinates q (N, nq) of
+        :meth:`revolute_chain`: one per revolute joint, three per spherical joint."""
+        angles = self.check_angles(angles)
+        cols = [angles[:, j - 2, :1] if self.joint(j) != SPHERICAL else angles[:, j - 2, :]
+                for j in range(2, self.n + 1)]
+        return np.concatenate(cols, axis=1)
+
     def _check_moving(self, j: int) -> None:
         if not (2 <= j <= self.n):
             raise SpringlabError(f"link index must be in 2..{self.n}, got {j}")

@@ -215,3 +215,90 @@ def check_attachments(chain, springs, *, max_extension: float | None = None) -> 
                     raise AttachmentError(
                         f"{name}_{s.label} = {value:.6g} m needs a bracket longer than "
                         f"max_extension = {max_extension:g} m")
+
+
+@dataclass(frozen=True)
+class PointSpring:
+    """A spring between two points fixed in two bodies of a :class:`~springlab.model.revolute.RevoluteChain`:
+    the general spring, attached anywhere (the papers' springs on the joint lines are special
+    cases: :func:`point_springs`). Its field names are the contract of ``springlab design --json``.
+
+    :ivar link_a: the body of end A (its name)
+    :ivar point_a: end A (m), in link_a's frame (a URDF link's own frame)
+    :ivar link_b: the body of end B
+    :ivar point_b: end B (m), in link_b's frame
+    :ivar k: stiffness (N/m), > 0
+    :ivar free_length: free length L_0 (m), >= 0
+    :ivar initial_tension: the pull F_i (N), >= 0, at the free length: the force is F_i + k (l - L_0)
+
+    >>> PointSpring("base", (0, 0, 0.1), "upper_arm", (0.2, 0, 0), k=500.0).label
+    'base-upper_arm'
+    """
+
+    link_a: str
+    point_a: tuple
+    link_b: str
+    point_b: tuple
+    k: float
+    free_length: float = 0.0
+    initial_tension: float = 0.0
+
+    def __post_init__(self):
+        for name in ("link_a", "link_b"):
+            value = getattr(self, name)
+            if not (isinstance(value, str) and value):
+                raise SpringlabError(f"{name} must name a body (a link's name), got {value!r}")
+        if self.link_a == self.link_b:
+            raise SpringlabError(f"a spring joins two bodies; both ends are on {self.link_a!r}")
+        for name in ("point_a", "point_b"):
+            p = _checks.real_array(f"{name} of {self.label}", getattr(self, name), finite_only=False)
+            if p.shape != (3,) or not np.all(np.isfinite(p)):
+                raise SpringlabError(f"{name} of {self.label} must be 3 finite coordinates (m) in its link's frame, "
+                                     f"got {getattr(self, name)!r}")
+            object.__setattr__(self, name, tuple(float(v) for v in p))
+        k = _checks.number(f"k of {self.label}", self.k)
+        if not (np.isfinite(k) and k > 0):
+            raise SpringlabError(f"k of {self.label} must be a finite stiffness > 0 N/m, got {self.k}")
+        object.__setattr__(self, "k", k)
+        for name, unit in (("free_length", "m"), ("initial_tension", "N")):
+            v = _checks.number(f"{name} of {self.label}", getattr(self, name))
+            if not (np.isfinite(v) and v >= 0):
+                raise SpringlabError(f"{name} of {self.label} must be finite and >= 0 {unit}, got {getattr(self, name)}")
+            object.__setattr__(self, name, v)
+
+    @property
+    def label(self) -> str:
+        return f"{self.link_a}-{self.link_b}"
+
+    @property
+    def effective_free_length(self) -> float:
+        """L_0 - F_i / k (m), as :attr:`Spring.effective_free_length`."""
+        return self.free_length - self.initial_tension / self.k
+
+    def as_dict(self) -> dict:
+        """The spring as the ``--json`` contract names it (SI numbers)."""
+        return {"link_a": self.link_a, "point_a": list(self.point_a), "link_b": self.link_b,
+                "point_b": list(self.point_b), "k": self.k, "free_length": self.free_length,
+                "initial_tension": self.initial_tension}
+
+
+def point_springs(chain, springs) -> tuple[PointSpring, ...]:
+    """The papers' springs S(i, j) on a chain's joint lines as springs between points of the bodies
+    of :meth:`springlab.model.chain.Chain.revolute_chain` (body 'ground' and 'link j', each
+    link's frame at its proximal joint with x along the link):
+
+    A = J_i + a x_i is (r_i + a, 0, 0) in link i's frame (a, 0, 0) on the ground, whose frame
+    is at the base joint with x up; B = J_{j-1} + b x_j is (b, 0, 0) in link j's frame.
+    """
+    springs = check_springs(chain, springs)
+    out = []
+    for s in springs:
+        point_a = (s.a if s.i == 1 else chain.length(s.i) + s.a, 0.0, 0.0)
+        out.append(PointSpring(chain_body(s.i), point_a, chain_body(s.j), (s.b, 0.0, 0.0), s.k,
+                               s.free_length, s.initial_tension))
+    return tuple(out)
+
+
+def chain_body(j: int) -> str:
+    """The body name of a chain's link j in its revolute chain: 'ground' for link 1, else 'link j'."""
+    return "ground" if j == 1 else f"link {j}"

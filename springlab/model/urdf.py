@@ -81,6 +81,28 @@ MAX_BODIES = 10_000
 together is read; a file of more is refused before it is parsed)."""
 
 
+@dataclass(frozen=True)
+class _Inertial:
+    mass: float  # kg
+    com: np.ndarray  # (3,) m, in the link's frame
+    inertia: np.ndarray  # (3, 3) kg m^2 about the centre of mass, in the link's frame
+
+
+def _combine(parts) -> _Inertial:
+    """One body of several (mass, com, inertia), all in one frame: masses added, centres combined,
+    inertias moved to the common centre (parallel axes)."""
+    parts = list(parts)
+    mass = sum(p.mass for p in parts)
+    if mass <= 0:
+        return _Inertial(0.0, np.zeros(3), sum((p.inertia for p in parts), np.zeros((3, 3))))
+    com = sum(p.mass * np.asarray(p.com) for p in parts) / mass
+    inertia = np.zeros((3, 3))
+    for p in parts:
+        d = np.asarray(p.com) - com
+        inertia += p.inertia + p.mass * (float(d @ d) * np.eye(3) - np.outer(d, d))
+    return _Inertial(float(mass), com, inertia)
+
+
 @dataclass
 class _Joint:
     name: str
@@ -162,7 +184,16 @@ def _parse(text: str, source: str):
         mass = _floats(mass_el.get("value"), 1, f"{where} <mass value>")[0]
         if mass < 0:
             raise SpringlabError(f"{where} <mass value> = {mass:g} kg must be >= 0")
-        links[name] = (mass, _origin(inertial, where)[:3, 3])
+        frame = _origin(inertial, where)
+        inertia = np.zeros((3, 3))
+        inertia_el = inertial.find("inertia")
+        if inertia_el is not None:
+            v = {key: _floats(inertia_el.get(key), 1, f"{where} <inertia {key}>", (0.0,))[0]
+                 for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+            inertia = np.array([[v["ixx"], v["ixy"], v["ixz"]], [v["ixy"], v["iyy"], v["iyz"]],
+                                [v["ixz"], v["iyz"], v["izz"]]])
+            inertia = frame[:3, :3] @ inertia @ frame[:3, :3].T  # about the centre of mass, in the link's frame
+        links[name] = _Inertial(float(mass), frame[:3, 3], inertia)
     joints, notes = [], []
     for el in root.findall("joint"):
         name = el.get("name") or "?"
@@ -411,21 +442,26 @@ UP_AXES = {(0, 1, 0): "y-up", (1, 0, 0): "x-up", (0, -1, 0): "-y-up", (-1, 0, 0)
 looks like (CAD tools often export y-up)."""
 
 
-def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | None = None,
-              tip: str | None = None, base: str | None = None, payload: float | None = None) -> UrdfArm:
-    """The arm in a URDF text, as the fields of an arm file (see the module docstring).
+@dataclass
+class _Selection:
+    """A URDF's arm chosen and read (:func:`_select`): its links' inertials, the root, the joints
+    from the root outward (the path and the bodies fixed to it), the path's last link, up in the
+    root's frame, notes, the up the caller gave and the base."""
 
-    :param tip: the arm's last link: the joints on the path from the base to it are the arm,
-        every other joint (a gripper's fingers, prismatic or not) is locked at zero and its
-        bodies ride on the link they hang from (None: the whole tree must be one serial chain)
-    :param base: the link the arm stands on (default the root); ``up`` stays in the root's frame
-    :param payload: a point mass (kg) at the origin of the tip link's frame (with ``tip`` only)
+    name: str
+    links: dict
+    root: str
+    chain: list
+    last_link: str
+    up: np.ndarray
+    notes: list
+    given: object
+    base: str | None
 
-    :param up: the up direction in the root link's frame (default +z: URDF's gravity is -z)
-    :param max_links: refuse at once, before the file is parsed into objects, a file with more
-        movable joints than an arm of this many links (ground included) can have (None: only
-        :data:`MAX_MOVABLE_JOINTS`)
-    """
+
+def _select(text: str, *, source: str, up, max_links: int | None, tip: str | None, base: str | None,
+            payload: float | None) -> _Selection:
+    """Parse a URDF text and choose its arm (the keywords: see :func:`read_urdf`)."""
     if not isinstance(text, str):
         raise SpringlabError(f"{source}: expected URDF text, got {type(text).__name__}")
     for value, what in ((tip, "tip"), (base, "base")):
@@ -455,13 +491,34 @@ def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | 
         kept = {base, *(j.child for j in joints)}
         links = {k: v for k, v in links.items() if k in kept}
     if payload:
-        mass, com = links[tip] if links.get(tip) is not None else (0.0, np.zeros(3))
-        links = {**links, tip: (mass + payload, mass * np.asarray(com) / (mass + payload))}  # at the tip frame's origin
+        held = _Inertial(payload, np.zeros(3), np.zeros((3, 3)))  # a point mass at the tip frame's origin
+        links = {**links, tip: held if links.get(tip) is None else _combine([links[tip], held])}
         notes.append(f"payload {payload:g} kg at the origin of link {tip!r}'s frame")
     root, chain, last_link = _serial(links, joints, source)
     if tip is not None:
         notes.append(f"the arm runs from {root!r} to {tip!r}; every other joint is locked at zero, its bodies "
                      "carried by the link they hang from")
+    return _Selection(str(name), links, root, chain, last_link, up, notes, given, base)
+
+
+def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | None = None,
+              tip: str | None = None, base: str | None = None, payload: float | None = None) -> UrdfArm:
+    """The arm in a URDF text, as the fields of an arm file (see the module docstring).
+
+    :param tip: the arm's last link: the joints on the path from the base to it are the arm,
+        every other joint (a gripper's fingers, prismatic or not) is locked at zero and its
+        bodies ride on the link they hang from (None: the whole tree must be one serial chain)
+    :param base: the link the arm stands on (default the root); ``up`` stays in the root's frame
+    :param payload: a point mass (kg) at the origin of the tip link's frame (with ``tip`` only)
+
+    :param up: the up direction in the root link's frame (default +z: URDF's gravity is -z)
+    :param max_links: refuse at once, before the file is parsed into objects, a file with more
+        movable joints than an arm of this many links (ground included) can have (None: only
+        :data:`MAX_MOVABLE_JOINTS`)
+    """
+    sel = _select(text, source=source, up=up, max_links=max_links, tip=tip, base=base, payload=payload)
+    name, links, root, chain, last_link, up, notes, given, base = (sel.name, sel.links, sel.root, sel.chain,
+                                                                  sel.last_link, sel.up, sel.notes, sel.given, sel.base)
     try:
         arm = _build(str(name), links, root, chain, last_link, up, source)
         arm.notes[:0] = notes
@@ -531,7 +588,7 @@ def _build(name: str, links: dict, root: str, chain: list, last_link: str, up: n
     for link, idx in owner.items():
         if idx < 0 or links.get(link) is None:
             continue
-        m, com = links[link]
+        m, com = links[link].mass, links[link].com
         c = W @ (pose[link][:3, :3] @ com + pose[link][:3, 3])
         gi, pos, size = place[idx]  # the groups take the movable joints in order
         if pos < size - 1:  # inside a wrist: counted at its centre, on the link before
@@ -634,3 +691,59 @@ def urdf_to_dict(text: str, *, source: str = "arm.urdf", up=None, max_links: int
             link["range"] = [lim[0], lim[1]]  # rad
         links.append(link)
     return {"name": arm.name, "link": links}, arm
+
+
+def read_revolute_chain(text: str, *, source: str = "arm.urdf", up=None, tip: str | None = None,
+                        base: str | None = None, payload: float | None = None, g: float | None = None):
+    """The arm in a URDF text as the general model, a :class:`~springlab.model.revolute.RevoluteChain`
+    built from the file's own frames: nothing is projected or refused for its geometry (offset
+    shoulders, centres of mass anywhere, joints meeting at a point are all kept as they are).
+
+    Body 0 is the base (``base``, default the root) with every body fixed to it; body i is the
+    child link of the i-th movable joint on the path, its frame that link's URDF frame, carrying
+    every link fixed to it (and, with a tip, every joint off the path locked at zero, as
+    Pinocchio's ``buildReducedModel`` does): masses added, centres combined, inertias moved to the
+    common centre. Gravity is ``-g up`` (``up`` default +z of the root, expressed in the base's
+    frame; g default :data:`springlab.model.chain.STANDARD_GRAVITY`). A revolute joint's URDF
+    limits are its range (rad); a continuous joint (or lower = upper) is unlimited.
+
+    :param tip, base, payload, up: as :func:`read_urdf`
+    """
+    from springlab.model.chain import STANDARD_GRAVITY
+    from springlab.model.revolute import RevoluteChain
+
+    g = STANDARD_GRAVITY if g is None else _checks.positive("g", g, unit="m/s^2")
+    sel = _select(text, source=source, up=up, max_links=None, tip=tip, base=base, payload=payload)
+    pose, owner, movers, frames = {sel.root: np.eye(4)}, {sel.root: 0}, [], [np.eye(4)]
+    for j in sel.chain:  # from the root outward: a joint's parent is placed before it
+        pose[j.child] = pose[j.parent] @ j.origin
+        if j.kind == "fixed":
+            owner[j.child] = owner[j.parent]
+            continue
+        movers.append(j)
+        frames.append(pose[j.child])
+        owner[j.child] = len(movers)
+    if not movers:
+        raise SpringlabError(f"{source}: no revolute joint between {sel.root!r} and the tip: nothing moves, "
+                             "nothing to balance")
+    parts: list[list] = [[] for _ in frames]
+    for link, body in owner.items():
+        inertial = sel.links.get(link)
+        if inertial is None or body == 0:
+            continue
+        T = np.linalg.solve(frames[body], pose[link])  # the link's frame in its body's
+        parts[body].append(_Inertial(inertial.mass, T[:3, :3] @ inertial.com + T[:3, 3],
+                                     T[:3, :3] @ inertial.inertia @ T[:3, :3].T))
+    bodies = [_combine(p) if p else _Inertial(0.0, np.zeros(3), np.zeros((3, 3))) for p in parts]
+    placements = [np.linalg.solve(frames[i - 1], frames[i]) for i in range(1, len(frames))]
+    limits = [j.limit if j.kind == "revolute" and j.limit is not None else (-np.inf, np.inf) for j in movers]
+    massless = [j.child for i, j in enumerate(movers, start=1) if bodies[i].mass == 0]
+    notes = list(sel.notes)
+    if massless:
+        notes.append(f"links {', '.join(map(repr, massless))} carry no mass (no <inertial>, or mass 0)")
+    up_unit = sel.up / np.linalg.norm(sel.up)
+    return RevoluteChain(sel.name, (sel.root, *(j.child for j in movers)), tuple(j.name for j in movers),
+                         np.array(placements), np.array([j.axis for j in movers]),
+                         np.array([b.mass for b in bodies]), np.array([b.com for b in bodies]),
+                         np.array([(b.inertia + b.inertia.T) / 2 for b in bodies]), -g * up_unit,
+                         np.array(limits, dtype=float), tuple(notes))

@@ -1,0 +1,240 @@
+"""The one model of an arm: a serial chain of revolute joints, built from a URDF's own frames.
+
+Pinocchio's habit: an immutable model (:class:`RevoluteChain`) holds what does not change
+with the pose; free functions (:func:`body_frames`, :func:`world_points`) compute the per-pose
+data, vectorised over N poses. Body 0 is the base (the ground, with everything fixed to it);
+body i (i = 1..n) turns with joint i. Each joint sits in its parent body's frame::
+
+    world <- body 0 --placement_1--> joint 1 frame = body 1's frame --placement_2--> ...
+
+    T_i(q) = T_{i-1}(q) @ placement_i @ Rot(axis_i, q_i),   T_0 = I
+
+so joint i's frame at q_i = 0 is body i's frame (URDF's convention: a joint's frame is its child
+link's frame; the axis is given in it). A body's mass sits at its centre of mass ``com`` (m, in
+the body's frame), its ``inertia`` (kg m^2) is about that centre, in the body's frame. Gravity
+is a vector (m/s^2) in the base frame: URDF's is ``[0, 0, -9.81]``.
+
+The papers' idealised chains are special cases: :meth:`springlab.model.chain.Chain.revolute_chain`
+builds this model from a :class:`~springlab.model.chain.Chain` (a spherical joint is three
+revolute joints about x, y, z through one point, the two bodies between them massless), and
+:func:`springlab.model.urdf.read_revolute_chain` from a URDF. Route 2
+(:func:`springlab.energy.geometry.potential`, :func:`springlab.energy.geometry.joint_torques`)
+and route 3 (:func:`springlab.energy.simulation.joint_torques`) take this model and
+:class:`~springlab.model.springs.PointSpring` springs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from springlab import _checks
+from springlab.errors import SpringlabError
+from springlab.model.rotations import rot_axis
+
+
+def _array(name: str, value, shape) -> np.ndarray:
+    out = _checks.real_array(name, value, finite_only=False)
+    if out.shape != shape:
+        raise SpringlabError(f"{name} must have shape {shape}, got {out.shape}")
+    if not np.all(np.isfinite(out)):
+        raise SpringlabError(f"{name} contains NaN or infinity")
+    out = out.copy()
+    out.setflags(write=False)
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class RevoluteChain:
+    """A serial chain of n revolute joints carrying n + 1 rigid bodies (body 0 the base).
+
+    :ivar name: the arm's name
+    :ivar bodies: n + 1 body names (a URDF's link names; body 0 the base)
+    :ivar joints: n joint names
+    :ivar placements: (n, 4, 4) homogeneous transforms: body i-1's frame -> joint i's frame at q_i = 0
+    :ivar axes: (n, 3) unit axes, each in its joint's frame
+    :ivar mass: (n + 1,) kg (the base's is carried by the ground and never used)
+    :ivar com: (n + 1, 3) centres of mass (m), each in its body's frame
+    :ivar inertia: (n + 1, 3, 3) inertia tensors (kg m^2) about the centre of mass, body frame
+    :ivar gravity: (3,) gravitational acceleration (m/s^2) in the base frame
+    :ivar limits: (n, 2) joint ranges (rad); -inf, inf for an unlimited joint
+    :ivar notes: what the builder assumed (read from a file: what it did with it)
+    """
+
+    name: str
+    bodies: tuple
+    joints: tuple
+    placements: np.ndarray
+    axes: np.ndarray
+    mass: np.ndarray
+    com: np.ndarray
+    inertia: np.ndarray
+    gravity: np.ndarray
+    limits: np.ndarray | None = None
+    notes: tuple = field(default=(), compare=False)
+
+    def __post_init__(self):
+        bodies, joints = tuple(self.bodies), tuple(self.joints)
+        n = len(joints)
+        if n < 1:
+            raise SpringlabError("a revolute chain needs at least one joint")
+        for what, names in (("bodies", bodies), ("joints", joints)):
+            if not all(isinstance(x, str) and x for x in names):
+                raise SpringlabError(f"{what} must be non-empty names (strings), got {names!r}")
+            if len(set(names)) != len(names):
+                raise SpringlabError(f"{what} must have distinct names, got {names!r}")
+        if len(bodies) != n + 1:
+            raise SpringlabError(f"a chain of {n} joints carries {n + 1} bodies (the base first), got {len(bodies)}")
+        placements = _array("placements", self.placements, (n, 4, 4))
+        for i, T in enumerate(placements):
+            R = T[:3, :3]
+            if np.max(np.abs(R.T @ R - np.eye(3))) > 1e-9 or np.linalg.det(R) < 0 or np.any(T[3] != [0, 0, 0, 1]):
+                raise SpringlabError(f"placement of joint {joints[i]!r} must be a rigid transform (a rotation "
+                                     "and a translation, last row 0 0 0 1)")
+        axes = _array("axes", self.axes, (n, 3))
+        norms = np.linalg.norm(axes, axis=1)
+        if np.any(np.abs(norms - 1.0) > 1e-9):
+            i = int(np.argmax(np.abs(norms - 1.0)))
+            raise SpringlabError(f"axis of joint {joints[i]!r} must be a unit vector, got {axes[i].tolist()}")
+        mass = _array("mass", self.mass, (n + 1,))
+        if np.any(mass < 0):
+            i = int(np.argmin(mass))
+            raise SpringlabError(f"mass of body {bodies[i]!r} = {mass[i]:g} kg must be >= 0")
+        com = _array("com", self.com, (n + 1, 3))
+        inertia = _array("inertia", self.inertia, (n + 1, 3, 3))
+        for i, J in enumerate(inertia):
+            if np.max(np.abs(J - J.T)) > 1e-9 * max(1.0, float(np.max(np.abs(J)))):
+                raise SpringlabError(f"inertia of body {bodies[i]!r} must be symmetric (kg m^2), got {J.tolist()}")
+        gravity = _array("gravity", self.gravity, (3,))
+        if not np.linalg.norm(gravity) > 0:
+            raise SpringlabError("gravity must be a nonzero vector (m/s^2) in the base frame, e.g. [0, 0, -9.81]")
+        if self.limits is None:
+            limits = np.tile([-np.inf, np.inf], (n, 1))
+        else:
+            limits = _checks.real_array("limits", self.limits, finite_only=False)
+            if limits.shape != (n, 2) or np.any(np.isnan(limits)) or np.any(limits[:, 0] >= limits[:, 1]):
+                raise SpringlabError(f"limits must be (n, 2) = ({n}, 2) ranges (rad) with lower < upper "
+                                     f"(-inf, inf: unlimited), got {limits.tolist()}")
+            limits = limits.copy()
+        limits.setflags(write=False)
+        with np.errstate(over="ignore"):
+            scale = float(np.sum(mass)) * float(np.linalg.norm(gravity)) * (
+                float(np.sum(np.linalg.norm(placements[:, :3, 3], axis=1))) + float(np.max(np.linalg.norm(com, axis=1))))
+        if not np.isfinite(scale):
+            raise SpringlabError("masses, lengths and gravity this large overflow the energies: give them in SI "
+                                 "units (kg, m, m/s^2)")
+        for name, value in (("bodies", bodies), ("joints", joints), ("placements", placements), ("axes", axes),
+                            ("mass", mass), ("com", com), ("inertia", inertia), ("gravity", gravity),
+                            ("limits", limits), ("notes", tuple(self.notes))):
+            object.__setattr__(self, name, value)
+
+    @property
+    def n(self) -> int:
+        """The number of joints (the chain's degrees of freedom)."""
+        return len(self.joints)
+
+    @property
+    def g(self) -> float:
+        """|gravity| (m/s^2)."""
+        return float(np.linalg.norm(self.gravity))
+
+    @property
+    def up(self) -> np.ndarray:
+        """The unit vector against gravity, in the base frame."""
+        return -self.gravity / self.g
+
+    def body(self, name) -> int:
+        """The index of a body given by name (or an index, checked)."""
+        if isinstance(name, int | np.integer) and not isinstance(name, bool):
+            if not 0 <= name <= self.n:
+                raise SpringlabError(f"body index must be in 0..{self.n}, got {name}")
+            return int(name)
+        if name not in self.bodies:
+            shown = ", ".join(map(repr, self.bodies[:12])) + (", ..." if len(self.bodies) > 12 else "")
+            raise SpringlabError(f"{name!r} is not a body of {self.name!r}: give one of {shown}")
+        return self.bodies.index(name)
+
+    def check_q(self, q) -> np.ndarray:
+        """Joint angles (rad) as a float array (N, n); a single pose (n,) becomes N = 1."""
+        q = _checks.real_array("q (joint angles)", q, finite_only=False)
+        if q.ndim == 1:
+            q = q[None]
+        if q.ndim != 2 or q.shape[1] != self.n:
+            raise SpringlabError(f"q (joint angles) must have shape (N, {self.n}) for the {self.n} joints of "
+                                 f"{self.name!r} (rad), got {q.shape}")
+        if q.shape[0] == 0:
+            raise SpringlabError("q (joint angles) holds no pose (shape (0, n)): give at least one pose")
+        if not np.all(np.isfinite(q)):
+            raise SpringlabError("q (joint angles) contains NaN or infinity")
+        return q
+
+    def random_q(self, size: int, rng=None) -> np.ndarray:
+        """Random joint angles (N, n) in rad, uniform within each joint's limits (an unlimited joint in
+        [-pi, pi))."""
+        size = _checks.count("size", size)
+        rng = _checks.rng("rng", rng)
+        _checks.memory(f"random_q(size={size})", 1.0 * size * self.n, hint="ask for fewer poses")
+        lo = np.where(np.isfinite(self.limits[:, 0]), self.limits[:, 0], -np.pi)
+        hi = np.where(np.isfinite(self.limits[:, 1]), self.limits[:, 1], np.pi)
+        return rng.uniform(lo, hi, (size, self.n))
+
+
+def body_frames(model: RevoluteChain, q) -> tuple[np.ndarray, np.ndarray]:
+    """Every body's frame in the base frame at each pose: rotations (N, n+1, 3, 3) and origins
+    (N, n+1, 3) (m); body 0 (the base) is the identity at the origin.
+
+    T_i = T_{i-1} @ placement_i @ Rot(axis_i, q_i) (see the module docstring).
+    """
+    _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
+    q = model.check_q(q)
+    N, n = q.shape
+    R = np.empty((N, n + 1, 3, 3))
+    o = np.empty((N, n + 1, 3))
+    R[:, 0], o[:, 0] = np.eye(3), 0.0
+    for i in range(1, n + 1):
+        P = model.placements[i - 1]
+        o[:, i] = o[:, i - 1] + R[:, i - 1] @ P[:3, 3]
+        R[:, i] = (R[:, i - 1] @ P[:3, :3]) @ rot_axis(model.axes[i - 1], q[:, i - 1])
+    return R, o
+
+
+def world_points(R: np.ndarray, o: np.ndarray, body: int, point) -> np.ndarray:
+    """A point fixed in a body (m, in the body's frame) in the base frame at each pose, (N, 3),
+    from :func:`body_frames`' rotations and origins."""
+    return o[:, body] + R[:, body] @ np.asarray(point, dtype=float)
+
+
+def joint_axes(model: RevoluteChain, R: np.ndarray) -> np.ndarray:
+    """Each joint's unit axis in the base frame at each pose, (N, n, 3): body i turns about axis i."""
+    return np.einsum("pjab,jb->pja", R[:, 1:], model.axes)
+
+
+def centres_of_mass(model: RevoluteChain, R: np.ndarray, o: np.ndarray) -> np.ndarray:
+    """Every body's centre of mass in the base frame (m), (N, n+1, 3)."""
+    return o + np.einsum("pjab,jb->pja", R, model.com)
+
+
+def check_point_springs(model: RevoluteChain, springs) -> tuple:
+    """Validate springs on a model: each a :class:`~springlab.model.springs.PointSpring` whose
+    bodies are the model's; returns them as a tuple."""
+    from springlab.model.springs import PointSpring
+
+    _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
+    if isinstance(springs, PointSpring | str) or not hasattr(springs, "__iter__"):
+        raise SpringlabError(f"springs must be a sequence of PointSpring objects, got {springs!r}")
+    springs = tuple(springs)
+    for s in springs:
+        if not isinstance(s, PointSpring):
+            raise SpringlabError(f"expected PointSpring objects (springs between points of two bodies), got "
+                                 f"{type(s).__name__}; the papers' springs convert with springlab.model.springs.point_springs")
+        for end in (s.link_a, s.link_b):
+            if end not in model.bodies:
+                model.body(end)  # raises, naming the bodies
+        reach = float(np.sum(np.linalg.norm(model.placements[:, :3, 3], axis=1)))
+        length = np.float64(reach + np.linalg.norm(s.point_a) + np.linalg.norm(s.point_b))
+        with np.errstate(over="ignore"):
+            if not np.isfinite(s.k * length * length):
+                raise SpringlabError(f"{s.label}: k = {s.k:g} N/m with ends {length:g} m apart overflows the spring's "
+                                     "energy: give k in N/m and the points in m")
+    return springs
