@@ -51,6 +51,7 @@ from springlab.energy.multibody import (
 )
 from springlab.errors import SpringlabError
 from springlab.model.chain import SPHERICAL, UP, Chain
+from springlab.model.revolute import RevoluteChain, body_frames, check_point_springs
 from springlab.model.springs import check_attachments, check_springs
 from springlab.model.trajectories import Sweep
 from springlab.tables import Table
@@ -390,3 +391,58 @@ def follow(chain: Chain, springs, sweep: Sweep, *, samples: int = 301,
     torques = np.stack([model.mbs.GetSensorStoredData(s)[:, 1:] @ DRIVEN_TORQUE_SIGN for s in tq], axis=1)
     route2 = energies(chain, springs, chain.directions(sweep.angles(t)))
     return FollowResult(t, gravity, elastic, gravity + elastic, torques, route2, cpu)
+
+
+# --- 4. the general model: holding torques of any revolute chain -----------------------------
+def build_locked_model(model: RevoluteChain, springs, q, *, settings: SimSettings = SimSettings()):
+    """The exudyn system of a :class:`~springlab.model.revolute.RevoluteChain` at one pose ``q`` (n,)
+    (rad) with every joint locked: each body a rigid body with its mass and inertia at its centre of
+    mass (massless bodies too: the statics needs no mass matrix), each joint a generic joint at its
+    origin with z along its axis, constraining all six motions, each spring an exudyn spring-damper
+    between its two points. Returns (SC, mbs, joints, axes): the joint items and their axes frames."""
+    springs = check_point_springs(model, springs)
+    q = model.check_q(q)
+    if q.shape[0] != 1:
+        raise SpringlabError(f"build_locked_model takes one pose, got {q.shape[0]}")
+    R, o = (a[0] for a in body_frames(model, q))
+    SC, mbs, ground = new_system()
+    items = [ground]
+    for b in range(1, model.n + 1):
+        items.append(add_body(mbs, float(model.mass[b]), model.inertia[b], o[b] + R[b] @ model.com[b], R[b],
+                              gravity=model.gravity))
+    joints, frames = [], []
+    for i in range(1, model.n + 1):
+        axes = R[i] @ frame_with_z(model.axes[i - 1])  # z along the joint's axis
+        frames.append(axes)
+        joints.append(mbs.CreateGenericJoint(itemNumbers=[items[i - 1], items[i]], position=list(o[i]),
+                                             rotationMatrixAxes=axes, constrainedAxes=[1] * 6))
+    for s in springs:
+        ends = []
+        for body, point in ((model.body(s.link_a), s.point_a), (model.body(s.link_b), s.point_b)):
+            ends.append(np.asarray(point) - (model.com[body] if body else 0.0))  # exudyn's body frame is at its COM
+        add_spring(mbs, items[model.body(s.link_a)], ends[0], items[model.body(s.link_b)], ends[1], k=s.k,
+                   free_length=s.free_length, initial_tension=s.initial_tension, damping=settings.damping)
+    return SC, mbs, joints, frames
+
+
+def joint_torques(model: RevoluteChain, springs, q, *, settings: SimSettings = SimSettings()) -> np.ndarray:
+    """The torque (N m) each joint applies to hold each pose, (N, n), route 3: exudyn's statics of
+    :func:`build_locked_model` at each pose, the locked joint's reaction about its axis. Compare with
+    route 2, :func:`springlab.energy.geometry.joint_torques`.
+
+    :param q: joint angles (N, n) or (n,) (rad)
+    """
+    import exudyn as exu
+
+    _checks.instance("settings", settings, SimSettings)
+    springs = check_point_springs(model, springs)
+    q = model.check_q(q)
+    out = np.empty(q.shape)
+    for p in range(q.shape[0]):
+        SC, mbs, joints, frames = build_locked_model(model, springs, q[p], settings=settings)
+        mbs.Assemble()
+        mbs.SolveStatic(solver_settings(settings))
+        for i, joint in enumerate(joints):
+            local = np.asarray(mbs.GetObjectOutput(joint, exu.OutputVariableType.TorqueLocal))
+            out[p, i] = (LOCKED_TORQUE_SIGN @ local)[2]  # the holding torque's component along z = the axis
+    return out
