@@ -221,8 +221,8 @@ def _loads(model: RevoluteChain, springs, q, *, gravity: bool = True):
         F[:, 1:] = model.mass[1:, None] * model.gravity  # the base's weight is the ground's
         M[:, 1:] = np.cross(centres_of_mass(model, R, o)[:, 1:], F[:, 1:])
     for s in springs:
-        ia, ib = model.body(s.link_a), model.body(s.link_b)
-        A, B = world_points(R, o, ia, s.point_a), world_points(R, o, ib, s.point_b)
+        (ia, pa), (ib, pb) = model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)
+        A, B = world_points(R, o, ia, pa), world_points(R, o, ib, pb)
         d = B - A
         l0 = s.effective_free_length
         k_eff = np.full(N, s.k)
@@ -278,8 +278,8 @@ def potential(model: RevoluteChain, springs, q) -> dict[str, np.ndarray]:
     grav = -np.einsum("pjc,j,c->p", c[:, 1:], model.mass[1:], model.gravity)
     elastic = np.zeros(R.shape[0])
     for s in springs:
-        A = world_points(R, o, model.body(s.link_a), s.point_a)
-        B = world_points(R, o, model.body(s.link_b), s.point_b)
+        A = world_points(R, o, *model.locate(s.link_a, s.point_a))
+        B = world_points(R, o, *model.locate(s.link_b, s.point_b))
         length = np.linalg.norm(B - A, axis=1)
         elastic += 0.5 * s.k * (length - s.effective_free_length) ** 2
     return {"gravity": grav, "springs": elastic, "total": grav + elastic}

@@ -417,10 +417,9 @@ def build_locked_model(model: RevoluteChain, springs, q, *, settings: SimSetting
         joints.append(mbs.CreateGenericJoint(itemNumbers=[items[i - 1], items[i]], position=list(o[i]),
                                              rotationMatrixAxes=axes, constrainedAxes=[1] * 6))
     for s in springs:
-        ends = []
-        for body, point in ((model.body(s.link_a), s.point_a), (model.body(s.link_b), s.point_b)):
-            ends.append(np.asarray(point) - (model.com[body] if body else 0.0))  # exudyn's body frame is at its COM
-        add_spring(mbs, items[model.body(s.link_a)], ends[0], items[model.body(s.link_b)], ends[1], k=s.k,
+        (ia, pa), (ib, pb) = model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)
+        ends = [p - (model.com[b] if b else 0.0) for b, p in ((ia, pa), (ib, pb))]  # exudyn's body frame is at its COM
+        add_spring(mbs, items[ia], ends[0], items[ib], ends[1], k=s.k,
                    free_length=s.free_length, initial_tension=s.initial_tension, damping=settings.damping)
     return SC, mbs, joints, frames
 

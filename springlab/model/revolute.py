@@ -60,6 +60,9 @@ class RevoluteChain:
     :ivar gravity: (3,) gravitational acceleration (m/s^2) in the base frame
     :ivar limits: (n, 2) joint ranges (rad); -inf, inf for an unlimited joint
     :ivar notes: what the builder assumed (read from a file: what it did with it)
+    :ivar fixed: the other named frames fixed to the bodies (a URDF's links merged into a body: a
+        flange, a tool0, a locked finger), as name -> (body index, (4, 4) transform from that frame
+        to the body's); a spring may attach to any of them (:meth:`locate`)
     """
 
     name: str
@@ -73,6 +76,7 @@ class RevoluteChain:
     gravity: np.ndarray
     limits: np.ndarray | None = None
     notes: tuple = field(default=(), compare=False)
+    fixed: dict = field(default_factory=dict, compare=False)
 
     def __post_init__(self):
         bodies, joints = tuple(self.bodies), tuple(self.joints)
@@ -124,6 +128,13 @@ class RevoluteChain:
         if not np.isfinite(scale):
             raise SpringlabError("masses, lengths and gravity this large overflow the energies: give them in SI "
                                  "units (kg, m, m/s^2)")
+        fixed = {}
+        for frame, (body, T) in dict(self.fixed).items():
+            if frame in bodies or not isinstance(frame, str) or not (isinstance(body, int) and 0 <= body <= n):
+                raise SpringlabError(f"fixed frame {frame!r} must be a new name on a body index 0..{n}, got body {body!r}")
+            T = _array(f"transform of fixed frame {frame!r}", T, (4, 4))
+            fixed[frame] = (body, T)
+        object.__setattr__(self, "fixed", fixed)
         for name, value in (("bodies", bodies), ("joints", joints), ("placements", placements), ("axes", axes),
                             ("mass", mass), ("com", com), ("inertia", inertia), ("gravity", gravity),
                             ("limits", limits), ("notes", tuple(self.notes))):
@@ -154,6 +165,23 @@ class RevoluteChain:
             shown = ", ".join(map(repr, self.bodies[:12])) + (", ..." if len(self.bodies) > 12 else "")
             raise SpringlabError(f"{name!r} is not a body of {self.name!r}: give one of {shown}")
         return self.bodies.index(name)
+
+    @property
+    def frame_names(self) -> tuple:
+        """Every name a spring may attach to: the bodies, then the fixed frames."""
+        return self.bodies + tuple(self.fixed)
+
+    def locate(self, name, point) -> tuple[int, np.ndarray]:
+        """A point (m) given in a named frame (a body or a fixed frame) as (body index, the point in
+        that body's frame)."""
+        if name in self.fixed:
+            body, T = self.fixed[name]
+            return body, T[:3, :3] @ np.asarray(point, dtype=float) + T[:3, 3]
+        if name not in self.bodies:
+            names = self.frame_names
+            shown = ", ".join(map(repr, names[:12])) + (", ..." if len(names) > 12 else "")
+            raise SpringlabError(f"{name!r} is not a link of {self.name!r}: give one of {shown}")
+        return self.bodies.index(name), np.asarray(point, dtype=float)
 
     def check_q(self, q) -> np.ndarray:
         """Joint angles (rad) as a float array (N, n); a single pose (n,) becomes N = 1."""
@@ -228,9 +256,10 @@ def check_point_springs(model: RevoluteChain, springs) -> tuple:
         if not isinstance(s, PointSpring):
             raise SpringlabError(f"expected PointSpring objects (springs between points of two bodies), got "
                                  f"{type(s).__name__}; the papers' springs convert with springlab.model.springs.point_springs")
-        for end in (s.link_a, s.link_b):
-            if end not in model.bodies:
-                model.body(end)  # raises, naming the bodies
+        ends = [model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)]  # raises on a name
+        if ends[0][0] == ends[1][0]:
+            raise SpringlabError(f"{s.label}: both ends ride on body {model.bodies[ends[0][0]]!r} (fixed to each "
+                                 "other): such a spring does no work; attach its ends to two bodies a joint separates")
         reach = float(np.sum(np.linalg.norm(model.placements[:, :3, 3], axis=1)))
         length = np.float64(reach + np.linalg.norm(s.point_a) + np.linalg.norm(s.point_b))
         with np.errstate(over="ignore"):

@@ -741,9 +741,11 @@ def read_revolute_chain(text: str, *, source: str = "arm.urdf", up=None, tip: st
     notes = list(sel.notes)
     if massless:
         notes.append(f"links {', '.join(map(repr, massless))} carry no mass (no <inertial>, or mass 0)")
+    fixed = {link: (body, np.linalg.solve(frames[body], pose[link])) for link, body in owner.items()
+             if link != sel.root and link not in (j.child for j in movers)}
     up_unit = sel.up / np.linalg.norm(sel.up)
     return RevoluteChain(sel.name, (sel.root, *(j.child for j in movers)), tuple(j.name for j in movers),
                          np.array(placements), np.array([j.axis for j in movers]),
                          np.array([b.mass for b in bodies]), np.array([b.com for b in bodies]),
                          np.array([(b.inertia + b.inertia.T) / 2 for b in bodies]), -g * up_unit,
-                         np.array(limits, dtype=float), tuple(notes))
+                         np.array(limits, dtype=float), tuple(notes), fixed)
