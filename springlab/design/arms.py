@@ -29,8 +29,8 @@ every planar chain**, centres of mass anywhere in or off the plane (an offset al
 horizontal and costs nothing). Ends off the plane (along the axes) add a constant length only.
 
 **Best springs elsewhere** (:func:`best_springs`): attachment points within each body's reach
-and rates that minimise the largest holding torque over the workspace (sequential linear
-programming on route 2's torques, HiGHS).
+and rates that minimise the largest holding torque over the workspace (a greedy choice of springs,
+each set polished by least squares on p-norms of route 2's torques, p growing towards the maximum).
 """
 
 from __future__ import annotations
@@ -49,6 +49,11 @@ from springlab.tables import Table
 ROUND_OFF = 1e-10
 """A joint whose gravity torque stays below this fraction of the arm's largest over the sample
 is unloaded (the torques are computed to about 1e-15 relative)."""
+
+MAX_STIFFNESS = 2000.0
+"""N/m: the stiffest spring the best-springs search uses by default. Stocked music wire up to 6.5 mm
+winds extension springs of a few kN/m with three body coils or more; a stiffer one (the search's
+least-squares fit asks for 5-50 kN/m on a short lever when unbounded) is no spring a shop stocks."""
 
 NEGLIGIBLE = 1e-5
 """A joint whose gravity torque stays below this fraction of the arm's largest (but above
@@ -268,9 +273,10 @@ def _reach(model: RevoluteChain, reach) -> np.ndarray:
     return out
 
 
-def torque_table(model: RevoluteChain, q, cases: dict) -> Table:
-    """Per loaded joint: peak and RMS gravity torque (N m), the same with each set of springs in
-    ``cases`` (name -> springs), and the percentage of the peak each removes."""
+def torque_table(model: RevoluteChain, q, cases: dict, *, unloaded=()) -> Table:
+    """Per joint: peak and RMS gravity torque (N m), the same with each set of springs in ``cases``
+    (name -> springs), and the percentage of the peak each removes (blank for the ``unloaded``
+    joints, whose gravity torque is zero or negligible)."""
     q = model.check_q(q)
     gravity = gravity_torques(model, q)
     rows = []
@@ -281,9 +287,424 @@ def torque_table(model: RevoluteChain, q, cases: dict) -> Table:
         for tau in with_springs.values():
             p = np.max(np.abs(tau[:, i]))
             row += [f"{p:.3g}", f"{np.sqrt(np.mean(tau[:, i] ** 2)):.3g}",
-                    f"{100 * (1 - p / peak):.2f}" if peak > 0 else ""]
+                    f"{100 * (1 - p / peak):.2f}" if peak > 0 and i not in unloaded else ""]
         rows.append(row)
     headers = ["joint", "gravity peak (N m)", "gravity RMS (N m)"]
     for case in cases:
         headers += [f"{case} peak (N m)", f"{case} RMS (N m)", f"{case}: peak removed (%)"]
     return Table(headers, rows)
+
+
+# --- the best springs where exact balance is out of reach -------------------------------------
+def _boxes(model: RevoluteChain, reach) -> tuple[np.ndarray, np.ndarray]:
+    """Per body, the centre (m, body frame) and half-size (m) of the box its spring ends may use:
+    centred between the body's joint and the next (the last body: its centre of mass), half the
+    distance plus ``reach`` each way (default 15 % of the arm's length, the sum of its joints'
+    distances, at least 5 cm: a post or bracket of that size on any body)."""
+    length = float(np.sum(np.linalg.norm(model.placements[:, :3, 3], axis=1)))
+    margin = max(0.05, 0.15 * length) if reach is None else _checks.positive("reach", reach, unit="m")
+    centres, half = np.zeros((model.n + 1, 3)), np.zeros(model.n + 1)
+    for b in range(model.n + 1):
+        far = model.placements[b][:3, 3] if b < model.n else model.com[b]
+        centres[b] = 0.5 * np.asarray(far)
+        half[b] = 0.5 * float(np.linalg.norm(far)) + margin
+    return centres, half
+
+
+def _features(model: RevoluteChain, pairs, q) -> np.ndarray:
+    """Route 2's holding torques of a unit-rate zero-free-length spring on each pair of bodies, split
+    by its attachment points: (pairs, 16, N, n) for [1, p_a (3), p_b (3), p_a p_b^T (9)]. The torque of
+    k between p_a and p_b is exactly k (F0 + Fa p_a + Fb p_b + sum_ij p_a,i p_b,j Fab_ij): the
+    spring's squared length is affine in each end and bilinear across, its |p|^2 terms constant."""
+    e = np.eye(3)
+    out = np.empty((len(pairs), 16) + q.shape)
+    for idx, (a, b) in enumerate(pairs):
+        def tau(pa, pb, a=a, b=b):
+            return joint_torques(model, [PointSpring(model.bodies[a], pa, model.bodies[b], pb, 1.0)], q,
+                                 gravity=False)
+        F0 = tau(np.zeros(3), np.zeros(3))
+        Ta = [tau(e[i], np.zeros(3)) for i in range(3)]
+        Tb = [tau(np.zeros(3), e[j]) for j in range(3)]
+        out[idx, 0] = F0
+        for i in range(3):
+            out[idx, 1 + i] = Ta[i] - F0
+            out[idx, 4 + i] = Tb[i] - F0
+            for j in range(3):
+                out[idx, 7 + 3 * i + j] = tau(e[i], e[j]) - Ta[i] - Tb[j] + F0
+    return out
+
+
+@dataclass(frozen=True)
+class BestSprings:
+    """What :func:`best_springs` found.
+
+    :ivar springs: the zero-free-length springs (m, N/m)
+    :ivar ratio: the largest holding torque over the sample poses, per joint as a fraction of its scale
+        (its own peak gravity torque, or a tenth of the arm's largest where that is more)
+    :ivar grid: the same ratio after the first spring
+    :ivar target: the ratio asked for
+    :ivar note: how the count was chosen
+    """
+
+    springs: tuple
+    ratio: float
+    grid: float
+    target: float
+    note: str
+
+
+def _grid(centre, half) -> np.ndarray:
+    """The candidate ends in a body's box: its centre and its eight corners, (9, 3) m."""
+    corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
+    return np.vstack([centre, centre + half * corners])
+
+
+def best_springs(model: RevoluteChain, found: Structure, q, *, target: float = 0.1, reach: float | None = None,
+                 max_springs: int = 8, iterations: int = 12, candidates: int = 4,
+                 max_stiffness: float = MAX_STIFFNESS) -> BestSprings:
+    """The fewest zero-free-length springs, ends within each body's box (:func:`_boxes`), that bring the
+    largest holding torque over the poses ``q`` within ``target`` of every joint's scale
+    s_i = max(its peak gravity torque, a tenth of the largest), or as close as ``max_springs`` springs
+    get: min over springs of max_{pose, joint} |tau| / s_i (a joint gravity leaves alone is held to a
+    tenth of the largest too: the springs must not load it). Rates stay at most ``max_stiffness``
+    (N/m; default :data:`MAX_STIFFNESS`, what stocked wire winds with room to spare).
+
+    Greedy, then polished. Each step ranks the candidate springs (between grid points of two bodies'
+    boxes, :func:`_grid`, any pair of bodies up to the last loaded one) by how much they reduce the
+    remaining torques in a least-squares sense weighted towards the largest (an 8-norm's weights);
+    adds, in turn, the best candidate of each of the ``candidates`` best pairs; moves every spring's
+    ends within their boxes and changes the rates to lower the largest torque itself
+    (:func:`_polish`); and keeps the best of those trials. ``q`` should hold several times more
+    poses than the springs have parameters (7 each): the torques are fitted at those poses only.
+    """
+    q = model.check_q(q)
+    target = _checks.positive("target", target)
+    max_stiffness = _checks.positive("max_stiffness", max_stiffness, unit="N/m")
+    max_springs = _checks.count("max_springs", max_springs, least=1)
+    loaded = list(found.loaded)
+    if not loaded:
+        return BestSprings((), 0.0, 0.0, target, "nothing to balance")
+    last = max(loaded) + 1  # the last loaded joint's body
+    first = min(loaded) + 1
+    pairs = [(a, b) for b in range(first, last + 1) for a in range(0, b)]
+    centres, half = _boxes(model, reach)
+    tau_g = gravity_torques(model, q)
+    scale = np.maximum(np.max(np.abs(tau_g), axis=0), 0.1 * np.max(np.abs(tau_g)))
+    F = _features(model, pairs, q) / scale  # (P, 16, N, n)
+    g = tau_g / scale
+    N, n = g.shape
+    cols, ends = [], []
+    for idx, (a, b) in enumerate(pairs):
+        f = F[idx]
+        for pa in _grid(centres[a], half[a]):
+            for pb in _grid(centres[b], half[b]):
+                cols.append((f[0] + np.tensordot(pa, f[1:4], 1) + np.tensordot(pb, f[4:7], 1)
+                             + np.tensordot(np.outer(pa, pb).reshape(-1), f[7:], 1)).reshape(-1))
+                ends.append((idx, pa, pb))
+    A = np.array(cols).T  # (N n, C): each candidate's torques at unit rate
+    x, which = np.zeros(0), []
+    ratio = float(np.max(np.abs(g)))
+    history, snapshots = [], []
+    while len(which) < max_springs and ratio > target:
+        r = _residual(x, which, F, g, N, n).reshape(-1)
+        weight = (np.abs(r) / np.max(np.abs(r))) ** 6  # the worst poses and joints count most (an 8-norm's weights)
+        gain = -(A.T @ (weight * r))
+        norms = np.einsum("rc,r,rc->c", A, weight, A)
+        score = np.where(gain > 0, gain**2 / np.maximum(norms, 1e-300), 0.0)
+        tried, trials = set(), []
+        for c in np.argsort(-score):  # the best candidate of each of the `candidates` best pairs, each polished
+            if score[c] <= 0 or len(tried) == candidates:
+                break
+            idx, pa, pb = ends[c]
+            if idx in tried:
+                continue
+            tried.add(idx)
+            trial = np.concatenate([x, [min(gain[c] / norms[c], max_stiffness), *pa, *pb]])
+            trial, value = _polish(trial, which + [idx], F, g, N, n, centres, half, pairs, iterations, max_stiffness)
+            trials.append((value, float(np.sum(_residual(trial, which + [idx], F, g, N, n) ** 2)), trial, idx))
+        if not trials:
+            break
+        ratio, _, x, idx = min(trials, key=lambda t: (t[0], t[1]))
+        which = which + [idx]
+        history.append(ratio)
+        snapshots.append((ratio, x.copy(), list(which)))
+    if snapshots:  # the fewest springs within the target, else the best step
+        within = [snap for snap in snapshots if snap[0] <= target]
+        ratio, x, which = within[0] if within else min(snapshots, key=lambda snap: snap[0])
+    steps = ", ".join(f"{k + 1}: {100 * (1 - h):.1f} %" for k, h in enumerate(history))
+    if ratio <= target:
+        note = (f"{len(which)} springs, the fewest the greedy search needed to hold every joint within "
+                f"{target:g} of its scale ({steps} of the worst joint's scale removed)")
+    else:
+        note = (f"the target ({target:g} of each joint's scale) was not reached with max_springs = {max_springs} "
+                f"springs ({steps} removed): the search stopped there; more springs or larger reaches may do better")
+    out = tuple(PointSpring(model.bodies[pairs[p][0]], tuple(x[7 * s + 1:7 * s + 4]), model.bodies[pairs[p][1]],
+                            tuple(x[7 * s + 4:7 * s + 7]), float(x[7 * s])) for s, p in enumerate(which) if x[7 * s] > 0)
+    return BestSprings(out, float(ratio), float(history[0]) if history else ratio, target, note)
+
+
+def _pack(springs, pairs, centres, half):
+    index = {pair: i for i, pair in enumerate(pairs)}
+    x, which = [], []
+    for k, *rest in springs:
+        pa, pb, a, b = np.array(rest[0:3]), np.array(rest[3:6]), int(rest[6]), int(rest[7])
+        pa = np.clip(pa, centres[a] - half[a], centres[a] + half[a])
+        pb = np.clip(pb, centres[b] - half[b], centres[b] + half[b])
+        x += [k, *pa, *pb]
+        which.append(index[(a, b)])
+    return np.array(x, dtype=float), which
+
+
+def _spring_torque(x, s, which, F):
+    k, pa, pb = x[7 * s], x[7 * s + 1:7 * s + 4], x[7 * s + 4:7 * s + 7]
+    f = F[which[s]]
+    return k * (f[0] + np.tensordot(pa, f[1:4], 1) + np.tensordot(pb, f[4:7], 1)
+                + np.tensordot(np.outer(pa, pb).reshape(-1), f[7:], 1))
+
+
+def _residual(x, which, F, g, N, L, scale_free=True):
+    total = g.reshape(N, L).copy()
+    for s in range(len(which)):
+        total += _spring_torque(x, s, which, F)
+    return total
+
+
+def _jacobian(x, which, F, N, L) -> np.ndarray:
+    """d torques / d (k, p_a, p_b) of every spring, (N L, 7 S)."""
+    S = len(which)
+    J = np.empty((N * L, 7 * S))
+    for s in range(S):
+        k, pa, pb = x[7 * s], x[7 * s + 1:7 * s + 4], x[7 * s + 4:7 * s + 7]
+        f = F[which[s]]
+        fab = f[7:].reshape(3, 3, N, L)
+        fa = f[1:4] + np.tensordot(pb, fab, axes=([0], [1]))  # d/d pa_i (per unit rate)
+        fb = f[4:7] + np.tensordot(pa, fab, axes=([0], [0]))  # d/d pb_j
+        J[:, 7 * s] = (f[0] + np.tensordot(pa, f[1:4], 1) + np.tensordot(pb, f[4:7], 1)
+                       + np.tensordot(np.outer(pa, pb).reshape(-1), f[7:], 1)).reshape(-1)
+        J[:, 7 * s + 1:7 * s + 4] = k * fa.reshape(3, -1).T
+        J[:, 7 * s + 4:7 * s + 7] = k * fb.reshape(3, -1).T
+    return J
+
+
+def _bounds(x, which, centres, half, pairs, k_max=np.inf):
+    lo, hi = np.empty_like(x), np.empty_like(x)
+    for s in range(len(which)):
+        a, b = pairs[which[s]]
+        lo[7 * s], hi[7 * s] = 0.0, k_max
+        for body, off in ((a, 1), (b, 4)):
+            lo[7 * s + off:7 * s + off + 3] = centres[body] - half[body]
+            hi[7 * s + off:7 * s + off + 3] = centres[body] + half[body]
+    return lo, hi
+
+
+def _polish(x, which, F, g, N, L, centres, half, pairs, iterations, k_max=np.inf):
+    """Least squares on the exact bilinear torques (already divided by the joints' scales), the ends
+    in their boxes (trust-region reflective), then the largest torque by continuation on the p-norm:
+    sum (r / m)^p for p = 6, 16, 40 (each a least-squares problem in r |r / m|^(p/2 - 1), m the
+    largest at its start), which tends to the minimax as p grows."""
+    from scipy.optimize import least_squares
+
+    def ratio_of(x):
+        return float(np.max(np.abs(_residual(x, which, F, g, N, L))))
+
+    if not which:
+        return x, ratio_of(x)
+    lo, hi = _bounds(x, which, centres, half, pairs, k_max)
+    x = np.clip(x, lo, hi)
+    for p in (2, 6, 16, 40):
+        m = max(ratio_of(x), 1e-300)
+        half_p = p / 2.0
+
+        def fun(v, m=m, half_p=half_p):
+            r = _residual(v, which, F, g, N, L).reshape(-1) / m
+            return r * np.abs(r) ** (half_p - 1)
+
+        def jac(v, m=m, half_p=half_p):
+            r = _residual(v, which, F, g, N, L).reshape(-1) / m
+            return (half_p * np.abs(r) ** (half_p - 1))[:, None] * _jacobian(v, which, F, N, L) / m
+
+        fit = least_squares(fun, x, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac",
+                            max_nfev=max(10, iterations * 4))
+        x = fit.x
+    return x, ratio_of(x)
+
+
+# --- the whole design: structure, springs, realisation, the torques that remain -------------------
+def workspace_ranges(model: RevoluteChain, workspace=None) -> np.ndarray:
+    """The joint ranges (n, 2) rad the design holds: the URDF limits (an unlimited joint: a full turn,
+    [-pi, pi]), narrowed by ``workspace``, a dict joint name -> (low, high) rad that must lie within
+    the limits."""
+    lo = np.where(np.isfinite(model.limits[:, 0]), model.limits[:, 0], -np.pi)
+    hi = np.where(np.isfinite(model.limits[:, 1]), model.limits[:, 1], np.pi)
+    ranges = np.stack([lo, hi], axis=1)
+    for name, value in dict(workspace or {}).items():
+        if name not in model.joints:
+            raise SpringlabError(f"workspace names joint {name!r}, which is not on the arm's path: give one of "
+                                 f"{', '.join(model.joints)}")
+        i = model.joints.index(name)
+        low, high = (float(v) for v in value)
+        if not (np.isfinite(low) and np.isfinite(high) and low < high):
+            raise SpringlabError(f"workspace of {name!r} = ({low:g}, {high:g}) rad: give low < high, finite")
+        if low < ranges[i, 0] - 1e-12 or high > ranges[i, 1] + 1e-12:
+            raise SpringlabError(f"workspace of {name!r} = ({np.degrees(low):.1f}, {np.degrees(high):.1f}) deg lies "
+                                 f"outside its limits ({np.degrees(ranges[i, 0]):.1f}, {np.degrees(ranges[i, 1]):.1f}) "
+                                 "deg: give a range within them")
+        ranges[i] = (low, high)
+    return ranges
+
+
+def parse_workspace(text: str) -> dict:
+    """--workspace 'joint=low:high,...' (degrees) as a dict joint -> (low, high) rad."""
+    out = {}
+    for item in (part.strip() for part in str(text).split(",") if part.strip()):
+        name, sep, span = item.partition("=")
+        low, sep2, high = span.partition(":")
+        try:
+            if not (sep and sep2):
+                raise ValueError
+            out[name.strip()] = (np.radians(float(low)), np.radians(float(high)))
+        except ValueError:
+            raise SpringlabError(f"--workspace item {item!r}: write joint=low:high in degrees, e.g. "
+                                 "'elbow_joint=-120:120'") from None
+    if not out:
+        raise SpringlabError(f"--workspace = {text!r}: write joint=low:high in degrees, items separated by commas")
+    return out
+
+
+@dataclass(frozen=True)
+class ArmDesign:
+    """Springs for an arm of the general model, ideal and realised, and what they leave.
+
+    :ivar model: the arm
+    :ivar structure: what gravity loads (:func:`structure`)
+    :ivar method: 'exact: planar chain', 'best springs' or 'nothing to balance'
+    :ivar ideal: zero-free-length springs
+    :ivar realised: the same springs as wound (free length, initial tension) for a shop, those a
+        stocked spring realises (the notes name any left out)
+    :ivar kinds: per realised spring, how ('zero-length spring' or 'cable over a pulley')
+    :ivar q: the workspace poses the design is checked on (N, n) rad, not those it was fitted on
+    :ivar notes: what was assumed and found
+    """
+
+    model: RevoluteChain
+    structure: Structure
+    method: str
+    ideal: tuple
+    realised: tuple
+    kinds: tuple
+    q: np.ndarray
+    notes: tuple
+
+    def table(self) -> Table:
+        """Per joint: peak and RMS torque (N m) of gravity alone, with the ideal and with the realised
+        springs, and the percentage of the peak removed."""
+        return torque_table(self.model, self.q, {"ideal": self.ideal, "realised": self.realised},
+                            unloaded=self.structure.unloaded)
+
+    def removed(self, which: str = "ideal") -> np.ndarray:
+        """Per joint, the percentage of its peak gravity torque the springs remove (nan where unloaded)."""
+        springs = self.ideal if which == "ideal" else self.realised
+        gravity = np.max(np.abs(gravity_torques(self.model, self.q)), axis=0)
+        left = np.max(np.abs(joint_torques(self.model, springs, self.q)), axis=0)
+        out = 100 * (1 - left / np.where(gravity > 0, gravity, np.nan))
+        out[list(self.structure.unloaded)] = np.nan
+        return out
+
+    def as_dict(self) -> dict:
+        """The design as ``springlab design --json`` writes it; each spring by the contract's names
+        (link_a, point_a, link_b, point_b in m and the links' URDF frames, k N/m, free_length m,
+        initial_tension N)."""
+        gravity = gravity_torques(self.model, self.q)
+        torques = {"ideal": joint_torques(self.model, self.ideal, self.q),
+                   "realised": joint_torques(self.model, self.realised, self.q)}
+        rows = []
+        for i, name in enumerate(self.model.joints):
+            row = {"joint": name, "loaded": i not in self.structure.unloaded,
+                   "gravity_peak_Nm": float(np.max(np.abs(gravity[:, i]))),
+                   "gravity_rms_Nm": float(np.sqrt(np.mean(gravity[:, i] ** 2)))}
+            for case, tau in torques.items():
+                row[f"{case}_peak_Nm"] = float(np.max(np.abs(tau[:, i])))
+                row[f"{case}_rms_Nm"] = float(np.sqrt(np.mean(tau[:, i] ** 2)))
+            rows.append(row)
+        return {"arm": self.model.name, "method": self.method, "joints": list(self.model.joints),
+                "loaded_joints": [self.model.joints[i] for i in self.structure.loaded],
+                "structure": self.structure.why, "poses_checked": int(self.q.shape[0]),
+                "ideal": [s.as_dict() for s in self.ideal],
+                "realised": [s.as_dict() | {"kind": kind} for s, kind in zip(self.realised, self.kinds, strict=True)],
+                "torques": rows, "notes": list(self.notes)}
+
+
+def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music wire") -> tuple[tuple, tuple]:
+    """Each ideal spring as a helical extension spring from stocked wire (:mod:`springlab.design.buildable`):
+    a zero-length spring (F_i = k L_0) where one can be wound, else a spring whose cable runs over a
+    pulley at end A to end B, cut so that the force is k times the cable's path (for a point pulley,
+    |B - A|: the pulley's radius is not modelled on a general arm). Returns the realised springs
+    (free length L_0 and initial tension F_i as wound; a cable spring's free length is the cable's
+    equivalent, F_i / k) and their kinds.
+
+    :raises SpringlabError: naming the spring when neither realisation fits
+    """
+    from springlab.design.buildable import cable_spring, zero_length_spring
+    from springlab.model.revolute import world_points
+
+    R, o = body_frames(model, q)
+    out, kinds = [], []
+    for s in springs:
+        A = world_points(R, o, *model.locate(s.link_a, s.point_a))
+        B = world_points(R, o, *model.locate(s.link_b, s.point_b))
+        length = np.linalg.norm(B - A, axis=1)
+        lengths = (max(float(length.min()), 1e-6), max(float(length.max()), 1e-6))
+        coil, why = zero_length_spring(s.k, lengths, material)
+        if coil is not None:
+            out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, coil.free_length,
+                                   s.k * coil.free_length))
+            kinds.append("zero-length spring")
+            continue
+        coil, why_cable = cable_spring(s.k, lengths, material)
+        if coil is None:
+            kinds.append(f"not realised: no zero-length spring ({why}) and no cable spring ({why_cable})")
+            out.append(None)
+            continue
+        out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, coil.initial_tension / s.k,
+                               coil.initial_tension))
+        kinds.append("cable over a pulley")
+    return tuple(out), tuple(kinds)
+
+
+def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, fit_poses: int = 300, seed: int = 1,
+                 target: float = 0.1, reach: float | None = None, max_springs: int = 8,
+                 max_stiffness: float = MAX_STIFFNESS, material: str = "music wire") -> ArmDesign:
+    """Springs for an arm of the general model over its workspace (:func:`workspace_ranges`): its
+    structure (:func:`structure`); the exact planar springs where its loaded joints form a planar
+    chain (:func:`planar_springs`), else the best springs (:func:`best_springs`, fitted on
+    ``fit_poses`` poses); their realisation (:func:`realise_springs`); all checked by route 2 on
+    ``samples`` other random poses of the workspace."""
+    _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
+    samples = _checks.count("samples", samples, least=1)
+    ranges = workspace_ranges(model, workspace)
+    rng = np.random.default_rng(seed)
+    check = rng.uniform(ranges[:, 0], ranges[:, 1], (samples, model.n))
+    found = structure(model, rng.uniform(ranges[:, 0], ranges[:, 1], (512, model.n)))
+    notes = list(model.notes)
+    if not found.loaded:
+        return ArmDesign(model, found, "nothing to balance", (), (), (), check,
+                         (*notes, "gravity loads no joint of this arm over its workspace: nothing to balance"))
+    if found.planar:
+        ideal, method = planar_springs(model, found), "exact: planar chain"
+        notes.append(f"exact: {found.why}")
+    else:
+        fit = best_springs(model, found, rng.uniform(ranges[:, 0], ranges[:, 1], (fit_poses, model.n)),
+                           target=target, reach=reach, max_springs=max_springs, max_stiffness=max_stiffness)
+        ideal, method = fit.springs, "best springs"
+        notes.append(f"not exact: {found.why}; springlab's exact construction needs a planar chain, so the "
+                     f"best springs were searched: {fit.note}")
+    realised, kinds = realise_springs(model, ideal, check, material=material)
+    for spring, kind in zip(ideal, kinds, strict=True):
+        if kind.startswith("not realised"):
+            notes.append(f"spring {spring.label} (k = {spring.k:.4g} N/m) is {kind}: the realised design leaves it out")
+    realised = tuple(r for r in realised if r is not None)
+    kinds = tuple(k for k in kinds if not k.startswith("not realised"))
+    if "cable over a pulley" in kinds:
+        notes.append("cable springs are modelled with a point pulley (the force k times |B - A|); the pulley's radius "
+                     "is not modelled on a general arm")
+    return ArmDesign(model, found, method, ideal, realised, kinds, check, tuple(notes))

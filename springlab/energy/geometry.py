@@ -241,7 +241,7 @@ def _loads(model: RevoluteChain, springs, q, *, gravity: bool = True):
     return F, M, o, joint_axes(model, R)
 
 
-def joint_torques(model: RevoluteChain, springs, q) -> np.ndarray:
+def joint_torques(model: RevoluteChain, springs, q, *, gravity: bool = True) -> np.ndarray:
     """The torque (N m) each joint must apply to hold each pose against gravity and the springs,
     (N, n), route 2 on the general model.
 
@@ -252,8 +252,9 @@ def joint_torques(model: RevoluteChain, springs, q) -> np.ndarray:
     loads it not at all (its two forces cancel).
 
     :param q: joint angles (N, n) or (n,) (rad)
+    :param gravity: False: the springs' torques alone
     """
-    F, M, o, w = _loads(model, springs, q)
+    F, M, o, w = _loads(model, springs, q, gravity=gravity)
     F_out = np.cumsum(F[:, ::-1], axis=1)[:, ::-1][:, 1:]  # sum over bodies b >= i, i = 1..n
     M_out = np.cumsum(M[:, ::-1], axis=1)[:, ::-1][:, 1:]
     about_joint = M_out - np.cross(o[:, 1:], F_out)
