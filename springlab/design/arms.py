@@ -185,7 +185,7 @@ def planar_springs(model: RevoluteChain, found: Structure, *, reach=None) -> tup
         raise SpringlabError(f"the loaded joints of {model.name!r} are not a planar chain ({found.why}): "
                              "use best_springs")
     loaded = found.loaded
-    first, last = loaded[0], loaded[-1]
+    first = loaded[0]
     R0, o0 = _zero_pose(model)
     w = R0[first + 1] @ model.axes[first]  # the loaded axes' common direction (world, zero pose)
     up = model.up
@@ -199,11 +199,10 @@ def planar_springs(model: RevoluteChain, found: Structure, *, reach=None) -> tup
     # planar links: 0 = the ground (body `first`), k = 1..m the bodies of the loaded joints
     bodies = [first] + [i + 1 for i in loaded]
     m = len(loaded)
-    signs = [1.0] + [float(np.sign(R0[i + 1] @ model.axes[i] @ w)) for i in loaded]
     joint_at = [origin] + [o0[i + 1] for i in loaded]  # joint k's origin (k >= 1); the ground's is joint 1's
     nxt = [joint_at[k + 1] if k < m else None for k in range(m + 1)]  # the next joint along the chain
-    l = [z(nxt[k]) - z(joint_at[k]) if k < m else 0j for k in range(m + 1)]
-    l[0] = 0j  # the ground reaches joint 1 at the plane's origin
+    vec = [z(nxt[k]) - z(joint_at[k]) if k < m else 0j for k in range(m + 1)]
+    vec[0] = 0j  # the ground reaches joint 1 at the plane's origin
     # G_k: the first moment (kg m) of what link k carries about its joint; bodies beyond the last
     # loaded joint ride on the last link (the unloaded joints after it do not change the energy)
     carrier = {b: None for b in range(model.n + 1)}
@@ -218,12 +217,13 @@ def planar_springs(model: RevoluteChain, found: Structure, *, reach=None) -> tup
             continue
         com = o0[b] + R0[b] @ model.com[b]
         for t in range(1, k):
-            G[t] += model.mass[b] * l[t]  # counted at joint t+1 on link t
+            G[t] += model.mass[b] * vec[t]  # counted at joint t+1 on link t
         G[k] += model.mass[b] * (z(com) - z(joint_at[k]))
     g = model.g
     need = {}
     for k in range(1, m + 1):
-        need[(0, k)] = -g * np.conj(1j) * G[k] * signs[k] ** 0  # cancels g Re(conj(i) e^{i theta_k} G_k)
+        need[(0, k)] = -g * np.conj(1j) * G[k]  # cancels g Re(conj(i) e^{i theta_k} G_k); an axis along -w
+        # only turns its link the other way, which the balance (for every theta) does not mind
     reach = _reach(model, reach)
     springs = []
     for span in range(m, 0, -1):
@@ -233,12 +233,12 @@ def planar_springs(model: RevoluteChain, found: Structure, *, reach=None) -> tup
             if abs(W) <= 1e-14 * max(1.0, max(abs(v) for v in need.values())):
                 continue
             rho_j, rho_k = reach[bodies[j]], reach[bodies[k]]
-            direction = l[k] if abs(l[k]) > 1e-9 else (G[k] if abs(G[k]) > 1e-12 else 1.0 + 0j)
+            direction = vec[k] if abs(vec[k]) > 1e-9 else (G[k] if abs(G[k]) > 1e-12 else 1.0 + 0j)
             c_k = rho_k * direction / abs(direction)
             kappa = abs(W) / (rho_j * rho_k)
             c_j = np.conj(W / (kappa * c_k))  # kappa conj(c_j) c_k = W
             cs = {j: c_j, k: c_k}
-            cs.update({t: l[t] for t in range(j + 1, k)})
+            cs.update({t: vec[t] for t in range(j + 1, k)})
             for s in range(j, k + 1):
                 for t in range(s + 1, k + 1):
                     if (s, t) != (j, k):
@@ -600,6 +600,28 @@ class ArmDesign:
         springs, and the percentage of the peak removed."""
         return torque_table(self.model, self.q, {"ideal": self.ideal, "realised": self.realised},
                             unloaded=self.structure.unloaded)
+
+    def springs_table(self) -> Table:
+        """Each spring: its ends (link, point in mm in the link's URDF frame), rate, and as realised
+        (kind, free length mm, initial tension N; or why no stocked spring fits)."""
+        built = {(r.link_a, r.point_a, r.link_b, r.point_b): (r, kind)
+                 for r, kind in zip(self.realised, self.kinds, strict=True)}
+        rows = []
+        for s in self.ideal:
+            r, kind = built.get((s.link_a, s.point_a, s.link_b, s.point_b), (None, "not realised (see the notes)"))
+            mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
+            rows.append((s.link_a, mm(s.point_a), s.link_b, mm(s.point_b), f"{s.k:.4g}", kind,
+                         f"{1e3 * r.free_length:.1f}" if r else "", f"{r.initial_tension:.3g}" if r else ""))
+        return Table(["link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)", "realised as",
+                      "free length (mm)", "initial tension (N)"], rows)
+
+    def control(self, factor: float = 0.9) -> tuple[float, float]:
+        """The negative control: the largest holding torque (N m, over joints and the workspace poses)
+        of the ideal springs as designed and with every rate times ``factor``. A check that cannot
+        fail checks nothing: the scaled springs must leave more."""
+        scaled = [PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k * factor) for s in self.ideal]
+        return (float(np.max(np.abs(joint_torques(self.model, self.ideal, self.q)))),
+                float(np.max(np.abs(joint_torques(self.model, scaled, self.q)))))
 
     def removed(self, which: str = "ideal") -> np.ndarray:
         """Per joint, the percentage of its peak gravity torque the springs remove (nan where unloaded)."""

@@ -19,6 +19,7 @@ import argparse
 import json
 import os
 import sys
+import time
 from pathlib import Path
 
 from springlab.errors import SpringlabError
@@ -85,8 +86,18 @@ def _design(args) -> int:
     path, data = read_arm_data(args.arm_file)
     if is_dh_arm(data):
         return _design_dh(args, path)
-    spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up), tip=args.tip, base=args.base,
-                    payload=args.payload)
+    if args.workspace is not None and path.suffix != ".urdf":
+        raise SpringlabError(f"--workspace = {args.workspace!r} applies to URDF files (an arm file gives each "
+                             "joint's range in its links' 'range')")
+    if path.suffix == ".urdf" and args.workspace is not None:
+        return _design_general(args, path, data, "")
+    try:
+        spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up), tip=args.tip, base=args.base,
+                        payload=args.payload)
+    except SpringlabError as err:
+        if path.suffix != ".urdf":
+            raise
+        return _design_general(args, path, data, str(err))
     out = _writable(Path(args.json or Path(args.arm_file).with_suffix(".design.json").name), "--json")
     if args.sheet:
         for path in _sheet_paths(out):
@@ -132,6 +143,52 @@ def _design(args) -> int:
     print(f"\ndesign {args.pick} written to {out}")
     if args.sheet:
         _write_sheet(args, spec, chosen, out)
+    return 0
+
+
+def _design_general(args, path: Path, text: str, why: str) -> int:
+    """A URDF arm on the general model (springlab.design.arms): its structure, exact or best springs,
+    their realisation and the torques they leave, printed; the design written as JSON."""
+    from springlab.design.arms import design_model, parse_workspace
+    from springlab.model.armfile import parse_quantity
+    from springlab.model.urdf import read_revolute_chain
+
+    if args.sheet:
+        raise SpringlabError("--sheet writes the spec sheet of a line-chain design; this arm is designed on the "
+                             "general model, whose --json lists every realised spring (free length, initial "
+                             "tension, kind): leave out --sheet")
+    payload = None if args.payload is None else parse_quantity(args.payload, "mass", "payload")
+    model = read_revolute_chain(text, source=str(path), up=_up(args.up), tip=args.tip, base=args.base,
+                                payload=payload)
+    workspace = None if args.workspace is None else parse_workspace(args.workspace)
+    out = _writable(Path(args.json or path.with_suffix(".design.json").name), "--json")
+    started = time.perf_counter()
+    design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material)
+    seconds = time.perf_counter() - started
+    print(f"# {model.name}: {model.n} revolute joints from {model.bodies[0]!r} to {model.bodies[-1]!r}"
+          + (f", payload {args.payload} at the tip frame" if args.payload else ""))
+    if why:
+        print(f"note: springlab's line-chain methods (paper 000) do not take this arm ({why}); designed on the "
+              "general model, from the URDF's own frames")
+    for note in design.notes:
+        print(f"note: {note}")
+    print()
+    print(design.structure.table())
+    if design.method == "nothing to balance":
+        print("\nnothing to balance: no file written")
+        return 0
+    print(f"\n{design.method}: {len(design.ideal)} springs in {seconds:.1f} s, checked by route 2 on "
+          f"{design.q.shape[0]} random poses of the workspace\n")
+    print(design.table())
+    designed, control = design.control()
+    print(f"\nnegative control: the same springs at 0.9 of their rates leave {control:.3g} N m at worst (as designed: "
+          f"{designed:.3g} N m)\n")
+    print(design.springs_table())
+    try:
+        out.write_text(json.dumps({"source": str(path)} | design.as_dict(), indent=1) + "\n")
+    except OSError as err:
+        raise SpringlabError(f"--json {out} cannot be written ({err.strerror})") from None
+    print(f"\ndesign written to {out}")
     return 0
 
 
@@ -244,6 +301,9 @@ def main(argv=None) -> int:
                                  "joint (a gripper's fingers) is locked at zero, its bodies carried as fixed mass")
     p.add_argument("--base", help="a URDF arm's base link (default the root link)")
     p.add_argument("--payload", help="a point mass at the tip frame, e.g. '2 kg' (with --tip)")
+    p.add_argument("--workspace", help="a URDF arm's joint ranges to hold, in degrees within its limits, e.g. "
+                                       "'shoulder_lift_joint=-180:0,elbow_joint=-150:150' (designs it on the general "
+                                       "model)")
     p.add_argument("--allow-large", action="store_true", help="allow arms of more than 8 links")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--debug", action="store_true", help="show the traceback of an unexpected error")
