@@ -8,6 +8,7 @@
     |-- SearchExhaustedError             a search ran out of starts, configurations or time: not a proof
     |-- GeometryError                    attachment points, reach, a linkage that cannot close
     |   `-- AttachmentError (also an UnbalanceableError)  a spring end off its link
+    |-- LineChainError                   an arm is not one of the papers' line chains (the general model takes it)
     `-- SolverError (also RuntimeError)  a numerical solver or a simulation model failed
 """
 
@@ -33,6 +34,13 @@ class GeometryError(SpringlabError):
 class AttachmentError(GeometryError, UnbalanceableError):
     """A spring end lies off its link or needs a longer bracket than allowed: the design
     with these attachments cannot be built (a search moves on to other attachments)."""
+
+
+class LineChainError(SpringlabError):
+    """An arm (read from a URDF) is not one of the papers' idealised chains, whose links lie on one
+    line at zero angles with their centres of mass on them: an offset shoulder, a centre of mass off
+    its link, two joints at one point that are no wrist. The general model
+    (:func:`springlab.model.urdf.read_revolute_chain`, :mod:`springlab.design.arms`) takes such an arm."""
 
 
 class SolverError(SpringlabError, RuntimeError):

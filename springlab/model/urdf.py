@@ -59,7 +59,7 @@ from xml.parsers import expat
 import numpy as np
 
 from springlab import _checks
-from springlab.errors import SpringlabError
+from springlab.errors import LineChainError, SpringlabError
 from springlab.model.rotations import rot_axis
 
 SLIDING = ("prismatic", "planar", "floating")
@@ -530,7 +530,8 @@ def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | 
             raise
         others = "".join(f" (or {_up_flag(axis)})" for axis in fits[1:])
         assumed = "URDF's default z-up was assumed" if given is None else f"up = {given!r} was given"
-        raise type(err)(f"{err}. The file looks {UP_AXES[fits[0]]}: read with up = {list(fits[0])} it loads "
+        # a plain SpringlabError, not a LineChainError: the general model would take the file with the wrong up
+        raise SpringlabError(f"{err}. The file looks {UP_AXES[fits[0]]}: read with up = {list(fits[0])} it loads "
                         f"({assumed}): pass {_up_flag(fits[0])}{others} (load_arm(..., up={list(fits[0])}))") from None
 
 
@@ -595,7 +596,7 @@ def _build(name: str, links: dict, root: str, chain: list, last_link: str, up: n
             reach = np.linalg.norm(c - centres[gi])
             lim = COM_TOLERANCE * (np.linalg.norm((centres[gi + 1] if gi + 1 < len(groups) else end) - centres[gi]))
             if m > 0 and reach > max(lim, MEET_TOLERANCE):
-                raise SpringlabError(f"{source}: link {link!r} turns with part of the wrist at joints "
+                raise LineChainError(f"{source}: link {link!r} turns with part of the wrist at joints "
                                      f"{', '.join(repr(j.name) for j, _, _ in groups[gi][1])} and its centre of mass is "
                                      f"{reach * 1e3:.1f} mm from the wrist's centre: springlab models the wrist as a "
                                      "spherical joint, exact only with such bodies' masses at its centre")
@@ -610,25 +611,25 @@ def _build(name: str, links: dict, root: str, chain: list, last_link: str, up: n
         far = centres[gi + 1] if gi + 1 < len(groups) else end
         if gi + 1 == len(groups) and np.linalg.norm(far - centre) < 1e-9:
             if mass[gi] <= 0:
-                raise SpringlabError(f"{source}: the last link has no mass and no frame beyond its joint")
+                raise LineChainError(f"{source}: the last link has no mass and no frame beyond its joint")
             far = moment[gi] / mass[gi]
             out.notes.append(f"link {link_no} (the last) runs to its centre of mass: no frame is fixed beyond its joint")
         length = float(np.linalg.norm(far - centre))
         names = ", ".join(repr(j.name) for j, _, _ in members)
         if length < 1e-9:
-            raise SpringlabError(f"{source}: joints {names} and the next meet at one point (a link of zero length): "
+            raise LineChainError(f"{source}: joints {names} and the next meet at one point (a link of zero length): "
                                  "springlab models spherical joints (three axes through one point) and revolute "
                                  "joints joined by links of nonzero length")
         if mass[gi] <= 0:
             bodies = [lk for lk, idx in owner.items() if idx >= 0 and place[idx][0] == gi]
-            raise SpringlabError(f"{source}: link {link_no} (URDF links {', '.join(map(repr, bodies))}, after joint(s) "
+            raise LineChainError(f"{source}: link {link_no} (URDF links {', '.join(map(repr, bodies))}, after joint(s) "
                                  f"{names}) has no mass: give its <inertial> with <mass> and <origin>")
         u = (far - centre) / length
         c = moment[gi] / mass[gi]
         t = float((c - centre) @ u)
         off = c - centre - t * u
         if np.linalg.norm(off) > COM_TOLERANCE * length or not -1e-12 <= t <= length + 1e-12:
-            raise SpringlabError(
+            raise LineChainError(
                 f"{source}: link {link_no} (after joint(s) {names}): its centre of mass is "
                 f"{np.linalg.norm(off) * 1e3:.1f} mm off the line between its joints and {t * 1e3:.1f} mm along it "
                 f"(length {length * 1e3:.1f} mm); paper 000's method needs it on the line (offsets up to "
@@ -647,7 +648,7 @@ def _build(name: str, links: dict, root: str, chain: list, last_link: str, up: n
             v = R_prev.T @ u
             e = np.array([1.0, 0.0, 0.0])
             if abs(a @ e - a @ v) > 1e-6:
-                raise SpringlabError(
+                raise LineChainError(
                     f"{source}: joint {j.name!r}: its axis makes {math.degrees(math.acos(np.clip(a @ e, -1, 1))):.1f} deg "
                     f"with link {link_no - 1} and {math.degrees(math.acos(np.clip(a @ v, -1, 1))):.1f} deg with link "
                     f"{link_no}; springlab's revolute chains line every link up at zero angles, which needs the "

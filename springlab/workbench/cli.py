@@ -22,7 +22,7 @@ import sys
 import time
 from pathlib import Path
 
-from springlab.errors import SpringlabError
+from springlab.errors import LineChainError, SpringlabError
 
 TIME_LIMIT = 300.0
 """s: the default limit on the command line's search (``--time-limit``)."""
@@ -94,9 +94,7 @@ def _design(args) -> int:
     try:
         spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up), tip=args.tip, base=args.base,
                         payload=args.payload)
-    except SpringlabError as err:
-        if path.suffix != ".urdf":
-            raise
+    except LineChainError as err:  # an offset shoulder, a centre of mass off its link, ...: the general model
         return _design_general(args, path, data, str(err))
     out = _writable(Path(args.json or Path(args.arm_file).with_suffix(".design.json").name), "--json")
     if args.sheet:
