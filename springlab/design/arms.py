@@ -362,7 +362,7 @@ def _grid(centre, half) -> np.ndarray:
 def best_springs(model: RevoluteChain, found: Structure, q, *, target: float = 0.1, reach: float | None = None,
                  max_springs: int = 8, iterations: int = 12, candidates: int = 4,
                  max_stiffness: float = MAX_STIFFNESS) -> BestSprings:
-    """The fewest zero-free-length springs, ends within each body's box (:func:`_boxes`), that bring the
+    """The fewest zero-free-length springs, ends within each body's box (``_boxes``), that bring the
     largest holding torque over the poses ``q`` within ``target`` of every joint's scale
     s_i = max(its peak gravity torque, a tenth of the largest), or as close as ``max_springs`` springs
     get: min over springs of max_{pose, joint} |tau| / s_i (a joint gravity leaves alone is held to a
@@ -370,11 +370,11 @@ def best_springs(model: RevoluteChain, found: Structure, q, *, target: float = 0
     (N/m; default :data:`MAX_STIFFNESS`, what stocked wire winds with room to spare).
 
     Greedy, then polished. Each step ranks the candidate springs (between grid points of two bodies'
-    boxes, :func:`_grid`, any pair of bodies up to the last loaded one) by how much they reduce the
+    boxes, ``_grid``, any pair of bodies up to the last loaded one) by how much they reduce the
     remaining torques in a least-squares sense weighted towards the largest (an 8-norm's weights);
     adds, in turn, the best candidate of each of the ``candidates`` best pairs; moves every spring's
     ends within their boxes and changes the rates to lower the largest torque itself
-    (:func:`_polish`); and keeps the best of those trials. ``q`` should hold several times more
+    (``_polish``); and keeps the best of those trials. ``q`` should hold several times more
     poses than the springs have parameters (7 each): the torques are fitted at those poses only.
     """
     q = model.check_q(q)

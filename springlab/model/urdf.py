@@ -708,7 +708,7 @@ def read_revolute_chain(text: str, *, source: str = "arm.urdf", up=None, tip: st
     frame; g default :data:`springlab.model.chain.STANDARD_GRAVITY`). A revolute joint's URDF
     limits are its range (rad); a continuous joint (or lower = upper) is unlimited.
 
-    :param tip, base, payload, up: as :func:`read_urdf`
+    The keywords ``tip``, ``base``, ``payload`` and ``up`` are those of :func:`read_urdf`.
     """
     from springlab.model.chain import STANDARD_GRAVITY
     from springlab.model.revolute import RevoluteChain
