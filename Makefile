@@ -33,6 +33,7 @@ bench: $(VENV)/.bench-installed
 	$(BIN)/python benchmarks/bench_efficiency.py
 	$(BIN)/python benchmarks/bench_design.py
 	$(BIN)/python benchmarks/bench_figures.py
+	$(BIN)/python benchmarks/bench_real_arms.py
 
 lab: $(STAMP)
 	$(BIN)/jupyter lab notebooks/

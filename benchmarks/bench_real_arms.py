@@ -1,0 +1,114 @@
+"""Benchmark: real robots' URDFs (example-robot-data) on the general model (springlab.design.arms).
+
+* every serial arm of example-robot-data read from its URDF, gravity torques by route 2 beside
+  Pinocchio's computeGeneralizedGravity on the reduced model (target: 1e-9 relative), and the time
+  of each for 1,000 poses;
+* the twelve arms of the real-robots work designed (``design_model``, the ``springlab design`` path):
+  method, springs, the percentage of each loaded joint's peak torque removed with ideal and realised
+  springs over 2,000 poses the design was not fitted on, seconds (target: 30 s each), and the
+  targets (planar chains >= 99.9 % ideal and >= 90 % realised; Panda joints 2, 3, 4: 90, 80, 80 %);
+* exudyn's holding torques of the UR5's and the Panda's designs beside route 2 (target: 1e-6 N m).
+
+    make bench
+    python benchmarks/bench_real_arms.py
+"""
+
+from __future__ import annotations
+
+import re
+import time
+
+import numpy as np
+
+from springlab.design.arms import design_model
+from springlab.energy import geometry, simulation
+from springlab.model.robots import OTHER_ARMS, ROBOTS, load_robot, robot_urdf
+
+
+def pinocchio_gravity(label, model, q):
+    """Pinocchio's gravity torques (N m) on the robot's own URDF, every joint off the path locked."""
+    import pinocchio as pin
+
+    text = robot_urdf(label).read_text()
+    links = set(re.findall(r'<link\s+name="([^"]+)"', text))
+    for name in set(re.findall(r'<joint\s+name="([^"]+)"', text)) & links:  # a joint named as a link
+        text = text.replace(f'<joint name="{name}"', f'<joint name="{name} (joint)"')
+    full = pin.buildModelFromXML(text)
+    lock = [full.getJointId(name) for name in full.names[1:] if name not in model.joints]
+    reduced = pin.buildReducedModel(full, lock, pin.neutral(full)) if lock else full
+    data = reduced.createData()
+    joints = [reduced.joints[reduced.getJointId(name)] for name in model.joints]
+    out = np.empty(q.shape)
+    start = time.perf_counter()
+    for p, angles in enumerate(q):
+        config = pin.neutral(reduced)
+        for joint, value in zip(joints, angles, strict=True):
+            if joint.nq == 2:
+                config[joint.idx_q:joint.idx_q + 2] = np.cos(value), np.sin(value)
+            else:
+                config[joint.idx_q] = value
+        tau = pin.computeGeneralizedGravity(reduced, data, config)
+        out[p] = [tau[joint.idx_v] for joint in joints]
+    return out, time.perf_counter() - start
+
+
+def main() -> None:
+    print("route 2 against Pinocchio, 1,000 random poses within the limits:")
+    print(f"{'arm':28s} {'joints':>6s} {'max |diff| / max |tau|':>24s} {'route 2 (ms)':>13s} {'Pinocchio (ms)':>15s}")
+    worst = 0.0
+    for label in [*ROBOTS, *OTHER_ARMS]:
+        model = load_robot(label)
+        q = model.random_q(1000, 0)
+        start = time.perf_counter()
+        ours = geometry.gravity_torques(model, q)
+        ours_s = time.perf_counter() - start
+        theirs, theirs_s = pinocchio_gravity(label, model, q)
+        rel = float(np.max(np.abs(ours - theirs)) / max(np.max(np.abs(theirs)), 1e-300))
+        worst = max(worst, rel if np.max(np.abs(theirs)) > 0 else 0.0)
+        print(f"{label:28s} {model.n:6d} {rel:24.2e} {1e3 * ours_s:13.1f} {1e3 * theirs_s:15.1f}")
+    print(f"worst relative difference: {worst:.2e} (target 1e-9)\n")
+
+    print("designs (design_model, checked on 2,000 poses it was not fitted on):")
+    print(f"{'arm':16s} {'method':20s} {'springs':>7s} {'seconds':>8s}  removed % (ideal / realised), loaded joints")
+    designs = {}
+    for label in ROBOTS:
+        model = load_robot(label)
+        start = time.perf_counter()
+        design = design_model(model)
+        seconds = time.perf_counter() - start
+        designs[label] = design
+        ideal, real = design.removed(), design.removed("realised")
+        shown = " ".join(f"{design.model.joints[i]}={ideal[i]:.1f}/{real[i]:.1f}" for i in design.structure.loaded)
+        print(f"{label:16s} {design.method:20s} {len(design.ideal):7d} {seconds:8.1f}  {shown}")
+    print("every other serial arm of example-robot-data:")
+    refused = []
+    for label in OTHER_ARMS:
+        start = time.perf_counter()
+        try:
+            design = design_model(load_robot(label))
+        except Exception as err:  # noqa: BLE001 - a refusal is the finding here
+            refused.append(label)
+            print(f"{label:28s} REFUSED: {err}")
+            continue
+        removed = design.removed()
+        loaded = [removed[i] for i in design.structure.loaded]
+        least = f"{min(loaded):.1f}" if loaded else "-"
+        print(f"{label:28s} {design.method:20s} {len(design.ideal):3d} springs, {time.perf_counter() - start:5.1f} s, "
+              f"least removed on a loaded joint {least} %")
+    print(f"{len(OTHER_ARMS) - len(refused)} of {len(OTHER_ARMS)} designed, {len(refused)} refused\n")
+    panda = designs["Panda"].removed()
+    print(f"Panda joints 2, 3, 4: {panda[1]:.1f}, {panda[2]:.1f}, {panda[3]:.1f} % (targets 90, 80, 80)\n")
+
+    print("exudyn's holding torques beside route 2 (3 poses):")
+    for label in ("UR5", "Panda"):
+        design = designs[label]
+        q = design.model.random_q(3, 5)
+        start = time.perf_counter()
+        route3 = simulation.joint_torques(design.model, design.ideal, q)
+        seconds = time.perf_counter() - start
+        diff = float(np.max(np.abs(route3 - geometry.joint_torques(design.model, design.ideal, q))))
+        print(f"{label:8s} max |route 3 - route 2| = {diff:.2e} N m (target 1e-6), {seconds:.2f} s")
+
+
+if __name__ == "__main__":
+    main()
