@@ -523,8 +523,9 @@ def _polish(x, which, F, g, N, L, centres, half, pairs, iterations, k_max=np.inf
             r = _residual(v, which, F, g, N, L).reshape(-1) / m
             return (half_p * np.abs(r) ** (half_p - 1))[:, None] * _jacobian(v, which, F, N, L) / m
 
-        fit = least_squares(fun, x, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac",
-                            max_nfev=max(10, iterations * 4))
+        with np.errstate(over="ignore", invalid="ignore"):  # a trial step far out: an infinite cost, rejected
+            fit = least_squares(fun, x, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac",
+                                max_nfev=max(10, iterations * 4))
         x = fit.x
     return x, ratio_of(x)
 
