@@ -15,7 +15,6 @@
 
 from __future__ import annotations
 
-import re
 import time
 
 import numpy as np
@@ -23,33 +22,7 @@ import numpy as np
 from springlab.design.arms import design_model
 from springlab.energy import geometry, simulation
 from springlab.model.robots import OTHER_ARMS, ROBOTS, load_robot, robot_urdf
-
-
-def pinocchio_gravity(label, model, q):
-    """Pinocchio's gravity torques (N m) on the robot's own URDF, every joint off the path locked."""
-    import pinocchio as pin
-
-    text = robot_urdf(label).read_text()
-    links = set(re.findall(r'<link\s+name="([^"]+)"', text))
-    for name in set(re.findall(r'<joint\s+name="([^"]+)"', text)) & links:  # a joint named as a link
-        text = text.replace(f'<joint name="{name}"', f'<joint name="{name} (joint)"')
-    full = pin.buildModelFromXML(text)
-    lock = [full.getJointId(name) for name in full.names[1:] if name not in model.joints]
-    reduced = pin.buildReducedModel(full, lock, pin.neutral(full)) if lock else full
-    data = reduced.createData()
-    joints = [reduced.joints[reduced.getJointId(name)] for name in model.joints]
-    out = np.empty(q.shape)
-    start = time.perf_counter()
-    for p, angles in enumerate(q):
-        config = pin.neutral(reduced)
-        for joint, value in zip(joints, angles, strict=True):
-            if joint.nq == 2:
-                config[joint.idx_q:joint.idx_q + 2] = np.cos(value), np.sin(value)
-            else:
-                config[joint.idx_q] = value
-        tau = pin.computeGeneralizedGravity(reduced, data, config)
-        out[p] = [tau[joint.idx_v] for joint in joints]
-    return out, time.perf_counter() - start
+from springlab.workbench.references import pinocchio_gravity
 
 
 def main() -> None:
@@ -62,7 +35,9 @@ def main() -> None:
         start = time.perf_counter()
         ours = geometry.gravity_torques(model, q)
         ours_s = time.perf_counter() - start
-        theirs, theirs_s = pinocchio_gravity(label, model, q)
+        start = time.perf_counter()
+        theirs = pinocchio_gravity(robot_urdf(label).read_text(), model, q)
+        theirs_s = time.perf_counter() - start
         rel = float(np.max(np.abs(ours - theirs)) / max(np.max(np.abs(theirs)), 1e-300))
         worst = max(worst, rel if np.max(np.abs(theirs)) > 0 else 0.0)
         print(f"{label:28s} {model.n:6d} {rel:24.2e} {1e3 * ours_s:13.1f} {1e3 * theirs_s:15.1f}")

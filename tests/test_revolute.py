@@ -14,6 +14,7 @@ from springlab.model.revolute import RevoluteChain, body_frames, joint_axes
 from springlab.model.robots import OTHER_ARMS, ROBOTS, load_robot, robot_urdf
 from springlab.model.springs import PointSpring, Spring, point_springs
 from springlab.model.urdf import read_revolute_chain
+from springlab.workbench.references import pinocchio_gravity
 
 PLANAR = serial_chain([0.4, 0.3, 0.2], [0.2, 0.1, 0.1], [3.0, 2.0, 1.0], joints=[(0, 0, 1)] * 3)
 
@@ -85,34 +86,16 @@ def test_exudyn_holds_what_route_2_computes():
 
 
 def _pinocchio_gravity(label, model, q, *, scale_mass_of=None):
-    """Pinocchio's computeGeneralizedGravity on the robot's own URDF, every joint off the
-    base-tip path locked at zero (buildReducedModel), in our joints' order."""
-    pin = pytest.importorskip("pinocchio")
+    """Pinocchio's computeGeneralizedGravity on the robot's own URDF (springlab.workbench.references),
+    optionally with one body 1 % heavier (a negative control)."""
+    pytest.importorskip("pinocchio")
     text = robot_urdf(label).read_text()
-    links = set(re.findall(r'<link\s+name="([^"]+)"', text))
-    for name in set(re.findall(r'<joint\s+name="([^"]+)"', text)) & links:  # SO-100's joint and link 'gripper':
-        text = text.replace(f'<joint name="{name}"', f'<joint name="{name} (joint)"')  # buildReducedModel refuses it
-    full = pin.buildModelFromXML(text)
-    keep = set(model.joints)
-    lock = [full.getJointId(name) for name in full.names[1:] if name not in keep]
-    reduced = pin.buildReducedModel(full, lock, pin.neutral(full)) if lock else full
-    if scale_mass_of is not None:
-        jid = reduced.getJointId(scale_mass_of)
-        inertia = reduced.inertias[jid]
-        reduced.inertias[jid] = pin.Inertia(inertia.mass * 1.01, inertia.lever, inertia.inertia * 1.01)
-    data = reduced.createData()
-    out = np.empty(q.shape)
-    for p, angles in enumerate(q):
-        config = pin.neutral(reduced)
-        for name, value in zip(model.joints, angles, strict=True):
-            joint = reduced.joints[reduced.getJointId(name)]
-            if joint.nq == 2:  # a continuous joint: (cos, sin)
-                config[joint.idx_q:joint.idx_q + 2] = np.cos(value), np.sin(value)
-            else:
-                config[joint.idx_q] = value
-        tau = pin.computeGeneralizedGravity(reduced, data, config)
-        out[p] = [tau[reduced.joints[reduced.getJointId(name)].idx_v] for name in model.joints]
-    return out
+    if scale_mass_of is not None:  # the child link of that joint 1 % heavier, in the file itself
+        child = re.search(rf'<joint name="{scale_mass_of}".*?<child link="([^"]+)"', text, re.S).group(1)
+        link = re.search(rf'<link name="{child}">.*?</link>', text, re.S).group(0)
+        mass = re.search(r'<mass value="([^"]+)"', link).group(1)
+        text = text.replace(link, link.replace(f'<mass value="{mass}"', f'<mass value="{float(mass) * 1.01!r}"'))
+    return pinocchio_gravity(text, model, q)
 
 
 @pytest.mark.parametrize("label", [*ROBOTS, *OTHER_ARMS])

@@ -1,0 +1,63 @@
+"""The field's reference libraries beside springlab's routes (never inside them): Pinocchio's
+gravity torques on a robot's own URDF.
+
+Pinocchio (``pin``, the ``robots`` extra) reads the file itself and locks every joint off the arm's
+path at zero with ``buildReducedModel``, as :func:`springlab.model.urdf.read_revolute_chain` does;
+its ``computeGeneralizedGravity`` is the torque that holds each pose, our
+:func:`springlab.energy.geometry.gravity_torques`.
+"""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+
+from springlab.errors import SpringlabError
+
+
+def pinocchio_gravity(urdf_text: str, model, q) -> np.ndarray:
+    """Pinocchio's gravity torques (N m), (N, n) in ``model``'s joint order, at joint angles ``q``
+    (N, n) rad, on the URDF text the model was read from (every joint not in ``model.joints``
+    locked at zero; a continuous joint's (cos, sin) set from its angle).
+
+    :raises SpringlabError: when Pinocchio is not installed
+    """
+    try:
+        import pinocchio as pin
+    except ImportError:
+        raise SpringlabError("Pinocchio is not installed: pip install pin (the 'robots' extra)") from None
+    q = model.check_q(q)
+    links = set(re.findall(r'<link\s+name="([^"]+)"', urdf_text))
+    for name in set(re.findall(r'<joint\s+name="([^"]+)"', urdf_text)) & links:
+        # a joint named as a link (SO-100's 'gripper'): buildReducedModel refuses the ambiguous frame
+        urdf_text = urdf_text.replace(f'<joint name="{name}"', f'<joint name="{name} (joint)"')
+    full = pin.buildModelFromXML(urdf_text)
+    full.gravity.linear = np.asarray(_gravity_in_root(model, full, pin), dtype=float)
+    lock = [full.getJointId(name) for name in full.names[1:] if name not in model.joints]
+    reduced = pin.buildReducedModel(full, lock, pin.neutral(full)) if lock else full
+    data = reduced.createData()
+    joints = [reduced.joints[reduced.getJointId(name)] for name in model.joints]
+    out = np.empty(q.shape)
+    for p, angles in enumerate(q):
+        config = pin.neutral(reduced)
+        for joint, value in zip(joints, angles, strict=True):
+            if joint.nq == 2:
+                config[joint.idx_q:joint.idx_q + 2] = np.cos(value), np.sin(value)
+            else:
+                config[joint.idx_q] = value
+        tau = pin.computeGeneralizedGravity(reduced, data, config)
+        out[p] = [tau[joint.idx_v] for joint in joints]
+    return out
+
+
+def _gravity_in_root(model, full, pin):
+    """The model's gravity (given in its base's frame) in the URDF root's frame, where Pinocchio
+    takes it: the base's placement at the zero configuration."""
+    base = model.bodies[0]
+    if not full.existFrame(base, pin.FrameType.BODY):
+        return model.gravity
+    data = full.createData()
+    pin.framesForwardKinematics(full, data, pin.neutral(full))
+    rotation = data.oMf[full.getFrameId(base, pin.FrameType.BODY)].rotation
+    return rotation @ model.gravity
