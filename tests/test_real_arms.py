@@ -7,7 +7,13 @@ import json
 import numpy as np
 import pytest
 
-from springlab.design.arms import design_model, parse_workspace, planar_springs, structure, workspace_ranges
+from springlab.design.arms import (
+    design_model,
+    parse_workspace,
+    planar_springs,
+    structure,
+    workspace_ranges,
+)
 from springlab.energy import geometry, simulation
 from springlab.errors import SpringlabError
 from springlab.model.robots import OTHER_ARMS, load_robot, robot_urdf
@@ -74,7 +80,7 @@ def test_the_panda_meets_its_targets():
 def test_realised_springs_are_wound_springs():
     design = design_model(load_robot("UR5"))
     assert len(design.realised) == len(design.ideal)
-    for ideal, built, kind in zip(design.ideal, design.realised, design.kinds, strict=True):
+    for built, kind in zip(design.realised, design.kinds, strict=True):
         assert built.free_length > 0 and built.initial_tension > 0
         assert built.effective_free_length == pytest.approx(0.0, abs=1e-12)  # the cable absorbs L_0 - F_i / k
         assert kind in ("zero-length spring", "cable over a pulley")
