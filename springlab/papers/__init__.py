@@ -47,6 +47,17 @@ PAPERS = {
         "key_caption": "The best design for the example arm, drawn at a random pose: the links, the ground column "
                        "and each spring between its attachment points",
     },
+    "springlab_real_arms": {
+        "key": None,  # springlab's general model, not a paper
+        "authors": "springlab",
+        "year": 2026,
+        "title": "Real arms: springs for robots from their published URDFs (UR5, Panda, SO-101)",
+        "venue": "",
+        "doi": None,
+        "key_figure": "panda.png",
+        "key_caption": "The Franka Panda from its published URDF with the four springs that remove about 98 % of "
+                       "its shoulder's peak gravity torque: front, side and top views",
+    },
     "zhang2023_dyad": {
         "key": "002",
         "authors": "Y. Zhang, V. Arakelian",

@@ -42,8 +42,9 @@ MATHJAX_SCRIPT = "tex-svg-full.js"
 """MathJax 3's component the book loads from ``_static/mathjax``: TeX in (every extension
 preloaded, so nothing is fetched on demand), SVG out."""
 CHAPTER_ORDER = ("juang2023_spatial_balance", "lin2010_pseudobases", "zhang2023_dyad",
-                 "juang2022_spring_efficiency", "lenzo2017_two_spring_arm", "springlab_design_your_arm")
-"""The chapters in the papers' key order (000 .. 004), then the design chapter."""
+                 "juang2022_spring_efficiency", "lenzo2017_two_spring_arm", "springlab_design_your_arm",
+                 "springlab_real_arms")
+"""The chapters in the papers' key order (000 .. 004), then the design chapter and the real arms."""
 
 _HEADING = re.compile(r"^(#{1,6})\s+(.+?)\s*$", re.M)
 CITATION = re.compile(r"(?<![\w`])(00[0-9])(?= Eqs?\.| Table| Fig| Section)")

@@ -150,6 +150,37 @@ def chain_scene(chain, springs, X, tip_path=None) -> Scene:
                  masses=coms)
 
 
+def revolute_scene(model, springs, q) -> Scene:
+    """An arm of the general model (:class:`springlab.model.revolute.RevoluteChain`) at joint angles q
+    (N, n): the chain through its joints' origins to the last body's farthest fixed frame (a flange),
+    its centres of mass, the springs between their points (route 2's placement), each spring end
+    and centre of mass on a grey bracket from its body's joint, the base column under the first
+    joint. Springs are named S1, S2, ... in their order."""
+    from springlab.model.revolute import body_frames, centres_of_mass, world_points
+
+    q = model.check_q(q)
+    R, o = body_frames(model, q)
+    ends = [o[:, b] for b in range(1, model.n + 1)]
+    far = [(name, T) for name, (b, T) in model.fixed.items() if b == model.n]
+    if far:  # the farthest frame fixed to the last body (a flange, a tool0) closes the chain
+        name, T = max(far, key=lambda item: float(np.linalg.norm(item[1][:3, 3])))
+        ends.append(world_points(R, o, model.n, T[:3, 3]))
+    joints = np.stack([np.zeros_like(ends[0])] + ends, axis=1) if np.any(o[0, 1]) else np.stack(ends, axis=1)
+    springs_at, brackets = {}, []
+    for k, s in enumerate(springs, start=1):
+        (ia, pa), (ib, pb) = model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)
+        A, B = world_points(R, o, ia, pa), world_points(R, o, ib, pb)
+        springs_at[f"S{k}"] = (A, B)
+        brackets += [np.stack([o[:, ia], A], axis=1), np.stack([o[:, ib], B], axis=1)]
+    coms = centres_of_mass(model, R, o)[:, 1:]
+    brackets += [np.stack([o[:, b], coms[:, b - 1]], axis=1) for b in range(1, model.n + 1)]
+    up = model.up
+    heights = [0.0] + [float(np.min(A @ up)) for A, _ in springs_at.values()]
+    column = (min(min(heights), -0.05), float(o[0, 1] @ up))
+    return Scene(np.asarray(up, dtype=float), [joints], springs_at, column,
+                 brackets=np.stack(brackets, axis=1) if brackets else None, masses=coms)
+
+
 def pseudobase_scene(arm, springs, q) -> Scene:
     """Paper 001's arm at joint angles q (N, n): the primary links through the frame origins,
     each module's pseudobase as the segment C_i D_i (it keeps its direction at every pose),

@@ -202,6 +202,18 @@ def arm_figure(chain, springs, X_frames, tip_path=None, *, title: str = "", titl
                             label_style={"fontsize": 8, "gap": 5.0, "clear": (3.0, 12.0)})
 
 
+def real_arm_figure(design, pose=None, *, title: str = ""):
+    """An arm of the general model with its springs at one pose (default the design's first
+    workspace pose), in front, side and top views at one scale
+    (:func:`springlab.workbench.drawing.revolute_scene`)."""
+    from springlab.workbench.drawing import mechanism_figure, revolute_scene
+
+    q = design.q[:1] if pose is None else np.atleast_2d(pose)
+    scene = revolute_scene(design.model, design.ideal, q)
+    return mechanism_figure(scene, [0], views=("front", "side", "top"), columns=2,
+                            titles=[design.model.name], title=title)
+
+
 def moment_figure(phi, curves: dict, *, title: str, ylabel: str = "moment (N m)", styles: dict | None = None):
     """Moments against the link angle, the look of 002 Figs. 2-3.
 
