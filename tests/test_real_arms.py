@@ -133,6 +133,8 @@ PANDA_BAD = [
     (["--tip", "panda_link7", "--workspace", "panda_joint4=0:30"], "outside its limits"),
     (["--tip", "panda_link7", "--workspace", "panda_joint4"], "joint=low:high"),
     (["--tip", "panda_link7", "--sheet"], "--sheet"),
+    (["--tip", "panda_link7", "--reach", "-3 cm"], "reach"),
+    (["--tip", "panda_link7", "--reach", "3 kg"], "reach"),
 ]
 
 
@@ -144,3 +146,16 @@ def test_bad_input_is_one_line_exit_2_nothing_written(extra, message, tmp_path, 
     assert code == 2
     assert message in err and err.count("\n") == 1
     assert not out.exists()
+
+
+def test_a_smaller_reach_keeps_every_end_closer(tmp_path):
+    out = tmp_path / "so101.json"
+    assert main(["design", str(robot_urdf("SO-101")), "--reach", "1 cm", "--json", str(out), "--quiet"]) == 0
+    model = load_robot("SO-101")
+    from springlab.design.arms import _boxes
+
+    centres, half = _boxes(model, 0.01)
+    for s in json.loads(out.read_text())["ideal"]:
+        for link, point in ((s["link_a"], s["point_a"]), (s["link_b"], s["point_b"])):
+            body, local = model.locate(link, point)
+            assert np.all(np.abs(local - centres[body]) <= half[body] + 1e-9)

@@ -86,6 +86,9 @@ def _design(args) -> int:
     path, data = read_arm_data(args.arm_file)
     if is_dh_arm(data):
         return _design_dh(args, path)
+    if args.reach is not None and path.suffix != ".urdf":
+        raise SpringlabError(f"--reach = {args.reach!r} applies to URDF files (an arm file bounds its attachments "
+                             "with limits: max_attachment)")
     if args.workspace is not None and path.suffix != ".urdf":
         raise SpringlabError(f"--workspace = {args.workspace!r} applies to URDF files (an arm file gives each "
                              "joint's range in its links' 'range')")
@@ -161,7 +164,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     workspace = None if args.workspace is None else parse_workspace(args.workspace)
     out = _writable(Path(args.json or path.with_suffix(".design.json").name), "--json")
     started = time.perf_counter()
-    design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material)
+    reach = None if args.reach is None else parse_quantity(args.reach, "length", "reach")
+    design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material, reach=reach)
     seconds = time.perf_counter() - started
     print(f"# {model.name}: {model.n} revolute joints from {model.bodies[0]!r} to {model.bodies[-1]!r}"
           + (f", payload {args.payload} at the tip frame" if args.payload else ""))
@@ -299,6 +303,8 @@ def main(argv=None) -> int:
                                  "joint (a gripper's fingers) is locked at zero, its bodies carried as fixed mass")
     p.add_argument("--base", help="a URDF arm's base link (default the root link)")
     p.add_argument("--payload", help="a point mass at the tip frame, e.g. '2 kg' (with --tip)")
+    p.add_argument("--reach", help="how far beyond a URDF arm's link a spring end may sit, e.g. '5 cm' (default 15 %% "
+                                   "of the arm's length; the general model's best-springs search)")
     p.add_argument("--workspace", help="a URDF arm's joint ranges to hold, in degrees within its limits, e.g. "
                                        "'shoulder_lift_joint=-180:0,elbow_joint=-150:150' (designs it on the general "
                                        "model)")

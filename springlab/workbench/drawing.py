@@ -59,6 +59,7 @@ class Scene:
     :ivar brackets: (N, k, 2, 3) segments that carry a spring's end or a centre of mass off its
         link's segment (a link's extension past a joint): drawn grey, so that nothing floats
     :ivar masses: optional (N, m, 3) centres of mass
+    :ivar ground: the legend's name of the base column
     """
 
     up: np.ndarray
@@ -69,6 +70,7 @@ class Scene:
     path: np.ndarray | None = None
     brackets: np.ndarray | None = None
     masses: np.ndarray | None = None
+    ground: str = "ground (link 1)"
 
     @property
     def poses(self) -> int:
@@ -178,7 +180,8 @@ def revolute_scene(model, springs, q) -> Scene:
     heights = [0.0] + [float(np.min(A @ up)) for A, _ in springs_at.values()]
     column = (min(min(heights), -0.05), float(o[0, 1] @ up))
     return Scene(np.asarray(up, dtype=float), [joints], springs_at, column,
-                 brackets=np.stack(brackets, axis=1) if brackets else None, masses=coms)
+                 brackets=np.stack(brackets, axis=1) if brackets else None, masses=coms,
+                 ground=f"base ({model.bodies[0]})")
 
 
 def pseudobase_scene(arm, springs, q) -> Scene:
@@ -246,9 +249,9 @@ def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=
         for x in np.linspace(-0.12 * span, 0.1 * span, 8):
             artists += ax.plot([x, x + 0.025 * span], [bottom - 0.025 * span, bottom], color="k", linewidth=0.6)
         artists += ax.plot([0, 0], [bottom, top], color=COLUMN_COLOUR, linewidth=7, solid_capstyle="butt",
-                           label="ground (link 1)", zorder=1)
+                           label=scene.ground, zorder=1)
     else:
-        artists += ax.plot([0], [0], "s", color=COLUMN_COLOUR, markersize=9, label="ground (link 1)", zorder=1)
+        artists += ax.plot([0], [0], "s", color=COLUMN_COLOUR, markersize=9, label=scene.ground, zorder=1)
     for name, body in scene.extras.items():
         pts = scene.project(body[pose], view)
         artists += ax.plot(*pts.T, color="tab:blue", linewidth=2.4, solid_capstyle="round", zorder=2,
