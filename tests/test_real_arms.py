@@ -113,6 +113,14 @@ def test_the_cli_writes_the_json_contract(tmp_path, capsys):
     q = model.random_q(200, 6)
     assert np.max(np.abs(geometry.joint_torques(model, springs, q))) < 1e-9
     assert data["torques"][1]["joint"] == "shoulder_lift_joint" and data["torques"][1]["gravity_peak_Nm"] > 50
+    assert data["inputs"]["base"] == "world" and data["inputs"]["payload_kg"] is None
+    for s in data["realised"]:  # how each is built: a cable spring's force k (path) from its coil and cable
+        assert s["kind"] == "cable over a pulley" and s["coil_max_length"] >= s["coil_free_length"] > 0
+        assert s["cable_offset"] == pytest.approx(s["coil_free_length"] - s["initial_tension"] / s["k"], rel=1e-6)
+    # the structure table and the torque table report on the same poses: the same peaks
+    design = design_model(load_robot("UR5"), samples=300)
+    peaks = np.max(np.abs(geometry.gravity_torques(design.model, design.q)), axis=0)
+    np.testing.assert_allclose(design.structure.peak, peaks, rtol=1e-12)
 
 
 def test_nothing_to_balance_exits_0_and_writes_nothing(tmp_path, capsys):
@@ -135,6 +143,8 @@ PANDA_BAD = [
     (["--tip", "panda_link7", "--sheet"], "--sheet"),
     (["--tip", "panda_link7", "--reach", "-3 cm"], "reach"),
     (["--tip", "panda_link7", "--reach", "3 kg"], "reach"),
+    (["--tip", "panda_link7", "--workspace", "panda_joint2=0:10,panda_joint2=20:30"], "twice"),
+    (["--tip", "panda_link7", "--workspace", "panda_joint2=10:-10"], "deg: give low < high"),
 ]
 
 

@@ -377,9 +377,16 @@ def best_springs(model: RevoluteChain, found: Structure, q, *, target: float = 0
     (``_polish``); and keeps the best of those trials. ``q`` should hold several times more
     poses than the springs have parameters (7 each): the torques are fitted at those poses only.
     """
+    from threadpoolctl import threadpool_limits
+
     q = model.check_q(q)
     target = _checks.positive("target", target)
     max_stiffness = _checks.positive("max_stiffness", max_stiffness, unit="N/m")
+    with threadpool_limits(limits=1, user_api="blas"):  # small matrices: one thread is faster
+        return _best_springs(model, found, q, target, reach, max_springs, iterations, candidates, max_stiffness)
+
+
+def _best_springs(model, found, q, target, reach, max_springs, iterations, candidates, max_stiffness) -> BestSprings:
     max_springs = _checks.count("max_springs", max_springs, least=1)
     loaded = list(found.loaded)
     if not loaded:
@@ -545,7 +552,8 @@ def workspace_ranges(model: RevoluteChain, workspace=None) -> np.ndarray:
         i = model.joints.index(name)
         low, high = (float(v) for v in value)
         if not (np.isfinite(low) and np.isfinite(high) and low < high):
-            raise SpringlabError(f"workspace of {name!r} = ({low:g}, {high:g}) rad: give low < high, finite")
+            raise SpringlabError(f"workspace of {name!r} = ({np.degrees(low):g}, {np.degrees(high):g}) deg: give "
+                                 "low < high, both finite")
         if low < ranges[i, 0] - 1e-12 or high > ranges[i, 1] + 1e-12:
             raise SpringlabError(f"workspace of {name!r} = ({np.degrees(low):.1f}, {np.degrees(high):.1f}) deg lies "
                                  f"outside its limits ({np.degrees(ranges[i, 0]):.1f}, {np.degrees(ranges[i, 1]):.1f}) "
@@ -560,6 +568,8 @@ def parse_workspace(text: str) -> dict:
     for item in (part.strip() for part in str(text).split(",") if part.strip()):
         name, sep, span = item.partition("=")
         low, sep2, high = span.partition(":")
+        if name.strip() in out:
+            raise SpringlabError(f"--workspace names joint {name.strip()!r} twice: give each joint one range")
         try:
             if not (sep and sep2):
                 raise ValueError
@@ -583,6 +593,8 @@ class ArmDesign:
     :ivar realised: the same springs as wound (free length, initial tension) for a shop, those a
         stocked spring realises (the notes name any left out)
     :ivar kinds: per realised spring, how ('zero-length spring' or 'cable over a pulley')
+    :ivar coils: per realised spring, its coil (:class:`~springlab.design.buildable.ExtensionSpring`) and the
+        range (m) of the distance between its ends over the workspace
     :ivar q: the workspace poses the design is checked on (N, n) rad, not those it was fitted on
     :ivar notes: what was assumed and found
     """
@@ -593,6 +605,7 @@ class ArmDesign:
     ideal: tuple
     realised: tuple
     kinds: tuple
+    coils: tuple
     q: np.ndarray
     notes: tuple
 
@@ -603,18 +616,21 @@ class ArmDesign:
                             unloaded=self.structure.unloaded)
 
     def springs_table(self) -> Table:
-        """Each spring: its ends (link, point in mm in the link's URDF frame), rate, and as realised
-        (kind, free length mm, initial tension N; or why no stocked spring fits)."""
-        built = {(r.link_a, r.point_a, r.link_b, r.point_b): (r, kind)
-                 for r, kind in zip(self.realised, self.kinds, strict=True)}
+        """Each spring: its ends (link, point in mm in the link's URDF frame) and rate, and how it is
+        built: the kind, the coil's own free length and longest stretched length (mm, inside the hooks),
+        its initial tension (N) and wire (mm); or why no stocked spring fits."""
+        built = {(r.link_a, r.point_a, r.link_b, r.point_b): (r, kind, coil)
+                 for r, kind, (coil, _) in zip(self.realised, self.kinds, self.coils, strict=True)}
         rows = []
         for s in self.ideal:
-            r, kind = built.get((s.link_a, s.point_a, s.link_b, s.point_b), (None, "not realised (see the notes)"))
+            r, kind, coil = built.get((s.link_a, s.point_a, s.link_b, s.point_b), (None, "not realised (see the notes)",
+                                                                                    None))
             mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
             rows.append((s.link_a, mm(s.point_a), s.link_b, mm(s.point_b), f"{s.k:.4g}", kind,
-                         f"{1e3 * r.free_length:.1f}" if r else "", f"{r.initial_tension:.3g}" if r else ""))
+                         f"{1e3 * coil.free_length:.1f}" if coil else "", f"{1e3 * coil.max_length:.1f}" if coil else "",
+                         f"{coil.initial_tension:.3g}" if coil else "", f"{1e3 * coil.wire:.2g}" if coil else ""))
         return Table(["link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)", "realised as",
-                      "free length (mm)", "initial tension (N)"], rows)
+                      "coil free length (mm)", "coil longest (mm)", "initial tension (N)", "wire (mm)"], rows)
 
     def control(self, factor: float = 0.9) -> tuple[float, float]:
         """The negative control: the largest holding torque (N m, over joints and the workspace poses)
@@ -653,8 +669,22 @@ class ArmDesign:
                 "loaded_joints": [self.model.joints[i] for i in self.structure.loaded],
                 "structure": self.structure.why, "poses_checked": int(self.q.shape[0]),
                 "ideal": [s.as_dict() for s in self.ideal],
-                "realised": [s.as_dict() | {"kind": kind} for s, kind in zip(self.realised, self.kinds, strict=True)],
+                "realised": [s.as_dict() | _coil_fields(kind, coil, span)
+                             for s, kind, (coil, span) in zip(self.realised, self.kinds, self.coils, strict=True)],
                 "torques": rows, "notes": list(self.notes)}
+
+
+def _coil_fields(kind: str, coil, span) -> dict:
+    """How a realised spring is built, for --json (m, N): its kind, the coil's own free length (inside
+    the hooks), longest stretched length, wire and mean diameters and body coils, and for a cable spring
+    the cable's offset L_0 - F_i / k (its force is F_i + k (path + offset - L_0) = k * path along the
+    cable's path, whose range over the workspace is ``span``)."""
+    out = {"kind": kind, "coil_free_length": coil.free_length, "coil_max_length": coil.max_length,
+           "wire_diameter": coil.wire, "mean_diameter": coil.mean_diameter, "body_coils": coil.body_coils,
+           "material": coil.material, "end_distance_range": list(span)}
+    if kind == "cable over a pulley":
+        out["cable_offset"] = coil.free_length - coil.initial_tension / coil.rate
+    return out
 
 
 def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music wire") -> tuple[tuple, tuple]:
@@ -671,7 +701,7 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
     from springlab.model.revolute import world_points
 
     R, o = body_frames(model, q)
-    out, kinds = [], []
+    out, kinds, coils = [], [], []
     for s in springs:
         A = world_points(R, o, *model.locate(s.link_a, s.point_a))
         B = world_points(R, o, *model.locate(s.link_b, s.point_b))
@@ -682,16 +712,19 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
             out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, coil.free_length,
                                    s.k * coil.free_length))
             kinds.append("zero-length spring")
+            coils.append((coil, lengths))
             continue
         coil, why_cable = cable_spring(s.k, lengths, material)
         if coil is None:
             kinds.append(f"not realised: no zero-length spring ({why}) and no cable spring ({why_cable})")
             out.append(None)
+            coils.append(None)
             continue
         out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, coil.initial_tension / s.k,
                                coil.initial_tension))
         kinds.append("cable over a pulley")
-    return tuple(out), tuple(kinds)
+        coils.append((coil, lengths))
+    return tuple(out), tuple(kinds), tuple(coils)
 
 
 def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, fit_poses: int = 300, seed: int = 1,
@@ -707,10 +740,10 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     ranges = workspace_ranges(model, workspace)
     rng = np.random.default_rng(seed)
     check = rng.uniform(ranges[:, 0], ranges[:, 1], (samples, model.n))
-    found = structure(model, rng.uniform(ranges[:, 0], ranges[:, 1], (512, model.n)))
+    found = structure(model, check)  # the poses every table reports on
     notes = list(model.notes)
     if not found.loaded:
-        return ArmDesign(model, found, "nothing to balance", (), (), (), check,
+        return ArmDesign(model, found, "nothing to balance", (), (), (), (), check,
                          (*notes, "gravity loads no joint of this arm over its workspace: nothing to balance"))
     if found.planar:
         ideal, method = planar_springs(model, found), "exact: planar chain"
@@ -721,13 +754,20 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         ideal, method = fit.springs, "best springs"
         notes.append(f"not exact: {found.why}; springlab's exact construction needs a planar chain, so the "
                      f"best springs were searched: {fit.note}")
-    realised, kinds = realise_springs(model, ideal, check, material=material)
+    realised, kinds, coils = realise_springs(model, ideal, check, material=material)
     for spring, kind in zip(ideal, kinds, strict=True):
         if kind.startswith("not realised"):
             notes.append(f"spring {spring.label} (k = {spring.k:.4g} N/m) is {kind}: the realised design leaves it out")
     realised = tuple(r for r in realised if r is not None)
+    coils = tuple(c for c in coils if c is not None)
     kinds = tuple(k for k in kinds if not k.startswith("not realised"))
+    gravity = np.max(np.abs(gravity_torques(model, check)), axis=0)
+    left = np.max(np.abs(joint_torques(model, ideal, check)), axis=0)
+    for i in np.flatnonzero(left > gravity * (1 + 1e-9) + 1e-12):
+        notes.append(f"joint {model.joints[i]}: the springs leave {left[i]:.3g} N m at worst, more than gravity's own "
+                     f"{gravity[i]:.3g} N m (the search holds every joint below the larger of its own peak and a tenth "
+                     f"of the largest, {0.1 * float(np.max(gravity)):.3g} N m)")
     if "cable over a pulley" in kinds:
         notes.append("cable springs are modelled with a point pulley (the force k times |B - A|); the pulley's radius "
                      "is not modelled on a general arm")
-    return ArmDesign(model, found, method, ideal, realised, kinds, check, tuple(notes))
+    return ArmDesign(model, found, method, ideal, realised, kinds, coils, check, tuple(notes))

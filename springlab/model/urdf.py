@@ -360,10 +360,20 @@ def _frame_to(u: np.ndarray) -> np.ndarray:
     e = np.array([1.0, 0.0, 0.0])
     v = np.cross(e, u)
     c = float(e @ u)
-    if np.linalg.norm(v) < 1e-12:
-        return np.eye(3) if c > 0 else np.diag([-1.0, -1.0, 1.0])
+    if np.linalg.norm(v) < 1e-12 or 1 + c < 1e-9:  # along +x, or (within round-off) along -x: a half turn about z
+        return np.eye(3) if c > 0 else _half_turn_to(u)
     K = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
     return np.eye(3) + K + K @ K / (1 + c)
+
+
+def _half_turn_to(u: np.ndarray) -> np.ndarray:
+    """A rotation taking [1, 0, 0] to u when u is within round-off of [-1, 0, 0]: a half turn about z,
+    then the small turn that remains (so that the result takes x exactly to u)."""
+    flip = np.diag([-1.0, -1.0, 1.0])
+    rest = flip.T @ u  # within round-off of +x
+    v = np.cross([1.0, 0.0, 0.0], rest)
+    K = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
+    return flip @ (np.eye(3) + K + K @ K / (1 + float(rest[0])))
 
 
 def _meet(points, axes) -> np.ndarray | None:

@@ -150,7 +150,9 @@ def _design(args) -> int:
 def _design_general(args, path: Path, text: str, why: str) -> int:
     """A URDF arm on the general model (springlab.design.arms): its structure, exact or best springs,
     their realisation and the torques they leave, printed; the design written as JSON."""
-    from springlab.design.arms import design_model, parse_workspace
+    import numpy as np
+
+    from springlab.design.arms import design_model, parse_workspace, workspace_ranges
     from springlab.model.armfile import parse_quantity
     from springlab.model.urdf import read_revolute_chain
 
@@ -168,7 +170,11 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material, reach=reach)
     seconds = time.perf_counter() - started
     print(f"# {model.name}: {model.n} revolute joints from {model.bodies[0]!r} to {model.bodies[-1]!r}"
-          + (f", payload {args.payload} at the tip frame" if args.payload else ""))
+          + (f", payload {payload:g} kg at the tip frame" if payload else ""))
+    ranges = workspace_ranges(model, workspace)
+    print("workspace (deg): " + ", ".join(f"{name} {np.degrees(lo):.0f}..{np.degrees(hi):.0f}"
+                                         for name, (lo, hi) in zip(model.joints, ranges, strict=True))
+          + (" (the URDF limits; a full turn where unlimited)" if workspace is None else ""))
     if why:
         print(f"note: springlab's line-chain methods (paper 000) do not take this arm ({why}); designed on the "
               "general model, from the URDF's own frames")
@@ -186,8 +192,12 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     print(f"\nnegative control: the same springs at 0.9 of their rates leave {control:.3g} N m at worst (as designed: "
           f"{designed:.3g} N m)\n")
     print(design.springs_table())
+    inputs = {"tip": args.tip, "base": model.bodies[0], "payload_kg": payload, "up": _up(args.up) or [0.0, 0.0, 1.0],
+              "workspace_deg": {name: [float(np.degrees(lo)), float(np.degrees(hi))]
+                                for name, (lo, hi) in zip(model.joints, workspace_ranges(model, workspace), strict=True)},
+              "reach_m": reach, "seed": args.seed + 1, "material": args.material}
     try:
-        out.write_text(json.dumps({"source": str(path)} | design.as_dict(), indent=1) + "\n")
+        out.write_text(json.dumps({"source": str(path), "inputs": inputs} | design.as_dict(), indent=1) + "\n")
     except OSError as err:
         raise SpringlabError(f"--json {out} cannot be written ({err.strerror})") from None
     print(f"\ndesign written to {out}")
