@@ -297,17 +297,24 @@ def torque_table(model: RevoluteChain, q, cases: dict, *, unloaded=()) -> Table:
 
 # --- the best springs where exact balance is out of reach -------------------------------------
 def _boxes(model: RevoluteChain, reach) -> tuple[np.ndarray, np.ndarray]:
-    """Per body, the centre (m, body frame) and half-size (m) of the box its spring ends may use:
-    centred between the body's joint and the next (the last body: its centre of mass), half the
-    distance plus ``reach`` each way (default 15 % of the arm's length, the sum of its joints'
-    distances, at least 5 cm: a post or bracket of that size on any body)."""
+    """Per body, the centre (m, body frame) and half-sizes (m, per axis) of the box its spring ends may
+    use, (n + 1, 3) each: centred between the body's joint and the next (the last body: its centre of
+    mass), half the distance plus ``reach`` each way (default 15 % of the arm's length, the sum of its
+    joints' distances, at least 5 cm: a post or bracket of that size on any body). The base's box
+    stops at its frame's horizontal plane (the mounting surface, when the base frame's up is one of its
+    axes): nothing is attached under the table."""
     length = float(np.sum(np.linalg.norm(model.placements[:, :3, 3], axis=1)))
     margin = max(0.05, 0.15 * length) if reach is None else _checks.positive("reach", reach, unit="m")
-    centres, half = np.zeros((model.n + 1, 3)), np.zeros(model.n + 1)
+    centres, half = np.zeros((model.n + 1, 3)), np.zeros((model.n + 1, 3))
     for b in range(model.n + 1):
         far = model.placements[b][:3, 3] if b < model.n else model.com[b]
         centres[b] = 0.5 * np.asarray(far)
         half[b] = 0.5 * float(np.linalg.norm(far)) + margin
+    k = int(np.argmax(np.abs(model.up)))
+    if abs(model.up[k]) > 1 - 1e-9:  # the base's box above (or, up = -axis, below) its frame's plane
+        lo, hi = centres[0, k] - half[0, k], centres[0, k] + half[0, k]
+        lo, hi = (max(lo, 0.0), hi) if model.up[k] > 0 else (lo, min(hi, 0.0))
+        centres[0, k], half[0, k] = 0.5 * (lo + hi), 0.5 * (hi - lo)
     return centres, half
 
 
@@ -354,7 +361,8 @@ class BestSprings:
 
 
 def _grid(centre, half) -> np.ndarray:
-    """The candidate ends in a body's box: its centre and its eight corners, (9, 3) m."""
+    """The candidate ends in a body's box (its centre and per-axis half-sizes): its centre and its
+    eight corners, (9, 3) m."""
     corners = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
     return np.vstack([centre, centre + half * corners])
 
