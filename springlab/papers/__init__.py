@@ -55,7 +55,7 @@ PAPERS = {
         "venue": "",
         "doi": None,
         "key_figure": "panda.png",
-        "key_caption": "The Franka Panda from its published URDF with the four springs that remove about 98 % of "
+        "key_caption": "The Franka Panda from its published URDF with the six springs that remove about 99 % of "
                        "its shoulder's peak gravity torque: front, side and top views",
     },
     "zhang2023_dyad": {
