@@ -9,6 +9,7 @@
     |-- GeometryError                    attachment points, reach, a linkage that cannot close
     |   `-- AttachmentError (also an UnbalanceableError)  a spring end off its link
     |-- LineChainError                   an arm is not one of the papers' line chains (the general model takes it)
+    |-- UpAdviceError                    a URDF refused as a line chain that another up direction reads
     `-- SolverError (also RuntimeError)  a numerical solver or a simulation model failed
 """
 
@@ -41,6 +42,12 @@ class LineChainError(SpringlabError):
     line at zero angles with their centres of mass on them: an offset shoulder, a centre of mass off
     its link, two joints at one point that are no wrist. The general model
     (:func:`springlab.model.urdf.read_revolute_chain`, :mod:`springlab.design.arms`) takes such an arm."""
+
+
+class UpAdviceError(SpringlabError):
+    """A URDF refused as a line chain with the up direction it was read with, which another up reads:
+    the message names that ``--up``. ``springlab design`` designs the file on the general model only when
+    the up was given (the user vouches for it), never on a guess."""
 
 
 class SolverError(SpringlabError, RuntimeError):

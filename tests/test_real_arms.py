@@ -169,3 +169,26 @@ def test_a_smaller_reach_keeps_every_end_closer(tmp_path):
         for link, point in ((s["link_a"], s["point_a"]), (s["link_b"], s["point_b"])):
             body, local = model.locate(link, point)
             assert np.all(np.abs(local - centres[body]) <= half[body] + 1e-9)
+
+
+ONE_JOINT = """<robot name="one"><link name="base"/>
+  <link name="a"><inertial><origin xyz="0.1 0 0"/><mass value="1"/></inertial></link>
+  <joint name="yaw" type="revolute"><parent link="base"/><child link="a"/><axis xyz="0 0 1"/>
+    <origin xyz="0 0 0.1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>"""
+
+
+def test_an_up_the_user_gives_is_trusted(tmp_path, capsys):
+    path = tmp_path / "one.urdf"  # a horizontal link on a vertical axis: read y-up it would be a line chain
+    path.write_text(ONE_JOINT)
+    out = tmp_path / "one.json"
+    assert main(["design", str(path), "--json", str(out), "--quiet"]) == 2  # a guess is never designed on
+    assert "--up 0,0,1 to design it on the general model" in capsys.readouterr().err
+    assert main(["design", str(path), "--up", "0,0,1", "--json", str(out), "--quiet"]) == 0
+    assert "nothing to balance" in capsys.readouterr().out and not out.exists()
+
+
+def test_an_empty_robot_is_named(tmp_path, capsys):
+    path = tmp_path / "empty.urdf"
+    path.write_text('<robot name="e"></robot>')
+    assert main(["design", str(path), "--quiet"]) == 2
+    assert "defines no <link>" in capsys.readouterr().err

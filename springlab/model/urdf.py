@@ -59,7 +59,7 @@ from xml.parsers import expat
 import numpy as np
 
 from springlab import _checks
-from springlab.errors import LineChainError, SpringlabError
+from springlab.errors import LineChainError, SpringlabError, UpAdviceError
 from springlab.model.rotations import rot_axis
 
 SLIDING = ("prismatic", "planar", "floating")
@@ -303,6 +303,8 @@ def _serial(links: dict, joints: list, source: str) -> tuple[str, list, str]:
                                  f"{', '.join(repr(j.name) for j in into)}: a closed loop; springlab designs "
                                  "serial chains (open kinematic trees of one branch)")
     roots = [name for name in links if name not in by_child]
+    if not links:
+        raise SpringlabError(f"{source}: the file defines no <link>: no arm to read")
     if len(roots) != 1:
         if not roots:
             raise SpringlabError(f"{source}: every link is some joint's child: the joints close a loop")
@@ -540,9 +542,11 @@ def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | 
             raise
         others = "".join(f" (or {_up_flag(axis)})" for axis in fits[1:])
         assumed = "URDF's default z-up was assumed" if given is None else f"up = {given!r} was given"
-        # a plain SpringlabError, not a LineChainError: the general model would take the file with the wrong up
-        raise SpringlabError(f"{err}. The file looks {UP_AXES[fits[0]]}: read with up = {list(fits[0])} it loads "
-                        f"({assumed}): pass {_up_flag(fits[0])}{others} (load_arm(..., up={list(fits[0])}))") from None
+        # not a LineChainError: the general model would take the file with the wrong up, unless up was given
+        kept = "" if given is not None else ("; if it is z-up, pass --up 0,0,1 to design it on the general model")
+        raise UpAdviceError(f"{err}. The file looks {UP_AXES[fits[0]]}: read with up = {list(fits[0])} it loads "
+                            f"({assumed}): pass {_up_flag(fits[0])}{others} (load_arm(..., up={list(fits[0])})){kept}"
+                            ) from None
 
 
 def _up_flag(axis) -> str:

@@ -22,7 +22,7 @@ import sys
 import time
 from pathlib import Path
 
-from springlab.errors import LineChainError, SpringlabError
+from springlab.errors import LineChainError, SpringlabError, UpAdviceError
 
 TIME_LIMIT = 300.0
 """s: the default limit on the command line's search (``--time-limit``)."""
@@ -98,6 +98,10 @@ def _design(args) -> int:
         spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up), tip=args.tip, base=args.base,
                         payload=args.payload)
     except LineChainError as err:  # an offset shoulder, a centre of mass off its link, ...: the general model
+        return _design_general(args, path, data, str(err))
+    except UpAdviceError as err:  # another up reads it as a line chain: only an up the user gave is trusted
+        if args.up is None:
+            raise
         return _design_general(args, path, data, str(err))
     out = _writable(Path(args.json or Path(args.arm_file).with_suffix(".design.json").name), "--json")
     if args.sheet:
