@@ -348,14 +348,12 @@ class BestSprings:
     :ivar springs: the zero-free-length springs (m, N/m)
     :ivar ratio: the largest holding torque over the sample poses, per joint as a fraction of its scale
         (its own peak gravity torque, or a tenth of the arm's largest where that is more)
-    :ivar grid: the same ratio after the first spring
     :ivar target: the ratio asked for
     :ivar note: how the count was chosen
     """
 
     springs: tuple
     ratio: float
-    grid: float
     target: float
     note: str
 
@@ -398,7 +396,7 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
     max_springs = _checks.count("max_springs", max_springs, least=1)
     loaded = list(found.loaded)
     if not loaded:
-        return BestSprings((), 0.0, 0.0, target, "nothing to balance")
+        return BestSprings((), 0.0, target, "nothing to balance")
     last = max(loaded) + 1  # the last loaded joint's body
     first = min(loaded) + 1
     pairs = [(a, b) for b in range(first, last + 1) for a in range(0, b)]
@@ -413,8 +411,7 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
         f = F[idx]
         for pa in _grid(centres[a], half[a]):
             for pb in _grid(centres[b], half[b]):
-                cols.append((f[0] + np.tensordot(pa, f[1:4], 1) + np.tensordot(pb, f[4:7], 1)
-                             + np.tensordot(np.outer(pa, pb).reshape(-1), f[7:], 1)).reshape(-1))
+                cols.append(_unit_torque(f, pa, pb).reshape(-1))
                 ends.append((idx, pa, pb))
     A = np.array(cols).T  # (N n, C): each candidate's torques at unit rate
     x, which = np.zeros(0), []
@@ -455,7 +452,7 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
                 f"springs ({steps} removed): the search stopped there; more springs or larger reaches may do better")
     out = tuple(PointSpring(model.bodies[pairs[p][0]], tuple(x[7 * s + 1:7 * s + 4]), model.bodies[pairs[p][1]],
                             tuple(x[7 * s + 4:7 * s + 7]), float(x[7 * s])) for s, p in enumerate(which) if x[7 * s] > 0)
-    return BestSprings(out, float(ratio), float(history[0]) if history else ratio, target, note)
+    return BestSprings(out, float(ratio), target, note)
 
 
 def _pack(springs, pairs, centres, half):
@@ -470,14 +467,19 @@ def _pack(springs, pairs, centres, half):
     return np.array(x, dtype=float), which
 
 
+def _unit_torque(f, pa, pb) -> np.ndarray:
+    """The torques of a unit-rate spring between ``pa`` and ``pb`` from its pair's features ``f``
+    (:func:`_features`): F0 + Fa p_a + Fb p_b + sum_ij p_a,i p_b,j Fab_ij."""
+    return (f[0] + np.tensordot(pa, f[1:4], 1) + np.tensordot(pb, f[4:7], 1)
+            + np.tensordot(np.outer(pa, pb).reshape(-1), f[7:], 1))
+
+
 def _spring_torque(x, s, which, F):
     k, pa, pb = x[7 * s], x[7 * s + 1:7 * s + 4], x[7 * s + 4:7 * s + 7]
-    f = F[which[s]]
-    return k * (f[0] + np.tensordot(pa, f[1:4], 1) + np.tensordot(pb, f[4:7], 1)
-                + np.tensordot(np.outer(pa, pb).reshape(-1), f[7:], 1))
+    return k * _unit_torque(F[which[s]], pa, pb)
 
 
-def _residual(x, which, F, g, N, L, scale_free=True):
+def _residual(x, which, F, g, N, L):
     total = g.reshape(N, L).copy()
     for s in range(len(which)):
         total += _spring_torque(x, s, which, F)
@@ -494,8 +496,7 @@ def _jacobian(x, which, F, N, L) -> np.ndarray:
         fab = f[7:].reshape(3, 3, N, L)
         fa = f[1:4] + np.tensordot(pb, fab, axes=([0], [1]))  # d/d pa_i (per unit rate)
         fb = f[4:7] + np.tensordot(pa, fab, axes=([0], [0]))  # d/d pb_j
-        J[:, 7 * s] = (f[0] + np.tensordot(pa, f[1:4], 1) + np.tensordot(pb, f[4:7], 1)
-                       + np.tensordot(np.outer(pa, pb).reshape(-1), f[7:], 1)).reshape(-1)
+        J[:, 7 * s] = _unit_torque(f, pa, pb).reshape(-1)
         J[:, 7 * s + 1:7 * s + 4] = k * fa.reshape(3, -1).T
         J[:, 7 * s + 4:7 * s + 7] = k * fb.reshape(3, -1).T
     return J

@@ -155,17 +155,6 @@ class RevoluteChain:
         """The unit vector against gravity, in the base frame."""
         return -self.gravity / self.g
 
-    def body(self, name) -> int:
-        """The index of a body given by name (or an index, checked)."""
-        if isinstance(name, int | np.integer) and not isinstance(name, bool):
-            if not 0 <= name <= self.n:
-                raise SpringlabError(f"body index must be in 0..{self.n}, got {name}")
-            return int(name)
-        if name not in self.bodies:
-            shown = ", ".join(map(repr, self.bodies[:12])) + (", ..." if len(self.bodies) > 12 else "")
-            raise SpringlabError(f"{name!r} is not a body of {self.name!r}: give one of {shown}")
-        return self.bodies.index(name)
-
     @property
     def frame_names(self) -> tuple:
         """Every name a spring may attach to: the bodies, then the fixed frames."""
