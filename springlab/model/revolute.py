@@ -241,6 +241,7 @@ def check_point_springs(model: RevoluteChain, springs) -> tuple:
     if isinstance(springs, PointSpring | str) or not hasattr(springs, "__iter__"):
         raise SpringlabError(f"springs must be a sequence of PointSpring objects, got {springs!r}")
     springs = tuple(springs)
+    reach = float(np.sum(np.linalg.norm(model.placements[:, :3, 3], axis=1)))  # the arm's length, once
     for s in springs:
         if not isinstance(s, PointSpring):
             raise SpringlabError(f"expected PointSpring objects (springs between points of two bodies), got "
@@ -249,7 +250,6 @@ def check_point_springs(model: RevoluteChain, springs) -> tuple:
         if ends[0][0] == ends[1][0]:
             raise SpringlabError(f"{s.label}: both ends ride on body {model.bodies[ends[0][0]]!r} (fixed to each "
                                  "other): such a spring does no work; attach its ends to two bodies a joint separates")
-        reach = float(np.sum(np.linalg.norm(model.placements[:, :3, 3], axis=1)))
         length = np.float64(reach + np.linalg.norm(s.point_a) + np.linalg.norm(s.point_b))
         with np.errstate(over="ignore"):
             if not np.isfinite(s.k * length * length):

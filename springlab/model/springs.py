@@ -56,6 +56,24 @@ def sign_char(value: float) -> str:
     return "+" if value > 0 else "-" if value < 0 else "0"
 
 
+def _check_force_law(spring) -> None:
+    """Validate and store a spring's k (N/m, > 0), free_length (m, >= 0) and initial_tension (N, >= 0),
+    each finite, naming the spring by its label (:class:`Spring` and :class:`PointSpring` share them)."""
+    k = _checks.number(f"k of {spring.label}", spring.k)
+    if not (np.isfinite(k) and k > 0):
+        raise SpringlabError(f"k of {spring.label} must be a finite stiffness > 0 N/m, got {spring.k}")
+    object.__setattr__(spring, "k", k)
+    free = _checks.number(f"free_length of {spring.label}", spring.free_length)
+    if not (np.isfinite(free) and free >= 0):
+        raise SpringlabError(f"free_length of {spring.label} must be >= 0 m, got {spring.free_length}")
+    object.__setattr__(spring, "free_length", free)
+    pull = _checks.number(f"initial_tension of {spring.label}", spring.initial_tension)
+    if not (np.isfinite(pull) and pull >= 0):
+        raise SpringlabError(
+            f"initial_tension of {spring.label} must be a finite force >= 0 N, got {spring.initial_tension}")
+    object.__setattr__(spring, "initial_tension", pull)
+
+
 @dataclass(frozen=True)
 class Spring:
     """A spring S(i, j) on the joint lines of links i < j.
@@ -97,24 +115,7 @@ class Spring:
             )
         for name in ("a", "b"):
             object.__setattr__(self, name, _checks.finite(f"{name} of {self.label}", getattr(self, name), "m"))
-        k = _checks.number(f"k of {self.label}", self.k)
-        if not (np.isfinite(k) and k > 0):
-            raise SpringlabError(
-                f"k of {self.label} must be a finite stiffness > 0 N/m, got {self.k}"
-            )
-        object.__setattr__(self, "k", k)
-        free = _checks.number(f"free_length of {self.label}", self.free_length)
-        if not (np.isfinite(free) and free >= 0):
-            raise SpringlabError(
-                f"free_length of {self.label} must be >= 0 m, got {self.free_length}"
-            )
-        object.__setattr__(self, "free_length", free)
-        pull = _checks.number(f"initial_tension of {self.label}", self.initial_tension)
-        if not (np.isfinite(pull) and pull >= 0):
-            raise SpringlabError(
-                f"initial_tension of {self.label} must be a finite force >= 0 N, got {self.initial_tension}"
-            )
-        object.__setattr__(self, "initial_tension", pull)
+        _check_force_law(self)
 
     @property
     def label(self) -> str:
@@ -256,15 +257,7 @@ class PointSpring:
                 raise SpringlabError(f"{name} of {self.label} must be 3 finite coordinates (m) in its link's frame, "
                                      f"got {getattr(self, name)!r}")
             object.__setattr__(self, name, tuple(float(v) for v in p))
-        k = _checks.number(f"k of {self.label}", self.k)
-        if not (np.isfinite(k) and k > 0):
-            raise SpringlabError(f"k of {self.label} must be a finite stiffness > 0 N/m, got {self.k}")
-        object.__setattr__(self, "k", k)
-        for name, unit in (("free_length", "m"), ("initial_tension", "N")):
-            v = _checks.number(f"{name} of {self.label}", getattr(self, name))
-            if not (np.isfinite(v) and v >= 0):
-                raise SpringlabError(f"{name} of {self.label} must be finite and >= 0 {unit}, got {getattr(self, name)}")
-            object.__setattr__(self, name, v)
+        _check_force_law(self)
 
     @property
     def label(self) -> str:
