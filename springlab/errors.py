@@ -50,6 +50,14 @@ class UpAdviceError(SpringlabError):
     the up was given (the user vouches for it), never on a guess."""
 
 
+class MeshError(SpringlabError):
+    """A mesh a URDF names could not be found (``found`` False) or read: the message names the file."""
+
+    def __init__(self, message: str, *, filename: str = "", found: bool = True):
+        super().__init__(message)
+        self.filename, self.found = filename, found
+
+
 class SolverError(SpringlabError, RuntimeError):
     """A solver (linear programme, multibody model, browser) failed where it should not;
     the message names the solver and its status."""

@@ -42,7 +42,7 @@ import numpy as np
 from springlab import _checks
 from springlab.energy.geometry import gravity_torques, joint_torques
 from springlab.errors import SpringlabError
-from springlab.model.revolute import RevoluteChain, body_frames, joint_axes
+from springlab.model.revolute import RevoluteChain, body_frames, check_point_springs, joint_axes
 from springlab.model.springs import PointSpring
 from springlab.tables import Table
 
@@ -54,6 +54,15 @@ MAX_STIFFNESS = 2000.0
 """N/m: the stiffest spring the best-springs search uses by default. Stocked music wire up to 6.5 mm
 winds extension springs of a few kN/m with three body coils or more; a stiffer one (the search's
 least-squares fit asks for 5-50 kN/m on a short lever when unbounded) is no spring a shop stocks."""
+
+BRACKET = 0.03
+"""m: how far beyond a body's outline (its URDF geometry's bounding box) a spring end may sit by
+default: an eye bolt or a short bracket. Without it the stiffest exact spring of the UR10 (across its
+elbow, whose forearm ends 6 cm behind the joint) needs 5957 N/m, which no stocked wire winds; with
+it, 2692 N/m."""
+
+MIN_SIZE = 2e-3
+"""m: the smallest box side an end moves in (a flat outline, a base clipped at its mounting plane)."""
 
 NEGLIGIBLE = 1e-5
 """A joint whose gravity torque stays below this fraction of the arm's largest (but above
@@ -171,14 +180,17 @@ def _zero_pose(model):
     return R[0], o[0]
 
 
-def planar_springs(model: RevoluteChain, found: Structure, *, reach=None) -> tuple[PointSpring, ...]:
+def planar_springs(model: RevoluteChain, found: Structure, *, reach: float | None = None) -> tuple[PointSpring, ...]:
     """Zero-free-length springs that balance a planar loaded chain exactly (module docstring): one
     per pair of its links (the link before the first loaded joint is the plane's ground) whose
     coefficient needs one, longest span first.
 
-    :param reach: per body, the distance (m) an end may lie from its joint, (n + 1,) (default: half
-        the distance to the next joint, at least 5 cm); it sets each spring's end offsets, the rate
-        follows
+    Each spring's ends lie in their bodies' boxes (``attachment_boxes``: the body's outline from its URDF
+    geometry, ``reach`` (m) beyond it; without an outline, the link and a bracket). Only the
+    product conj(c_j) c_k of its two offsets is fixed, so the direction of c_k is free: it is
+    chosen, over a 1-degree scan, to make the offsets' lengths' product (the lever) the largest the
+    boxes allow, hence the rate the least. Along the axes each end sits at its box's middle (an
+    offset along the axes adds a constant length only).
     """
     _checks.instance("found", found, Structure, "springlab Structure (structure(model))")
     if not found.planar:
@@ -224,7 +236,8 @@ def planar_springs(model: RevoluteChain, found: Structure, *, reach=None) -> tup
     for k in range(1, m + 1):
         need[(0, k)] = -g * np.conj(1j) * G[k]  # cancels g Re(conj(i) e^{i theta_k} G_k); an axis along -w
         # only turns its link the other way, which the balance (for every theta) does not mind
-    reach = _reach(model, reach)
+    centres, half = attachment_boxes(model, reach)
+    frames = (origin, h, up, w, R0, o0)
     springs = []
     for span in range(m, 0, -1):
         for j in range(0, m - span + 1):
@@ -232,11 +245,8 @@ def planar_springs(model: RevoluteChain, found: Structure, *, reach=None) -> tup
             W = need.get((j, k), 0j)
             if abs(W) <= 1e-14 * max(1.0, max(abs(v) for v in need.values())):
                 continue
-            rho_j, rho_k = reach[bodies[j]], reach[bodies[k]]
-            direction = vec[k] if abs(vec[k]) > 1e-9 else (G[k] if abs(G[k]) > 1e-12 else 1.0 + 0j)
-            c_k = rho_k * direction / abs(direction)
-            kappa = abs(W) / (rho_j * rho_k)
-            c_j = np.conj(W / (kappa * c_k))  # kappa conj(c_j) c_k = W
+            c_j, c_k = _offsets(W, (bodies[j], z(nxt[j])), (bodies[k], z(joint_at[k])), centres, half, frames)
+            kappa = abs(W) / (abs(c_j) * abs(c_k))
             cs = {j: c_j, k: c_k}
             cs.update({t: vec[t] for t in range(j + 1, k)})
             for s in range(j, k + 1):
@@ -246,31 +256,57 @@ def planar_springs(model: RevoluteChain, found: Structure, *, reach=None) -> tup
             need[(j, k)] = 0j
             A = z(nxt[j]) - c_j  # end A on link j, c_j before the next joint
             B = z(joint_at[k]) + c_k
-            axial = float((o0[bodies[k]] - origin) @ w)  # both ends in one plane normal to the axes
-            springs.append(_spring(model, bodies[j], A, bodies[k], B, kappa, origin, h, up, w, axial, R0, o0))
+            springs.append(PointSpring(model.bodies[bodies[j]], tuple(_local(bodies[j], A, centres, frames)),
+                                       model.bodies[bodies[k]], tuple(_local(bodies[k], B, centres, frames)),
+                                       float(kappa)))
     return tuple(springs)
 
 
-def _spring(model, body_a, A, body_b, B, k, origin, h, up, w, axial, R0, o0) -> PointSpring:
-    def local(body, zc):
-        world = origin + zc.real * h + zc.imag * up + axial * w
-        return R0[body].T @ (world - o0[body])
+def _local(body, zc, centres, frames) -> np.ndarray:
+    """The point zc of the plane, at the middle of the body's box along the axes, in the body's frame."""
+    origin, h, up, w, R0, o0 = frames
+    middle = o0[body] + R0[body] @ centres[body]
+    world = origin + zc.real * h + zc.imag * up + float((middle - origin) @ w) * w
+    return R0[body].T @ (world - o0[body])
 
-    return PointSpring(model.bodies[body_a], tuple(local(body_a, A)), model.bodies[body_b], tuple(local(body_b, B)),
-                       float(k))
+
+def _ray(body, anchor, direction, centres, half, frames) -> float:
+    """How far (m) from ``anchor`` (a point of the plane) along ``direction`` (a unit complex number)
+    an end can go and stay in the body's box: the far end of the ray's stretch inside it (0 when the
+    ray misses it)."""
+    origin, h, up, w, R0, o0 = frames
+    p = _local(body, anchor, centres, frames)
+    d = R0[body].T @ (direction.real * h + direction.imag * up)
+    lo, hi = centres[body] - half[body], centres[body] + half[body]
+    enter, leave = 0.0, np.inf
+    for a in range(3):
+        if abs(d[a]) < 1e-12:
+            if not lo[a] - 1e-12 <= p[a] <= hi[a] + 1e-12:
+                return 0.0
+            continue
+        t1, t2 = (lo[a] - p[a]) / d[a], (hi[a] - p[a]) / d[a]
+        enter, leave = max(enter, min(t1, t2)), min(leave, max(t1, t2))
+    return float(leave) if leave > enter else 0.0
 
 
-def _reach(model: RevoluteChain, reach) -> np.ndarray:
-    if reach is not None:
-        reach = _checks.real_array("reach", reach, shape=(model.n + 1,))
-        if not np.all(reach > 0):
-            raise SpringlabError(f"reach must be positive distances (m), one per body, got {reach.tolist()}")
-        return reach
-    out = np.full(model.n + 1, 0.05)
-    for b in range(model.n):
-        out[b] = max(0.05, 0.5 * float(np.linalg.norm(model.placements[b][:3, 3])))
-    out[model.n] = max(0.05, float(np.linalg.norm(model.com[model.n])))
-    return out
+def _offsets(W, end_j, end_k, centres, half, frames) -> tuple[complex, complex]:
+    """The offsets c_j (end A = anchor_j - c_j on body j) and c_k (end B = anchor_k + c_k on body k)
+    with conj(c_j) c_k along W (the rate makes up its size), both ends in their boxes, the product
+    of their lengths the largest over a 1-degree scan of c_k's direction."""
+    (body_j, anchor_j), (body_k, anchor_k) = end_j, end_k
+    best = (0.0, 0j, 0j)
+    for phi in np.radians(np.arange(360)):
+        dk = complex(np.cos(phi), np.sin(phi))
+        dj = np.conj(W / dk) / abs(W)  # conj(dj) dk = W / |W|
+        rho_k = _ray(body_k, anchor_k, dk, centres, half, frames)
+        rho_j = _ray(body_j, anchor_j, -dj, centres, half, frames)
+        if rho_j * rho_k > best[0]:
+            best = (rho_j * rho_k, rho_j * dj, rho_k * dk)
+    if best[0] <= 1e-9:
+        raise SpringlabError(f"no direction puts both ends of a spring between bodies {body_j} and {body_k} in "
+                             "their boxes (each end's ray from its joint misses its body's outline): give a "
+                             "reach beyond the outlines (--reach)")
+    return best[1], best[2]
 
 
 def torque_table(model: RevoluteChain, q, cases: dict, *, unloaded=()) -> Table:
@@ -296,26 +332,48 @@ def torque_table(model: RevoluteChain, q, cases: dict, *, unloaded=()) -> Table:
 
 
 # --- the best springs where exact balance is out of reach -------------------------------------
-def _boxes(model: RevoluteChain, reach) -> tuple[np.ndarray, np.ndarray]:
+def attachment_boxes(model: RevoluteChain, reach=None) -> tuple[np.ndarray, np.ndarray]:
     """Per body, the centre (m, body frame) and half-sizes (m, per axis) of the box its spring ends may
-    use, (n + 1, 3) each: centred between the body's joint and the next (the last body: its centre of
-    mass), half the distance plus ``reach`` each way (default 15 % of the arm's length, the sum of its
-    joints' distances, at least 5 cm: a post or bracket of that size on any body). The base's box
-    stops at its frame's horizontal plane (the mounting surface, when the base frame's up is one of its
+    use, (n + 1, 3) each.
+
+    Where the model knows the body's outline (a URDF's geometry, ``model.outline``), the box bounds
+    that outline, ``reach`` (m, default :data:`BRACKET`) beyond it each way: a bracket that long.
+    Elsewhere it is
+    centred between the body's joint and the next (the last body: its centre of mass), half the
+    distance plus ``reach`` each way (default 15 % of the arm's length, the sum of its joints'
+    distances, at least 5 cm: a post or bracket of that size on any body). The base's box stops at
+    its frame's horizontal plane (the mounting surface, when the base frame's up is one of its
     axes): nothing is attached under the table."""
     length = float(np.sum(np.linalg.norm(model.placements[:, :3, 3], axis=1)))
-    margin = max(0.05, 0.15 * length) if reach is None else _checks.positive("reach", reach, unit="m")
+    given = None if reach is None else _checks.positive("reach", reach, allow_zero=True, unit="m")
+    margin = max(0.05, 0.15 * length) if given is None else given
     centres, half = np.zeros((model.n + 1, 3)), np.zeros((model.n + 1, 3))
     for b in range(model.n + 1):
+        if model.outline and len(model.outline[b]):
+            lo, hi = np.min(model.outline[b], axis=0), np.max(model.outline[b], axis=0)
+            centres[b], half[b] = 0.5 * (lo + hi), 0.5 * (hi - lo) + (BRACKET if given is None else given)
+            continue
         far = model.placements[b][:3, 3] if b < model.n else model.com[b]
         centres[b] = 0.5 * np.asarray(far)
         half[b] = 0.5 * float(np.linalg.norm(far)) + margin
     k = int(np.argmax(np.abs(model.up)))
     if abs(model.up[k]) > 1 - 1e-9:  # the base's box above (or, up = -axis, below) its frame's plane
         lo, hi = centres[0, k] - half[0, k], centres[0, k] + half[0, k]
-        lo, hi = (max(lo, 0.0), hi) if model.up[k] > 0 else (lo, min(hi, 0.0))
+        lo, hi = (max(lo, 0.0), max(hi, MIN_SIZE)) if model.up[k] > 0 else (min(lo, -MIN_SIZE), min(hi, 0.0))
         centres[0, k], half[0, k] = 0.5 * (lo + hi), 0.5 * (hi - lo)
-    return centres, half
+    return centres, np.maximum(half, MIN_SIZE / 2)
+
+
+def ends_outside(model: RevoluteChain, springs, reach=None) -> float:
+    """How far (m) the farthest end of ``springs`` lies outside its body's box
+    (:func:`attachment_boxes` with ``reach``): 0 when every end is where a design may put it."""
+    centres, half = attachment_boxes(model, reach)
+    worst = 0.0
+    for s in check_point_springs(model, springs):
+        for link, point in ((s.link_a, s.point_a), (s.link_b, s.point_b)):
+            body, local = model.locate(link, point)
+            worst = max(worst, float(np.linalg.norm(np.maximum(np.abs(local - centres[body]) - half[body], 0.0))))
+    return worst
 
 
 def _features(model: RevoluteChain, pairs, q) -> np.ndarray:
@@ -368,7 +426,7 @@ def _grid(centre, half) -> np.ndarray:
 def best_springs(model: RevoluteChain, found: Structure, q, *, target: float = 0.1, reach: float | None = None,
                  max_springs: int = 8, iterations: int = 12, candidates: int = 4,
                  max_stiffness: float = MAX_STIFFNESS) -> BestSprings:
-    """The fewest zero-free-length springs, ends within each body's box (``_boxes``), that bring the
+    """The fewest zero-free-length springs, ends within each body's box (``attachment_boxes``), that bring the
     largest holding torque over the poses ``q`` within ``target`` of every joint's scale
     s_i = max(its peak gravity torque, a tenth of the largest), or as close as ``max_springs`` springs
     get: min over springs of max_{pose, joint} |tau| / s_i (a joint gravity leaves alone is held to a
@@ -400,7 +458,7 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
     last = max(loaded) + 1  # the last loaded joint's body
     first = min(loaded) + 1
     pairs = [(a, b) for b in range(first, last + 1) for a in range(0, b)]
-    centres, half = _boxes(model, reach)
+    centres, half = attachment_boxes(model, reach)
     tau_g = gravity_torques(model, q)
     scale = np.maximum(np.max(np.abs(tau_g), axis=0), 0.1 * np.max(np.abs(tau_g)))
     F = _features(model, pairs, q) / scale  # (P, 16, N, n)
@@ -736,6 +794,24 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
     return tuple(out), tuple(kinds), tuple(coils)
 
 
+def _reach_note(model: RevoluteChain, reach) -> str:
+    """Where the spring ends may sit (``attachment_boxes``), in words."""
+    known = [bool(model.outline) and len(p) > 0 for p in (model.outline or [()] * (model.n + 1))]
+    bracket = BRACKET if reach is None else reach
+    length = float(np.sum(np.linalg.norm(model.placements[:, :3, 3], axis=1)))
+    margin = max(0.05, 0.15 * length) if reach is None else reach
+    if all(known):
+        return (f"spring ends lie within each body's outline (the bounding box of its URDF geometry) and "
+                f"{100 * bracket:.3g} cm beyond it (a bracket; --reach)")
+    if not any(known):
+        return (f"spring ends lie within {100 * margin:.3g} cm of the segment between each body's joints "
+                "(the file gives no geometry; --reach)")
+    missing = ", ".join(repr(model.bodies[i]) for i, k in enumerate(known) if not k)
+    return (f"spring ends lie within each body's outline (the bounding box of its URDF geometry) and "
+            f"{100 * bracket:.3g} cm beyond it; for {missing}, which {'has' if missing.count(',') == 0 else 'have'} "
+            f"no geometry, within {100 * margin:.3g} cm of the segment between its joints (--reach)")
+
+
 def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, fit_poses: int = 300, seed: int = 1,
                  target: float = 0.1, reach: float | None = None, max_springs: int = 8,
                  max_stiffness: float = MAX_STIFFNESS, material: str = "music wire") -> ArmDesign:
@@ -754,8 +830,9 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     if not found.loaded:
         return ArmDesign(model, found, "nothing to balance", (), (), (), (), check,
                          (*notes, "gravity loads no joint of this arm over its workspace: nothing to balance"))
+    notes.append(_reach_note(model, reach))
     if found.planar:
-        ideal, method = planar_springs(model, found), "exact: planar chain"
+        ideal, method = planar_springs(model, found, reach=reach), "exact: planar chain"
         notes.append(f"exact: {found.why}")
     else:
         fit = best_springs(model, found, rng.uniform(ranges[:, 0], ranges[:, 1], (fit_poses, model.n)),

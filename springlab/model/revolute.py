@@ -63,6 +63,9 @@ class RevoluteChain:
     :ivar fixed: the other named frames fixed to the bodies (a URDF's links merged into a body: a
         flange, a tool0, a locked finger), as name -> (body index, (4, 4) transform from that frame
         to the body's); a spring may attach to any of them (:meth:`locate`)
+    :ivar outline: () when the shapes are unknown, else per body the points (m, body frame, (k, 3),
+        k = 0 for a body without geometry) whose convex hull bounds it (a URDF's collision shapes:
+        :mod:`springlab.model.shapes`); where a spring may be attached
     """
 
     name: str
@@ -77,6 +80,7 @@ class RevoluteChain:
     limits: np.ndarray | None = None
     notes: tuple = field(default=(), compare=False)
     fixed: dict = field(default_factory=dict, compare=False)
+    outline: tuple = field(default=(), compare=False)
 
     def __post_init__(self):
         bodies, joints = tuple(self.bodies), tuple(self.joints)
@@ -135,6 +139,13 @@ class RevoluteChain:
             T = _array(f"transform of fixed frame {frame!r}", T, (4, 4))
             fixed[frame] = (body, T)
         object.__setattr__(self, "fixed", fixed)
+        outline = tuple(self.outline)
+        if outline:
+            if len(outline) != n + 1:
+                raise SpringlabError(f"outline must hold one point set per body ({n + 1}), got {len(outline)}")
+            outline = tuple(_array(f"outline of body {bodies[i]!r}", p, (len(np.atleast_2d(p)), 3))
+                            if np.size(p) else np.zeros((0, 3)) for i, p in enumerate(outline))
+        object.__setattr__(self, "outline", outline)
         for name, value in (("bodies", bodies), ("joints", joints), ("placements", placements), ("axes", axes),
                             ("mass", mass), ("com", com), ("inertia", inertia), ("gravity", gravity),
                             ("limits", limits), ("notes", tuple(self.notes))):

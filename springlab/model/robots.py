@@ -111,7 +111,8 @@ def load_robot(label: str, *, payload: float | None = None):
 
     robot = _robot(label)
     path = robot_urdf(label)
-    return read_revolute_chain(path.read_text(), source=path.name, tip=robot.tip, base=robot.base, payload=payload)
+    return read_revolute_chain(path.read_text(), source=path.name, tip=robot.tip, base=robot.base, payload=payload,
+                               folder=path.parent)
 
 
 def _robot(label: str) -> Robot:

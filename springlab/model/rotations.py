@@ -17,6 +17,8 @@ All angles are in radians.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from springlab import _checks
@@ -80,6 +82,14 @@ def rot_xyz(theta, phi, psi) -> np.ndarray:
     """
     theta, phi, psi = _angle_triple(theta, phi, psi)
     return rot_x(theta) @ rot_y(phi) @ rot_z(psi)
+
+
+def rot_rpy(r: float, p: float, y: float) -> np.ndarray:
+    """URDF's fixed-axis roll, pitch, yaw (rad): Rz(y) Ry(p) Rx(r), one (3, 3) rotation."""
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
 
 
 def _angle_triple(theta, phi, psi):

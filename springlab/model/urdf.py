@@ -1,9 +1,10 @@
 """An arm read from URDF, the ROS robot description that CAD tools export: ``load_arm("arm.urdf")``.
 
-Read with the standard library's XML parser: springlab needs six URDF elements (``link``,
-``joint``, ``origin``, ``axis``, ``limit``, ``inertial``) and no meshes, so a URDF library
-(yourdfpy brings trimesh and lxml for meshes) is not worth its weight here. Python's expat
-refuses entity-expansion bombs.
+Read with the standard library's XML parser: springlab needs seven URDF elements (``link``,
+``joint``, ``origin``, ``axis``, ``limit``, ``inertial`` and, for where springs may attach on the
+general model, ``collision``/``visual`` geometry: :mod:`springlab.model.shapes`, meshes read with
+trimesh), so a URDF library is not worth its weight here. Python's expat refuses
+entity-expansion bombs.
 
 What becomes of the URDF (all at the zero configuration, every joint at 0):
 
@@ -59,8 +60,8 @@ from xml.parsers import expat
 import numpy as np
 
 from springlab import _checks
-from springlab.errors import LineChainError, SpringlabError, UpAdviceError
-from springlab.model.rotations import rot_axis
+from springlab.errors import LineChainError, MeshError, SpringlabError, UpAdviceError
+from springlab.model.rotations import rot_axis, rot_rpy
 
 SLIDING = ("prismatic", "planar", "floating")
 """Joint types springlab's arms do not have: refused on the arm's path, locked at zero off it."""
@@ -142,20 +143,12 @@ def _floats(text, count: int, where: str, default=None) -> np.ndarray:
     return np.array(values)
 
 
-def _rpy(r: float, p: float, y: float) -> np.ndarray:
-    """URDF's fixed-axis roll, pitch, yaw: Rz(y) Ry(p) Rx(r)."""
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
-
-
 def _origin(element, where: str) -> np.ndarray:
     T = np.eye(4)
     origin = element.find("origin")
     if origin is not None:
         T[:3, 3] = _floats(origin.get("xyz"), 3, f"{where}: <origin xyz>", (0, 0, 0))
-        T[:3, :3] = _rpy(*_floats(origin.get("rpy"), 3, f"{where}: <origin rpy>", (0, 0, 0)))
+        T[:3, :3] = rot_rpy(*_floats(origin.get("rpy"), 3, f"{where}: <origin rpy>", (0, 0, 0)))
     return T
 
 
@@ -709,7 +702,8 @@ def urdf_to_dict(text: str, *, source: str = "arm.urdf", up=None, max_links: int
 
 
 def read_revolute_chain(text: str, *, source: str = "arm.urdf", up=None, tip: str | None = None,
-                        base: str | None = None, payload: float | None = None, g: float | None = None):
+                        base: str | None = None, payload: float | None = None, g: float | None = None,
+                        folder=None, package_dirs=(), shapes: bool = True):
     """The arm in a URDF text as the general model, a :class:`~springlab.model.revolute.RevoluteChain`
     built from the file's own frames: nothing is projected or refused for its geometry (offset
     shoulders, centres of mass anywhere, joints meeting at a point are all kept as they are).
@@ -721,6 +715,11 @@ def read_revolute_chain(text: str, *, source: str = "arm.urdf", up=None, tip: st
     common centre. Gravity is ``-g up`` (``up`` default +z of the root, expressed in the base's
     frame; g default :data:`springlab.model.chain.STANDARD_GRAVITY`). A revolute joint's URDF
     limits are its range (rad); a continuous joint (or lower = upper) is unlimited.
+
+    Each body's **outline** is read from the links' geometry (:mod:`springlab.model.shapes`: the
+    collision shapes, else the visual ones, meshes found from ``folder``, the URDF's folder, and
+    ``package_dirs`` as ROS resolves ``package://``): points in the body's frame whose hull bounds
+    it, what a spring may be attached to. ``shapes=False`` skips it.
 
     The keywords ``tip``, ``base``, ``payload`` and ``up`` are those of :func:`read_urdf`.
     """
@@ -759,8 +758,48 @@ def read_revolute_chain(text: str, *, source: str = "arm.urdf", up=None, tip: st
     fixed = {link: (body, np.linalg.solve(frames[body], pose[link])) for link, body in owner.items()
              if link != sel.root and link not in (j.child for j in movers)}
     up_unit = sel.up / np.linalg.norm(sel.up)
+    outline = ()
+    if shapes:
+        T_body = {link: np.linalg.solve(frames[body], pose[link]) for link, body in owner.items()}
+        names = (sel.root, *(j.child for j in movers))
+        outline, said = _outlines(text, owner, T_body, names, folder, package_dirs)
+        notes += said
     return RevoluteChain(sel.name, (sel.root, *(j.child for j in movers)), tuple(j.name for j in movers),
                          np.array(placements), np.array([j.axis for j in movers]),
                          np.array([b.mass for b in bodies]), np.array([b.com for b in bodies]),
                          np.array([(b.inertia + b.inertia.T) / 2 for b in bodies]), -g * up_unit,
-                         np.array(limits, dtype=float), tuple(notes), fixed)
+                         np.array(limits, dtype=float), tuple(notes), fixed, outline)
+
+
+def _outlines(text, owner, T_body, names, folder, package_dirs) -> tuple[tuple, list]:
+    """Each body's outline (points, m, body frame) from its links' shapes, and notes on what was
+    read and what was not (a mesh not found or unreadable, a body with no geometry)."""
+    from springlab.model.shapes import link_shapes, shape_points
+
+    found, notes = link_shapes(text)
+    points = [[] for _ in names]
+    missing, unreadable, read = [], [], 0
+    for link, body in owner.items():
+        for shape in found.get(link, ()):
+            try:
+                local = shape_points(shape, folder, package_dirs)
+            except MeshError as err:
+                (unreadable if err.found else missing).append(str(err) if err.found else shape.filename)
+                continue
+            read += 1
+            T = T_body[link]
+            points[body].append(local @ T[:3, :3].T + T[:3, 3])
+    if missing:
+        shown = ", ".join(map(repr, missing[:3])) + (f" and {len(missing) - 3} more" if len(missing) > 3 else "")
+        notes.append(f"{len(missing)} meshes were not found ({shown}): give the folder that holds their package "
+                     "(--package-dir), or their links' reach falls back to the default")
+    if unreadable:
+        notes.append(f"{len(unreadable)} meshes could not be read ({unreadable[0]}): left out")
+    if not read:
+        return (), notes
+    outline = tuple(np.vstack(p) if p else np.zeros((0, 3)) for p in points)
+    empty = [repr(names[i]) for i, p in enumerate(outline) if len(p) == 0]
+    notes.append(f"the bodies' outlines (where springs attach) come from {read} shapes of the file's geometry"
+                 + (f"; {', '.join(empty)} {'has' if len(empty) == 1 else 'have'} none (the default reach there)"
+                    if empty else ""))
+    return outline, notes

@@ -86,8 +86,12 @@ def _design(args) -> int:
     path, data = read_arm_data(args.arm_file)
     if is_dh_arm(data):
         return _design_dh(args, path)
-    if args.reach is not None and path.suffix != ".urdf":
-        raise SpringlabError(f"--reach = {args.reach!r} applies to URDF files (an arm file bounds its attachments "
+    for folder in args.package_dir:
+        if not Path(folder).is_dir():
+            raise SpringlabError(f"--package-dir = {folder!r} is not a folder: give the folder that holds the "
+                                 "URDF's mesh packages")
+    if (args.reach is not None or args.package_dir) and path.suffix != ".urdf":
+        raise SpringlabError("--reach and --package-dir apply to URDF files (an arm file bounds its attachments "
                              "with limits: max_attachment)")
     if args.workspace is not None and path.suffix != ".urdf":
         raise SpringlabError(f"--workspace = {args.workspace!r} applies to URDF files (an arm file gives each "
@@ -156,6 +160,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     their realisation and the torques they leave, printed; the design written as JSON."""
     import numpy as np
 
+    from springlab import _checks
     from springlab.design.arms import design_model, parse_workspace, workspace_ranges
     from springlab.model.armfile import parse_quantity
     from springlab.model.urdf import read_revolute_chain
@@ -166,11 +171,12 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
                              "tension, kind): leave out --sheet")
     payload = None if args.payload is None else parse_quantity(args.payload, "mass", "payload")
     model = read_revolute_chain(text, source=str(path), up=_up(args.up), tip=args.tip, base=args.base,
-                                payload=payload)
+                                payload=payload, folder=path.parent, package_dirs=args.package_dir)
     workspace = None if args.workspace is None else parse_workspace(args.workspace)
     out = _writable(Path(args.json or path.with_suffix(".design.json").name), "--json")
     started = time.perf_counter()
-    reach = None if args.reach is None else parse_quantity(args.reach, "length", "reach")
+    reach = None if args.reach is None else _checks.positive(
+        "--reach", parse_quantity(args.reach, "length", "--reach"), allow_zero=True, unit="m")
     design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material, reach=reach)
     seconds = time.perf_counter() - started
     print(f"# {model.name}: {model.n} revolute joints from {model.bodies[0]!r} to {model.bodies[-1]!r}"
@@ -199,7 +205,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     inputs = {"tip": args.tip, "base": model.bodies[0], "payload_kg": payload, "up": _up(args.up) or [0.0, 0.0, 1.0],
               "workspace_deg": {name: [float(np.degrees(lo)), float(np.degrees(hi))]
                                 for name, (lo, hi) in zip(model.joints, workspace_ranges(model, workspace), strict=True)},
-              "reach_m": reach, "seed": args.seed + 1, "material": args.material}
+              "reach_m": reach, "package_dirs": list(args.package_dir), "seed": args.seed + 1,
+              "material": args.material}
     try:
         out.write_text(json.dumps({"source": str(path), "inputs": inputs} | design.as_dict(), indent=1) + "\n")
     except OSError as err:
@@ -317,8 +324,13 @@ def main(argv=None) -> int:
                                  "joint (a gripper's fingers) is locked at zero, its bodies carried as fixed mass")
     p.add_argument("--base", help="a URDF arm's base link (default the root link)")
     p.add_argument("--payload", help="a point mass at the tip frame, e.g. '2 kg' (with --tip)")
-    p.add_argument("--reach", help="how far beyond a URDF arm's link a spring end may sit, e.g. '5 cm' (default 15 %% "
-                                   "of the arm's length; the general model's best-springs search)")
+    p.add_argument("--reach", help="how far beyond a URDF arm's links a spring end may sit, e.g. '5 cm': beyond "
+                                   "each link's geometry (its collision shapes' bounding box; default 3 cm, '0' for "
+                                   "none), or beyond the link's joints where the file gives no geometry (default 15 %% "
+                                   "of the arm's length); the general model")
+    p.add_argument("--package-dir", action="append", default=[], metavar="DIR",
+                   help="a folder that holds the packages a URDF's package:// meshes name (repeatable; also "
+                        "searched: folders above the URDF, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH)")
     p.add_argument("--workspace", help="a URDF arm's joint ranges to hold, in degrees within its limits, e.g. "
                                        "'shoulder_lift_joint=-180:0,elbow_joint=-150:150' (designs it on the general "
                                        "model)")

@@ -44,6 +44,7 @@ SPRING_COLOURS = ("tab:red", "tab:orange", "tab:purple", "tab:brown", "tab:pink"
 """One colour per spring, in the order of the scene's springs (the legend names them)."""
 LINK_COLOUR = "0.15"
 COLUMN_COLOUR = "0.55"
+SHELL_COLOUR = "0.88"
 
 
 @dataclass(frozen=True)
@@ -60,6 +61,8 @@ class Scene:
         link's segment (a link's extension past a joint): drawn grey, so that nothing floats
     :ivar masses: optional (N, m, 3) centres of mass
     :ivar ground: the legend's name of the base column
+    :ivar shells: each body's outline, (N, k, 3) points whose hull is the body (a URDF's geometry):
+        drawn as light grey silhouettes behind the links
     """
 
     up: np.ndarray
@@ -71,6 +74,7 @@ class Scene:
     brackets: np.ndarray | None = None
     masses: np.ndarray | None = None
     ground: str = "ground (link 1)"
+    shells: list = field(default_factory=list)
 
     @property
     def poses(self) -> int:
@@ -107,6 +111,7 @@ class Scene:
         parts += [np.vstack(ab) for ab in self.springs.values()]
         parts += [e.reshape(-1, 3) for e in self.extras.values()]
         parts += [b.reshape(-1, 3) for b in (self.brackets, self.masses) if b is not None]
+        parts += [shell.reshape(-1, 3) for shell in self.shells]
         parts.append(np.outer(self.column, self.up))
         if self.path is not None:
             parts.append(np.asarray(self.path).reshape(-1, 3))
@@ -157,7 +162,8 @@ def revolute_scene(model, springs, q) -> Scene:
     (N, n): the chain through its joints' origins to the last body's farthest fixed frame (a flange),
     its centres of mass, the springs between their points (route 2's placement), each spring end
     and centre of mass on a grey bracket from its body's joint, the base column under the first
-    joint. Springs are named S1, S2, ... in their order."""
+    joint, and each body's outline (its URDF geometry, where known). Springs are named S1, S2, ... in
+    their order."""
     from springlab.model.revolute import body_frames, centres_of_mass, world_points
 
     q = model.check_q(q)
@@ -179,9 +185,11 @@ def revolute_scene(model, springs, q) -> Scene:
     up = model.up
     heights = [0.0] + [float(np.min(A @ up)) for A, _ in springs_at.values()]
     column = (min(min(heights), -0.05), float(o[0, 1] @ up))
+    shells = [o[:, b, None] + np.einsum("pab,kb->pka", R[:, b], points)
+              for b, points in enumerate(model.outline) if len(points) >= 3]
     return Scene(np.asarray(up, dtype=float), [joints], springs_at, column,
                  brackets=np.stack(brackets, axis=1) if brackets else None, masses=coms,
-                 ground=f"base ({model.bodies[0]})")
+                 ground=f"base ({model.bodies[0]})", shells=shells)
 
 
 def pseudobase_scene(arm, springs, q) -> Scene:
@@ -252,6 +260,10 @@ def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=
                            label=scene.ground, zorder=1)
     else:
         artists += ax.plot([0], [0], "s", color=COLUMN_COLOUR, markersize=9, label=scene.ground, zorder=1)
+    for k, shell in enumerate(scene.shells):
+        outline = _hull(scene.project(shell[pose], view))
+        artists += ax.fill(*outline.T, facecolor=SHELL_COLOUR, edgecolor="0.6", linewidth=0.5, zorder=0.5,
+                           label="links' outlines (URDF geometry)" if k == 0 else None)
     for name, body in scene.extras.items():
         pts = scene.project(body[pose], view)
         artists += ax.plot(*pts.T, color="tab:blue", linewidth=2.4, solid_capstyle="round", zorder=2,
@@ -289,6 +301,16 @@ def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=
     if labels:
         artists += label_springs(ax, scene, pose, view, colours=colours, **(label_style or {}))
     return artists
+
+
+def _hull(points) -> np.ndarray:
+    """The convex hull of 2-D points, as a closed polygon (its points when they are degenerate)."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        return points[ConvexHull(points).vertices]
+    except (QhullError, ValueError):
+        return points
 
 
 def _colour(label: str, k: int, colours=None):
@@ -442,7 +464,7 @@ def _at(scene: Scene, poses) -> Scene:
     return replace(scene, links=[link[k] for link in scene.links],
                    springs={n: (A[k], B[k]) for n, (A, B) in scene.springs.items()},
                    extras={n: e[k] for n, e in scene.extras.items()}, brackets=pick(scene.brackets),
-                   masses=pick(scene.masses))
+                   masses=pick(scene.masses), shells=[shell[k] for shell in scene.shells])
 
 
 def _legend_and_title(fig, axes, title: str, into=None, fontsize: float = 7):

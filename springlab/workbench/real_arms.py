@@ -11,11 +11,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from springlab.design.arms import ArmDesign, design_model
+from springlab.design.arms import ArmDesign, design_model, ends_outside
 from springlab.energy import geometry, simulation
 from springlab.model.robots import ROBOTS, load_robot, robot_urdf
 from springlab.tables import Table
-from springlab.workbench.references import pinocchio_gravity
+from springlab.workbench.references import pinocchio_gravity, pinocchio_outline_boxes
 
 TARGETS = {"UR5": "planar", "Panda": "panda"}
 """The robots with stated targets: a planar loaded chain (every loaded joint's peak removed to
@@ -35,6 +35,11 @@ class ArmStudy:
         relative to the largest gravity torque
     :ivar exudyn: the largest |route 3 - route 2| holding torque (N m) with the springs, at ``sim_poses`` poses
     :ivar held: the largest holding torque (N m) exudyn finds with the ideal springs there
+    :ivar outline: the largest difference (m) between each body's outline (its URDF geometry, read by
+        springlab) and Pinocchio's placement of the same collision geometry, as bounding boxes in the
+        base frame at ``sim_poses`` poses (NaN: Pinocchio found no collision geometry)
+    :ivar outside: the largest distance (m) of a spring end outside its body's box (the outline and
+        the bracket beyond it): 0 when every end is where the design may put it
     """
 
     label: str
@@ -43,13 +48,17 @@ class ArmStudy:
     pinocchio: float
     exudyn: float
     held: float
+    outline: float
+    outside: float
 
     def checks(self) -> Table:
         """The three routes' agreement, with the tolerance each is held to."""
         return Table(["check", "value", "tolerance"], [
             ("route 2 gravity torques against Pinocchio's (relative)", f"{self.pinocchio:.1e}", "1e-9"),
             ("exudyn's holding torques against route 2, with the springs (N m)", f"{self.exudyn:.1e}", "1e-6"),
-            ("largest holding torque exudyn finds with the ideal springs (N m)", f"{self.held:.3g}", "")])
+            ("largest holding torque exudyn finds with the ideal springs (N m)", f"{self.held:.3g}", ""),
+            ("links' outlines against Pinocchio's collision geometry (m)", f"{self.outline:.1e}", "3e-4"),
+            ("spring ends outside their link's outline box and bracket (m)", f"{self.outside:.1e}", "1e-9")])
 
 
 def study(label: str, *, samples: int = 2000, fit_poses: int = 300, sim_poses: int = 3, seed: int = 1,
@@ -66,7 +75,26 @@ def study(label: str, *, samples: int = 2000, fit_poses: int = 300, sim_poses: i
     route3 = simulation.joint_torques(model, design.ideal, q)
     route2 = geometry.joint_torques(model, design.ideal, q)
     return ArmStudy(label, design, seconds, pin_diff, float(np.max(np.abs(route3 - route2))),
-                    float(np.max(np.abs(route3))))
+                    float(np.max(np.abs(route3))), outline_difference(label, model, q),
+                    ends_outside(model, design.ideal))
+
+
+def outline_difference(label: str, model, q) -> float:
+    """The largest difference (m) between the corners of each body's bounding box from ``model``'s
+    outline and from Pinocchio's placement of the robot's collision geometry (its own URDF reader
+    and assimp), at joint angles ``q`` (N, n) rad, in the base frame; NaN when no body has both."""
+    from springlab.model.revolute import body_frames
+    from springlab.model.robots import robots_folder
+
+    boxes = pinocchio_outline_boxes(robot_urdf(label), model, q, [robots_folder().parent.parent])
+    R, o = body_frames(model, q)
+    worst = np.nan
+    for b, points in enumerate(model.outline):
+        if len(points) and np.all(np.isfinite(boxes[:, b])):
+            world = o[:, b, None] + np.einsum("pab,kb->pka", R[:, b], points)
+            ours = np.stack([world.min(axis=1), world.max(axis=1)], axis=1)
+            worst = np.fmax(worst, float(np.max(np.abs(ours - boxes[:, b]))))
+    return float(worst)
 
 
 def targets(studies) -> Table:
@@ -108,6 +136,14 @@ def record(claims, studies) -> None:
         claims.compare(f"{st.label}: holding torques with the springs, exudyn - route 2", "route 2 (direct geometry)",
                        0.0, st.exudyn, unit="N m", tolerance=1e-6, tolerance_basis="exudyn's statics at Newton "
                        "tolerance 1e-12 agree with route 2 to about 1e-11 N m; the real-robots target is 1e-6 N m")
+        claims.compare(f"{st.label}: links' outlines, springlab - Pinocchio's collision geometry (bounding boxes)",
+                       "Pinocchio's buildGeomFromUrdf on the same URDF and meshes (read by assimp)", 0.0, st.outline,
+                       unit="m", tolerance=3e-4, tolerance_basis="meshes: the same vertices, round-off; round "
+                       "shapes: 64 points per circle lie inside by r (1 - cos(pi/64)) < 3e-4 m for r < 0.25 m")
+        claims.compare(f"{st.label}: spring ends outside their link's outline box and bracket",
+                       "every end on its link (springlab.design.arms)", 0.0, st.outside, unit="m", tolerance=1e-9,
+                       tolerance_basis="the ends are bounded by the boxes in the search and the construction; "
+                       "round-off")
         if st.design.method.startswith("exact"):
             designed, control = st.design.control()
             peak = float(np.max(st.design.structure.peak))

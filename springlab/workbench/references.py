@@ -61,3 +61,66 @@ def _gravity_in_root(model, full, pin):
     pin.framesForwardKinematics(full, data, pin.neutral(full))
     rotation = data.oMf[full.getFrameId(base, pin.FrameType.BODY)].rotation
     return rotation @ model.gravity
+
+
+def pinocchio_outline_boxes(urdf_path, model, q, package_dirs=()) -> np.ndarray:
+    """Each body's collision geometry placed by Pinocchio (its own URDF reader, meshes read by
+    assimp) at joint angles ``q`` (N, n) rad: the axis-aligned box that bounds it in ``model``'s base
+    frame, (N, n + 1, 2, 3) m (lower, upper corner); NaN for a body with no geometry. A mesh's box
+    is its vertices'; a box's, its corners'; a sphere's and a cylinder's, exact.
+
+    :raises SpringlabError: when Pinocchio is not installed
+    """
+    try:
+        import pinocchio as pin
+    except ImportError:
+        raise SpringlabError("Pinocchio is not installed: pip install pin (the 'robots' extra)") from None
+    q = model.check_q(q)
+    full = pin.buildModelFromUrdf(str(urdf_path))
+    dirs = [str(d) for d in package_dirs]
+    geometry = pin.buildGeomFromUrdf(full, str(urdf_path), pin.GeometryType.COLLISION, package_dirs=dirs)
+    data, gdata = full.createData(), pin.GeometryData(geometry)
+    joints = [full.joints[full.getJointId(name)] for name in model.joints]
+    frames = set(model.frame_names)
+    out = np.full((q.shape[0], model.n + 1, 2, 3), np.nan)
+    for p, angles in enumerate(q):
+        config = pin.neutral(full)
+        for joint, value in zip(joints, angles, strict=True):
+            if joint.nq == 2:
+                config[joint.idx_q:joint.idx_q + 2] = np.cos(value), np.sin(value)
+            else:
+                config[joint.idx_q] = value
+        pin.framesForwardKinematics(full, data, config)
+        pin.updateGeometryPlacements(full, data, geometry, gdata, config)
+        base = data.oMf[full.getFrameId(model.bodies[0], pin.FrameType.BODY)]
+        for index, obj in enumerate(geometry.geometryObjects):
+            link = full.frames[obj.parentFrame].name
+            if link not in frames:
+                continue
+            body = model.locate(link, np.zeros(3))[0]
+            placed = base.actInv(gdata.oMg[index])
+            lo, hi = _placed_box(obj.geometry, placed.rotation, placed.translation)
+            box = out[p, body]
+            box[0] = np.fmin(box[0], lo)
+            box[1] = np.fmax(box[1], hi)
+    return out
+
+
+def _placed_box(shape, R, t):
+    kind = type(shape).__name__
+    if hasattr(shape, "vertices"):
+        v = np.asarray(shape.vertices()) @ R.T + t
+        return v.min(axis=0), v.max(axis=0)
+    if kind == "Box":
+        h = np.asarray(shape.halfSide)
+        e = np.abs(R) @ h
+    elif kind == "Sphere":
+        e = np.full(3, shape.radius)
+    elif kind in ("Cylinder", "Capsule"):
+        a = R[:, 2]  # the shape's axis
+        e = np.abs(a) * shape.halfLength + shape.radius * np.sqrt(np.clip(1 - a**2, 0, 1))
+        if kind == "Capsule":
+            e = np.abs(a) * shape.halfLength + shape.radius
+    else:
+        raise SpringlabError(f"a collision shape of kind {kind} has no box here")
+    return t - e, t + e

@@ -1,0 +1,202 @@
+"""A URDF link's geometry, as the points that bound it: where a spring may be attached on a real arm.
+
+A URDF gives each link's shape twice: ``<collision>`` (what a planner keeps clear) and
+``<visual>`` (what a viewer draws). springlab reads the collision shapes (the visual ones where a
+link has none): boxes, cylinders, spheres, capsules and meshes (STL, OBJ, COLLADA, read with
+trimesh, a well-kept mesh library, rather than three hand-written readers). Each shape becomes
+points in its link's frame whose convex hull is the shape: a box's corners, a mesh's hull
+vertices, and for round shapes points on their rims and poles (:data:`ROUND_POINTS` per circle;
+the hull then lies inside the shape by at most 1 - cos(pi / ROUND_POINTS) of its radius, 0.12 %).
+
+Mesh paths are resolved as ROS does (:func:`resolve_mesh`): ``package://PKG/rest`` in the
+folders given, in a folder named PKG above the URDF (or beside one of those folders), in
+``ROS_PACKAGE_PATH`` and under ``AMENT_PREFIX_PATH``'s ``share``; ``file://`` and relative
+paths from the URDF's folder. A mesh that cannot be found or read is named in a note and left
+out (the link then bounds springs by its other shapes, or by the default reach):
+:class:`~springlab.errors.MeshError`, caught by the reader.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from springlab.errors import MeshError, SpringlabError
+from springlab.model.rotations import rot_rpy
+
+ROUND_POINTS = 64
+"""Points per circle on a cylinder's rims, a sphere's or capsule's circles."""
+
+@dataclass(frozen=True)
+class Shape:
+    """One ``<collision>`` (or ``<visual>``) geometry of a link.
+
+    :ivar kind: 'box', 'cylinder', 'sphere', 'capsule' or 'mesh'
+    :ivar origin: (4, 4) the shape's frame in its link's frame
+    :ivar size: box: (x, y, z) m; cylinder, capsule: (radius, length) m; sphere: (radius,) m
+    :ivar filename: a mesh's file name as the URDF writes it
+    :ivar scale: a mesh's scale per axis
+    """
+
+    kind: str
+    origin: np.ndarray
+    size: tuple = ()
+    filename: str = ""
+    scale: tuple = (1.0, 1.0, 1.0)
+
+
+def _numbers(text, count, default):
+    try:
+        values = [float(v) for v in (text or "").split()]
+    except ValueError:
+        return None
+    if not values:
+        return tuple(default) if default is not None else None
+    if len(values) != count or not all(math.isfinite(v) for v in values):
+        return None
+    return tuple(values)
+
+
+def _frame(element) -> np.ndarray | None:
+    T = np.eye(4)
+    origin = element.find("origin")
+    if origin is not None:
+        xyz = _numbers(origin.get("xyz"), 3, (0, 0, 0))
+        rpy = _numbers(origin.get("rpy"), 3, (0, 0, 0))
+        if xyz is None or rpy is None:
+            return None
+        T[:3, 3], T[:3, :3] = xyz, rot_rpy(*rpy)
+    return T
+
+
+def link_shapes(text: str) -> tuple[dict, list]:
+    """Each link's shapes in a URDF text: link name -> tuple of :class:`Shape` (its collision
+    geometry, else its visual geometry; links with neither are left out), and notes on what was
+    skipped (a malformed size or origin: named)."""
+    if not isinstance(text, str):
+        raise SpringlabError(f"text must be a URDF's text (a string), got {type(text).__name__}")
+    try:
+        root = ET.fromstring(text)
+    except ET.ParseError as err:
+        raise SpringlabError(f"text is not valid XML: {err}") from None
+    out, notes = {}, []
+    for link in root.findall("link"):
+        name = link.get("name")
+        for tag in ("collision", "visual"):
+            shapes = []
+            for element in link.findall(tag):
+                geometry = element.find("geometry")
+                if geometry is None or len(geometry) == 0:
+                    continue
+                g = geometry[0]
+                T = _frame(element)
+                shape = None if T is None else _shape(g, T)
+                if shape is None:
+                    notes.append(f"link {name!r}: a <{tag}> <{g.tag}> with a missing or malformed size or origin "
+                                 "was skipped")
+                else:
+                    shapes.append(shape)
+            if shapes:
+                out[name] = tuple(shapes)
+                break
+    return out, notes
+
+
+def _shape(g, T) -> Shape | None:
+    if g.tag == "box":
+        size = _numbers(g.get("size"), 3, None)
+        return None if size is None or min(size) < 0 else Shape("box", T, size)
+    if g.tag in ("cylinder", "capsule"):
+        r, length = _numbers(g.get("radius"), 1, None), _numbers(g.get("length"), 1, None)
+        return None if r is None or length is None or r[0] < 0 or length[0] < 0 else Shape(g.tag, T, r + length)
+    if g.tag == "sphere":
+        r = _numbers(g.get("radius"), 1, None)
+        return None if r is None or r[0] < 0 else Shape("sphere", T, r)
+    if g.tag == "mesh" and g.get("filename"):
+        scale = _numbers(g.get("scale"), 3, (1, 1, 1))
+        return None if scale is None else Shape("mesh", T, (), g.get("filename"), scale)
+    return None
+
+
+def resolve_mesh(filename: str, folder: Path | None, package_dirs=()) -> Path | None:
+    """The file a URDF's mesh name points to, or None (see the module docstring for the search)."""
+    if filename.startswith("file://"):
+        path = Path(filename[len("file://"):])
+        return path if path.is_file() else None
+    if not filename.startswith("package://"):
+        path = Path(filename) if Path(filename).is_absolute() or folder is None else Path(folder) / filename
+        return path if path.is_file() else None
+    package, _, rest = filename[len("package://"):].lstrip("/").partition("/")
+    candidates = []
+    for d in map(Path, package_dirs):
+        candidates += [d / package / rest, d / rest] if d.name == package else [d / package / rest]
+    if folder is not None:
+        for above in (Path(folder).resolve(), *Path(folder).resolve().parents):
+            candidates += [above / rest] if above.name == package else [above / package / rest]
+    for d in filter(None, os.environ.get("ROS_PACKAGE_PATH", "").split(os.pathsep)):
+        candidates += [Path(d) / package / rest, Path(d) / rest] if Path(d).name == package else [Path(d) / package / rest]
+    for d in filter(None, os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep)):
+        candidates.append(Path(d) / "share" / package / rest)
+    return next((c for c in candidates if c.is_file()), None)
+
+
+def _circle(radius: float, z: float) -> np.ndarray:
+    t = np.linspace(0.0, 2 * np.pi, ROUND_POINTS, endpoint=False)
+    return np.column_stack([radius * np.cos(t), radius * np.sin(t), np.full_like(t, z)])
+
+
+def _ball(radius: float, centre_z: float = 0.0, half: int = 0) -> np.ndarray:
+    """Points on a sphere (half = 0), or its upper (1) or lower (-1) half, centred at z = centre_z."""
+    rings = [0.0] + [k * np.pi / 8 for k in range(1, 4)]
+    pts = [np.array([[0.0, 0.0, centre_z + radius]]), np.array([[0.0, 0.0, centre_z - radius]])]
+    for a in rings:
+        for s in ((1, -1) if half == 0 else (half,)):
+            pts.append(_circle(radius * math.cos(a), centre_z + s * radius * math.sin(a)))
+    return np.vstack(pts)
+
+
+def _mesh_points(path: Path, scale) -> np.ndarray:
+    import trimesh
+    from scipy.spatial import ConvexHull, QhullError
+
+    mesh = trimesh.load(path, force="mesh", process=False)
+    v = np.asarray(mesh.vertices, dtype=float) * np.asarray(scale, dtype=float)
+    if len(v) == 0 or not np.all(np.isfinite(v)):
+        raise MeshError(f"{path}: no finite vertices", filename=str(path))
+    try:
+        return v[ConvexHull(v).vertices]
+    except (QhullError, ValueError):  # flat or degenerate: its points bound it as well
+        return v
+
+
+def shape_points(shape: Shape, folder: Path | None = None, package_dirs=()) -> np.ndarray:
+    """Points (m, in the link's frame) whose convex hull is the shape, (k, 3). A mesh that cannot be
+    found or read raises :class:`~springlab.errors.MeshError` (``found`` says which)."""
+    if shape.kind == "box":
+        h = np.asarray(shape.size) / 2
+        local = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * h
+    elif shape.kind == "cylinder":
+        r, length = shape.size
+        local = np.vstack([_circle(r, -length / 2), _circle(r, length / 2)])
+    elif shape.kind == "capsule":
+        r, length = shape.size
+        local = np.vstack([_ball(r, length / 2, 1), _ball(r, -length / 2, -1)])
+    elif shape.kind == "sphere":
+        local = _ball(shape.size[0])
+    else:
+        path = resolve_mesh(shape.filename, folder, package_dirs)
+        if path is None:
+            raise MeshError(f"mesh {shape.filename!r} not found: give the folder that holds its package",
+                            filename=shape.filename, found=False)
+        try:
+            local = _mesh_points(path, shape.scale)
+        except MeshError:
+            raise
+        except Exception as err:  # trimesh raises many kinds on a file it cannot read
+            raise MeshError(f"{path}: {err}", filename=str(path)) from None
+    return local @ shape.origin[:3, :3].T + shape.origin[:3, 3]
