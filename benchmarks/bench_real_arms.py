@@ -7,6 +7,8 @@
   method, springs, the percentage of each loaded joint's peak torque removed with ideal and realised
   springs over 2,000 poses the design was not fitted on, seconds (target: 30 s each), and the
   targets (planar chains >= 99.9 % ideal and >= 90 % realised; Panda joints 2, 3, 4: 90, 80, 80 %);
+* each link's outline (its URDF collision geometry) beside Pinocchio's placement of the same
+  geometry, and the time to read it with the meshes;
 * exudyn's holding torques of the UR5's and the Panda's designs beside route 2 (target: 1e-6 N m).
 
     make bench
@@ -22,6 +24,7 @@ import numpy as np
 from springlab.design.arms import design_model
 from springlab.energy import geometry, simulation
 from springlab.model.robots import OTHER_ARMS, ROBOTS, load_robot, robot_urdf
+from springlab.workbench.real_arms import outline_difference
 from springlab.workbench.references import pinocchio_gravity
 
 
@@ -43,7 +46,18 @@ def main() -> None:
         print(f"{label:28s} {model.n:6d} {rel:24.2e} {1e3 * ours_s:13.1f} {1e3 * theirs_s:15.1f}")
     print(f"worst relative difference: {worst:.2e} (target 1e-9)\n")
 
-    print("designs (design_model, checked on 2,000 poses it was not fitted on):")
+    print("the links' outlines (URDF collision geometry, meshes read) beside Pinocchio's placement of it:")
+    print(f"{'arm':16s} {'read (s)':>9s} {'max |corner diff| (m)':>22s}")
+    for label in ROBOTS:
+        start = time.perf_counter()
+        model = load_robot(label)
+        seconds = time.perf_counter() - start
+        diff = outline_difference(label, model, model.random_q(3, 0))
+        print(f"{label:16s} {seconds:9.2f} {diff:22.1e}")
+    print("(target: round-off for meshes, r (1 - cos(pi/64)) < 3e-4 m for round shapes)\n")
+
+    print("designs (design_model, checked on 2,000 poses it was not fitted on; ends within each link's outline")
+    print("box and a 3 cm bracket):")
     print(f"{'arm':16s} {'method':20s} {'springs':>7s} {'seconds':>8s}  removed % (ideal / realised), loaded joints")
     designs = {}
     for label in ROBOTS:

@@ -68,6 +68,7 @@ def test_exudyn_holds_the_exact_ur5_design():
 def test_the_panda_meets_its_targets():
     design = design_model(load_robot("Panda"), samples=1000, fit_poses=150)
     assert design.method == "best springs"
+    assert ends_outside(design.model, design.ideal) < 1e-9  # every end on its link's outline and bracket
     removed = design.removed()
     assert removed[1] >= 90 and removed[2] >= 80 and removed[3] >= 80  # joints 2, 3, 4
     gravity = np.max(np.abs(geometry.gravity_torques(design.model, design.q)), axis=0)
