@@ -40,15 +40,22 @@ def pinocchio_gravity(urdf_text: str, model, q) -> np.ndarray:
     joints = [reduced.joints[reduced.getJointId(name)] for name in model.joints]
     out = np.empty(q.shape)
     for p, angles in enumerate(q):
-        config = pin.neutral(reduced)
-        for joint, value in zip(joints, angles, strict=True):
-            if joint.nq == 2:
-                config[joint.idx_q:joint.idx_q + 2] = np.cos(value), np.sin(value)
-            else:
-                config[joint.idx_q] = value
+        config = _configuration(pin, reduced, joints, angles)
         tau = pin.computeGeneralizedGravity(reduced, data, config)
         out[p] = [tau[joint.idx_v] for joint in joints]
     return out
+
+
+def _configuration(pin, model, joints, angles):
+    """Pinocchio's configuration vector: every joint neutral but ``joints``, set to ``angles`` (rad;
+    a continuous joint's (cos, sin))."""
+    config = pin.neutral(model)
+    for joint, value in zip(joints, angles, strict=True):
+        if joint.nq == 2:
+            config[joint.idx_q:joint.idx_q + 2] = np.cos(value), np.sin(value)
+        else:
+            config[joint.idx_q] = value
+    return config
 
 
 def _gravity_in_root(model, full, pin):
@@ -84,12 +91,7 @@ def pinocchio_outline_boxes(urdf_path, model, q, package_dirs=()) -> np.ndarray:
     frames = set(model.frame_names)
     out = np.full((q.shape[0], model.n + 1, 2, 3), np.nan)
     for p, angles in enumerate(q):
-        config = pin.neutral(full)
-        for joint, value in zip(joints, angles, strict=True):
-            if joint.nq == 2:
-                config[joint.idx_q:joint.idx_q + 2] = np.cos(value), np.sin(value)
-            else:
-                config[joint.idx_q] = value
+        config = _configuration(pin, full, joints, angles)
         pin.framesForwardKinematics(full, data, config)
         pin.updateGeometryPlacements(full, data, geometry, gdata, config)
         base = data.oMf[full.getFrameId(model.bodies[0], pin.FrameType.BODY)]
