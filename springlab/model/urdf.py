@@ -771,6 +771,16 @@ def read_revolute_chain(text: str, *, source: str = "arm.urdf", up=None, tip: st
                          np.array(limits, dtype=float), tuple(notes), fixed, outline)
 
 
+def _hull(points: np.ndarray) -> np.ndarray:
+    """The vertices of the points' convex hull (the points themselves when they are flat)."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        return points[ConvexHull(points).vertices]
+    except (QhullError, ValueError):
+        return points
+
+
 def _outlines(text, owner, T_body, names, folder, package_dirs) -> tuple[tuple, list]:
     """Each body's outline (points, m, body frame) from its links' shapes, and notes on what was
     read and what was not (a mesh not found or unreadable, a body with no geometry)."""
@@ -797,7 +807,7 @@ def _outlines(text, owner, T_body, names, folder, package_dirs) -> tuple[tuple, 
         notes.append(f"{len(unreadable)} meshes could not be read ({unreadable[0]}): left out")
     if not read:
         return (), notes
-    outline = tuple(np.vstack(p) if p else np.zeros((0, 3)) for p in points)
+    outline = tuple(_hull(np.vstack(p)) if p else np.zeros((0, 3)) for p in points)
     empty = [repr(names[i]) for i, p in enumerate(outline) if len(p) == 0]
     notes.append(f"the bodies' outlines (where springs attach) come from {read} shapes of the file's geometry"
                  + (f"; {', '.join(empty)} {'has' if len(empty) == 1 else 'have'} none (the default reach there)"

@@ -111,6 +111,7 @@ def _design(args) -> int:
     if args.sheet:
         for path in _sheet_paths(out):
             _writable(path, "--sheet")
+    mjcf = _mjcf_paths(args)
     if args.csv:
         _writable(Path(args.csv), "--csv")
     report = design_arm(spec, method=args.method, max_designs=args.max_designs,
@@ -152,6 +153,11 @@ def _design(args) -> int:
     print(f"\ndesign {args.pick} written to {out}")
     if args.sheet:
         _write_sheet(args, spec, chosen, out)
+    if mjcf:
+        from springlab.model.springs import point_springs
+
+        chain = spec.chain()
+        _write_mjcf(mjcf, chain.revolute_chain(spec.name), point_springs(chain, chosen.springs), None)
     return 0
 
 
@@ -174,6 +180,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
                                 payload=payload, folder=path.parent, package_dirs=args.package_dir)
     workspace = None if args.workspace is None else parse_workspace(args.workspace)
     out = _writable(Path(args.json or path.with_suffix(".design.json").name), "--json")
+    mjcf = _mjcf_paths(args)
     started = time.perf_counter()
     reach = None if args.reach is None else _checks.positive(
         "--reach", parse_quantity(args.reach, "length", "--reach"), allow_zero=True, unit="m")
@@ -212,7 +219,34 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     except OSError as err:
         raise SpringlabError(f"--json {out} cannot be written ({err.strerror})") from None
     print(f"\ndesign written to {out}")
+    if mjcf:
+        _write_mjcf(mjcf, model, design.ideal, design.realised)
     return 0
+
+
+def _mjcf_paths(args) -> tuple:
+    """--mjcf's two files (the ideal springs; the realised ones beside it), checked before any work."""
+    if not args.mjcf:
+        return ()
+    ideal = _writable(Path(args.mjcf), "--mjcf")
+    if ideal.suffix.lower() != ".xml":
+        raise SpringlabError(f"--mjcf {ideal}: give a file name ending in .xml (MuJoCo's MJCF)")
+    return ideal, _writable(ideal.with_suffix(".realised.xml"), "--mjcf")
+
+
+def _write_mjcf(paths, model, ideal, realised) -> None:
+    """The arm and its springs as MuJoCo models: the ideal springs, and the realised ones where given."""
+    from springlab.model.mjcf import to_mjcf
+
+    texts = [(paths[0], to_mjcf(model, ideal), "ideal springs")]
+    if realised is not None:
+        texts.append((paths[1], to_mjcf(model, realised), "realised springs"))
+    for where, text, what in texts:
+        try:
+            where.write_text(text)
+        except OSError as err:
+            raise SpringlabError(f"--mjcf {where} cannot be written ({err.strerror})") from None
+        print(f"MuJoCo model with the {what} written to {where}")
 
 
 def _design_dh(args, path: Path) -> int:
@@ -224,6 +258,10 @@ def _design_dh(args, path: Path) -> int:
     from springlab.mechanisms.pseudobase.armfile import load_dh_arm
     from springlab.tables import Table
 
+    if args.mjcf:
+        raise SpringlabError(f"--mjcf writes a chain of revolute joints with springs between points of its links; "
+                             f"{path} is designed by paper 001's pseudobase method, whose springs ride on "
+                             "parallelogram auxiliary links (RSSR modules) that springlab does not export: leave out --mjcf")
     for flag, given in (("--sheet", args.sheet), ("--up", args.up), ("--tip", args.tip), ("--base", args.base),
                         ("--payload", args.payload), ("--method", args.method != "fewest springs")):
         if given:
@@ -334,6 +372,10 @@ def main(argv=None) -> int:
     p.add_argument("--workspace", help="a URDF arm's joint ranges to hold, in degrees within its limits, e.g. "
                                        "'shoulder_lift_joint=-180:0,elbow_joint=-150:150' (designs it on the general "
                                        "model)")
+    p.add_argument("--mjcf", metavar="FILE.xml",
+                   help="also write the arm and its springs as a MuJoCo model (MJCF): the bodies, inertias and "
+                        "joints (named as in the URDF), each spring a spatial tendon between two sites; for a "
+                        "URDF arm the realised springs go beside it in FILE.realised.xml")
     p.add_argument("--allow-large", action="store_true", help="allow arms of more than 8 links")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--debug", action="store_true", help="show the traceback of an unexpected error")

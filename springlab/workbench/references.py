@@ -126,3 +126,55 @@ def _placed_box(shape, R, t):
     else:
         raise SpringlabError(f"a collision shape of kind {kind} has no box here")
     return t - e, t + e
+
+
+def _mujoco():
+    try:
+        import mujoco
+    except ImportError:
+        raise SpringlabError("MuJoCo is not installed: pip install mujoco (the 'robots' extra)") from None
+    return mujoco
+
+
+def mujoco_holding_torques(mjcf: str, model, q) -> np.ndarray:
+    """MuJoCo's holding torques (N m), (N, n), of an arm written by :func:`springlab.model.mjcf.to_mjcf`
+    at joint angles ``q`` (N, n) rad, at rest: ``qfrc_bias - qfrc_passive`` after ``mj_forward`` (gravity
+    less the tendons' spring forces), route 2's :func:`springlab.energy.geometry.joint_torques`.
+
+    :raises SpringlabError: when MuJoCo is not installed
+    """
+    mujoco = _mujoco()
+    q = model.check_q(q)
+    mj = mujoco.MjModel.from_xml_string(mjcf)
+    data = mujoco.MjData(mj)
+    if mj.nq != model.n:
+        raise SpringlabError(f"the MJCF has {mj.nq} joint coordinates, the model {model.n}: not the same arm")
+    out = np.empty(q.shape)
+    for p, angles in enumerate(q):
+        data.qpos[:] = angles
+        data.qvel[:] = 0.0
+        mujoco.mj_forward(mj, data)
+        out[p] = data.qfrc_bias - data.qfrc_passive
+    return out
+
+
+def mujoco_release(mjcf: str, q0, seconds: float, *, every: int = 10) -> tuple[np.ndarray, np.ndarray]:
+    """Release the arm at rest at joint angles ``q0`` (n,) rad in MuJoCo and let it move for
+    ``seconds`` (s, the model's own time step and integrator): the times (s) and joint angles
+    (rad), every ``every``-th step, (T,) and (T, n).
+
+    :raises SpringlabError: when MuJoCo is not installed
+    """
+    mujoco = _mujoco()
+    mj = mujoco.MjModel.from_xml_string(mjcf)
+    data = mujoco.MjData(mj)
+    data.qpos[:] = np.asarray(q0, dtype=float)
+    data.qvel[:] = 0.0
+    steps = int(round(seconds / mj.opt.timestep))
+    times, angles = [0.0], [data.qpos.copy()]
+    for step in range(1, steps + 1):
+        mujoco.mj_step(mj, data)
+        if step % every == 0 or step == steps:
+            times.append(float(data.time))
+            angles.append(data.qpos.copy())
+    return np.array(times), np.array(angles)

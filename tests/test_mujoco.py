@@ -1,0 +1,135 @@
+"""MuJoCo beside springlab's routes: an arm exported with its springs (springlab.model.mjcf) is held
+at rest by the same torques as route 2, its gravity is Pinocchio's on the original URDF, released
+at rest the exact design stays put while the 0.9-rate control falls, and a tendon with the wrong
+rate fails the agreement (the negative control). Bad --mjcf input is refused before anything is
+written."""
+
+import numpy as np
+import pytest
+
+from springlab.design.arms import design_model
+from springlab.energy import geometry
+from springlab.model.mjcf import TINY_MASS, to_mjcf
+from springlab.model.robots import load_robot, robot_urdf
+from springlab.model.springs import PointSpring, point_springs
+from springlab.workbench.cli import main
+
+mujoco = pytest.importorskip("mujoco")
+from springlab.workbench.references import (  # noqa: E402
+    mujoco_holding_torques,
+    mujoco_release,
+    pinocchio_gravity,
+)
+
+AGREE = 1e-9
+"""Relative agreement of MuJoCo's and route 2's holding torques: both evaluate the same rigid-body
+and spring sums in float64 (about 1e-15); the real-arms target is 1e-9."""
+
+
+def _scaled(springs, factor):
+    return [PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k * factor, s.free_length,
+                        s.initial_tension * factor) for s in springs]
+
+
+@pytest.fixture(scope="module")
+def designs():
+    return {label: design_model(load_robot(label), samples=200, fit_poses=100) for label in ("UR5", "Panda")}
+
+
+@pytest.mark.parametrize("label", ["UR5", "Panda"])
+def test_mujoco_holds_the_design_as_route_2_does(designs, label):
+    design = designs[label]
+    model, q = design.model, design.q[:20]
+    ours = geometry.joint_torques(model, design.ideal, q)
+    scale = np.max(np.abs(geometry.gravity_torques(model, q)))
+    theirs = mujoco_holding_torques(to_mjcf(model, design.ideal), model, q)
+    assert np.max(np.abs(theirs - ours)) < AGREE * scale
+    # the negative control: one tendon at 0.9 of its rate must fail the same comparison
+    wrong = list(design.ideal)
+    wrong[0] = _scaled([wrong[0]], 0.9)[0]
+    off = mujoco_holding_torques(to_mjcf(model, wrong), model, q)
+    assert np.max(np.abs(off - ours)) > 1e3 * AGREE * scale
+
+
+def test_realised_springs_keep_their_force_law_in_mujoco():
+    """A spring of free length L_0 and initial tension F_i pulls F_i + k (l - L_0): MuJoCo's tendon
+    spring k (l - springlength) with springlength = L_0 - F_i / k."""
+    model = load_robot("SO-101")
+    springs = [PointSpring("shoulder_link", (0.01, 0.02, 0.03), "lower_arm_link", (0.05, 0.0, 0.01), 300.0,
+                           0.04, 5.0),
+               PointSpring("base_link", (0.02, 0.0, 0.05), "wrist_link", (0.0, 0.01, 0.02), 80.0, 0.03, 2.4)]
+    q = model.random_q(10, 2)
+    ours = geometry.joint_torques(model, springs, q)
+    theirs = mujoco_holding_torques(to_mjcf(model, springs), model, q)
+    assert np.max(np.abs(theirs - ours)) < AGREE * np.max(np.abs(ours))
+
+
+@pytest.mark.parametrize("label", ["UR5", "Panda", "SO-101", "Kinova Jaco"])
+def test_mujocos_gravity_is_pinocchios_on_the_urdf(label):
+    """URDF -> springlab's model -> MJCF -> MuJoCo against URDF -> Pinocchio: the export end to end."""
+    pytest.importorskip("pinocchio")
+    model = load_robot(label)
+    q = model.random_q(10, 4)
+    theirs = mujoco_holding_torques(to_mjcf(model), model, q)
+    reference = pinocchio_gravity(robot_urdf(label).read_text(), model, q)
+    massless = int(np.sum(model.mass == 0))  # MuJoCo needs a mass: TINY_MASS kg each, at most a metre out
+    bound = AGREE * np.max(np.abs(reference)) + massless * TINY_MASS * model.g
+    assert np.max(np.abs(theirs - reference)) < bound
+
+
+def test_a_papers_chain_exports_with_its_spherical_joints(arm, exact_springs, rng):
+    """Paper 000's arm (spherical joints as three revolute ones, two massless bodies each) with its
+    exact design, held by MuJoCo as by route 2 on the general model: the torques at round-off, the
+    massless bodies' TINY_MASS aside."""
+    model, springs = arm.revolute_chain(), point_springs(arm, exact_springs)
+    q = arm.joint_coordinates(arm.random_angles(20, rng))
+    ours = geometry.joint_torques(model, springs, q)
+    theirs = mujoco_holding_torques(to_mjcf(model, springs), model, q)
+    scale = np.max(np.abs(geometry.gravity_torques(model, q)))
+    assert np.max(np.abs(theirs - ours)) < AGREE * scale
+    assert np.max(np.abs(theirs)) < AGREE * scale  # balanced in MuJoCo too
+
+
+def test_released_the_exact_design_stays_and_the_control_falls(designs):
+    design = designs["UR5"]
+    q0 = design.q[0]
+    _, held = mujoco_release(to_mjcf(design.model, design.ideal), q0, 1.0)
+    _, falls = mujoco_release(to_mjcf(design.model, _scaled(design.ideal, 0.9)), q0, 1.0)
+    assert np.max(np.abs(held - q0)) < 1e-9  # rad after 1 s
+    assert np.max(np.abs(falls - q0)) > 0.1
+
+
+def test_the_cli_writes_both_models(tmp_path, capsys):
+    out = tmp_path / "ur5.json"
+    mjcf = tmp_path / "ur5_balanced.xml"
+    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--mjcf", str(mjcf), "--quiet"]) == 0
+    assert mjcf.exists() and (tmp_path / "ur5_balanced.realised.xml").exists()
+    mj = mujoco.MjModel.from_xml_path(str(mjcf))
+    assert mj.ntendon == 6 and mj.nq == 6
+    names = [mujoco.mj_id2name(mj, mujoco.mjtObj.mjOBJ_JOINT, i) for i in range(mj.njnt)]
+    assert names == ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_1_joint", "wrist_2_joint",
+                     "wrist_3_joint"]
+    assert np.allclose(mj.jnt_range[2], [-np.pi, np.pi], atol=1e-9)  # the URDF's limits
+    # an arm file of paper 000's method exports too
+    assert main(["design", "notebooks/arms/paper000_arm.toml", "--json", str(tmp_path / "a.json"),
+                 "--mjcf", str(tmp_path / "a.xml"), "--quiet"]) == 0
+    assert mujoco.MjModel.from_xml_path(str(tmp_path / "a.xml")).ntendon >= 1
+
+
+MJCF_BAD = [
+    (["notebooks/arms/paper001_arm.toml"], "pseudobase"),
+    ([None, "--mjcf", "{tmp}"], "is a directory"),
+    ([None, "--mjcf", "{tmp}/missing/x.xml"], "does not exist"),
+    ([None, "--mjcf", "{tmp}/x.txt"], "ending in .xml"),
+]
+
+
+@pytest.mark.parametrize(("args", "message"), MJCF_BAD, ids=[m for _, m in MJCF_BAD])
+def test_bad_mjcf_is_one_line_exit_2_nothing_written(args, message, tmp_path, capsys):
+    out = tmp_path / "d.json"
+    arm = args[0] or str(robot_urdf("UR5"))
+    extra = [a.format(tmp=tmp_path) for a in args[1:]] or ["--mjcf", str(tmp_path / "x.xml")]
+    code = main(["design", arm, "--json", str(out), "--quiet", *extra])
+    err = capsys.readouterr().err
+    assert code == 2 and message in err and err.count("\n") == 1
+    assert not out.exists() and not list(tmp_path.glob("*.xml"))
