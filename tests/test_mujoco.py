@@ -26,11 +26,6 @@ AGREE = 1e-9
 and spring sums in float64 (about 1e-15); the real-arms target is 1e-9."""
 
 
-def _scaled(springs, factor):
-    return [PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k * factor, s.free_length,
-                        s.initial_tension * factor) for s in springs]
-
-
 @pytest.fixture(scope="module")
 def designs():
     return {label: design_model(load_robot(label), samples=200, fit_poses=100) for label in ("UR5", "Panda")}
@@ -46,7 +41,7 @@ def test_mujoco_holds_the_design_as_route_2_does(designs, label):
     assert np.max(np.abs(theirs - ours)) < AGREE * scale
     # the negative control: one tendon at 0.9 of its rate must fail the same comparison
     wrong = list(design.ideal)
-    wrong[0] = _scaled([wrong[0]], 0.9)[0]
+    wrong[0] = wrong[0].scaled(0.9)
     off = mujoco_holding_torques(to_mjcf(model, wrong), model, q)
     assert np.max(np.abs(off - ours)) > 1e3 * AGREE * scale
 
@@ -94,7 +89,7 @@ def test_released_the_exact_design_stays_and_the_control_falls(designs):
     design = designs["UR5"]
     q0 = design.q[0]
     _, held = mujoco_release(to_mjcf(design.model, design.ideal), q0, 1.0)
-    _, falls = mujoco_release(to_mjcf(design.model, _scaled(design.ideal, 0.9)), q0, 1.0)
+    _, falls = mujoco_release(to_mjcf(design.model, [s.scaled(0.9) for s in design.ideal]), q0, 1.0)
     assert np.max(np.abs(held - q0)) < 1e-9  # rad after 1 s
     assert np.max(np.abs(falls - q0)) > 0.1
 

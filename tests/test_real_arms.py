@@ -22,10 +22,6 @@ from springlab.model.springs import PointSpring
 from springlab.workbench.cli import main
 
 
-def _scaled(springs, factor):
-    return [PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k * factor) for s in springs]
-
-
 def test_the_ur5_structure_has_its_reasons():
     model = load_robot("UR5")
     found = structure(model)
@@ -50,7 +46,7 @@ def test_planar_chains_balance_exactly(label):
     assert left < 1e-11 * scale  # round-off: the construction is exact
     energy = geometry.potential(model, springs, q)["total"]
     assert np.ptp(energy) < 1e-11 * scale
-    control = np.max(np.abs(geometry.joint_torques(model, _scaled(springs, 0.9), q)))
+    control = np.max(np.abs(geometry.joint_torques(model, [s.scaled(0.9) for s in springs], q)))
     assert control > 0.05 * scale  # the negative control must fail
 
 
@@ -61,7 +57,7 @@ def test_exudyn_holds_the_exact_ur5_design():
     route3 = simulation.joint_torques(model, springs, q)
     np.testing.assert_allclose(route3, geometry.joint_torques(model, springs, q), atol=1e-6)
     assert np.max(np.abs(route3)) < 1e-6
-    control = simulation.joint_torques(model, _scaled(springs, 0.9), q)
+    control = simulation.joint_torques(model, [s.scaled(0.9) for s in springs], q)
     assert np.max(np.abs(control)) > 1.0
 
 

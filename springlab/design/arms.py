@@ -703,7 +703,7 @@ class ArmDesign:
         """The negative control: the largest holding torque (N m, over joints and the workspace poses)
         of the ideal springs as designed and with every rate times ``factor``. A check that cannot
         fail checks nothing: the scaled springs must leave more."""
-        scaled = [PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k * factor) for s in self.ideal]
+        scaled = [s.scaled(factor) for s in self.ideal]
         return (float(np.max(np.abs(joint_torques(self.model, self.ideal, self.q)))),
                 float(np.max(np.abs(joint_torques(self.model, scaled, self.q)))))
 

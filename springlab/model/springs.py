@@ -268,6 +268,12 @@ class PointSpring:
         """L_0 - F_i / k (m), as :attr:`Spring.effective_free_length`."""
         return self.free_length - self.initial_tension / self.k
 
+    def scaled(self, factor: float) -> PointSpring:
+        """The same spring with its force law multiplied by ``factor`` (stiffness and initial
+        tension; the ends and the free length kept): the negative control's spring at 0.9."""
+        return PointSpring(self.link_a, self.point_a, self.link_b, self.point_b, self.k * factor, self.free_length,
+                           self.initial_tension * factor)
+
     def as_dict(self) -> dict:
         """The spring as the ``--json`` contract names it (SI numbers)."""
         return {"link_a": self.link_a, "point_a": list(self.point_a), "link_b": self.link_b,

@@ -13,9 +13,15 @@ import numpy as np
 
 from springlab.design.arms import ArmDesign, design_model, ends_outside
 from springlab.energy import geometry, simulation
+from springlab.model.mjcf import to_mjcf
 from springlab.model.robots import ROBOTS, load_robot, robot_urdf
 from springlab.tables import Table
-from springlab.workbench.references import pinocchio_gravity, pinocchio_outline_boxes
+from springlab.workbench.references import (
+    mujoco_holding_torques,
+    mujoco_release,
+    pinocchio_gravity,
+    pinocchio_outline_boxes,
+)
 
 TARGETS = {"UR5": "planar", "Panda": "panda"}
 """The robots with stated targets: a planar loaded chain (every loaded joint's peak removed to
@@ -40,6 +46,11 @@ class ArmStudy:
         base frame at ``sim_poses`` poses (NaN: Pinocchio found no collision geometry)
     :ivar outside: the largest distance (m) of a spring end outside its body's box (the outline and
         the bracket beyond it): 0 when every end is where the design may put it
+    :ivar mujoco: the largest |MuJoCo - route 2| holding torque with the ideal springs, the arm exported
+        by :func:`springlab.model.mjcf.to_mjcf`, over 20 of the design's poses, relative to the largest
+        gravity torque there
+    :ivar released: how far (rad) the arm moves in MuJoCo in 1 s after its release at rest at the
+        design's first pose: (with the ideal springs, with the springs at 0.9 of their rates)
     """
 
     label: str
@@ -50,6 +61,8 @@ class ArmStudy:
     held: float
     outline: float
     outside: float
+    mujoco: float
+    released: tuple
 
     def checks(self) -> Table:
         """The three routes' agreement, with the tolerance each is held to."""
@@ -58,7 +71,10 @@ class ArmStudy:
             ("exudyn's holding torques against route 2, with the springs (N m)", f"{self.exudyn:.1e}", "1e-6"),
             ("largest holding torque exudyn finds with the ideal springs (N m)", f"{self.held:.3g}", ""),
             ("links' outlines against Pinocchio's collision geometry (m)", f"{self.outline:.1e}", "3e-4"),
-            ("spring ends outside their link's outline box and bracket (m)", f"{self.outside:.1e}", "1e-9")])
+            ("spring ends outside their link's outline box and bracket (m)", f"{self.outside:.1e}", "1e-9"),
+            ("MuJoCo's holding torques against route 2, with the springs (relative)", f"{self.mujoco:.1e}", "1e-9"),
+            ("released in MuJoCo at rest, the arm moves in 1 s (rad): ideal springs; springs x 0.9",
+             f"{self.released[0]:.2g}; {self.released[1]:.2g}", "")])
 
 
 def study(label: str, *, samples: int = 2000, fit_poses: int = 300, sim_poses: int = 3, seed: int = 1,
@@ -74,9 +90,37 @@ def study(label: str, *, samples: int = 2000, fit_poses: int = 300, sim_poses: i
     q = design.q[:sim_poses]
     route3 = simulation.joint_torques(model, design.ideal, q)
     route2 = geometry.joint_torques(model, design.ideal, q)
+    mjcf = to_mjcf(model, design.ideal)
+    poses = design.q[:20]
+    held = mujoco_holding_torques(mjcf, model, poses)
+    mujoco = float(np.max(np.abs(held - geometry.joint_torques(model, design.ideal, poses)))
+                   / np.max(np.abs(geometry.gravity_torques(model, poses))))
+    released = tuple(float(np.max(np.abs(mujoco_release(to_mjcf(model, springs), design.q[0], 1.0)[1] - design.q[0])))
+                     for springs in (design.ideal, [s.scaled(CONTROL) for s in design.ideal]))
     return ArmStudy(label, design, seconds, pin_diff, float(np.max(np.abs(route3 - route2))),
                     float(np.max(np.abs(route3))), outline_difference(label, model, q),
-                    ends_outside(model, design.ideal))
+                    ends_outside(model, design.ideal), mujoco, released)
+
+
+CONTROL = 0.9
+"""The negative control's factor on every spring's rate (and initial tension)."""
+
+
+def release_animation(study: ArmStudy, path, *, seconds: float = 1.0, frames: int = 21) -> str:
+    """The arm released at rest in MuJoCo at the design's first pose, with its springs beside the
+    0.9-rate control, ``seconds`` long, as a GIF (front view, :func:`springlab.workbench.drawing.animate`).
+    Returns the GIF's path."""
+    from springlab.workbench.drawing import animate, revolute_scene
+
+    design = study.design
+    panels, times = {}, None
+    for name, springs in (("balanced", design.ideal), (f"springs x {CONTROL:g} (control)", [s.scaled(CONTROL) for s in design.ideal])):
+        t, q = mujoco_release(to_mjcf(design.model, springs), design.q[0], seconds)
+        k = np.unique(np.linspace(0, len(t) - 1, frames).round().astype(int))
+        panels[name] = (revolute_scene(design.model, springs, q[k]), "front")
+        times = t[k]
+    return animate(panels, path, times=times, title=f"{study.label} released at rest in MuJoCo", dpi=110,
+                   note="no floor or contacts are simulated: the control swings freely")
 
 
 def outline_difference(label: str, model, q) -> float:
@@ -144,6 +188,10 @@ def record(claims, studies) -> None:
                        "every end on its link (springlab.design.arms)", 0.0, st.outside, unit="m", tolerance=1e-9,
                        tolerance_basis="the ends are bounded by the boxes in the search and the construction; "
                        "round-off")
+        claims.compare(f"{st.label}: holding torques with the springs, MuJoCo - route 2, relative to the largest gravity "
+                       "torque", "MuJoCo 4.0 on the exported MJCF (qfrc_bias - qfrc_passive at rest)", 0.0, st.mujoco,
+                       unit="-", tolerance=1e-9, tolerance_basis="both evaluate the same rigid-body and spring sums in "
+                       "float64: round-off, about 1e-15; the real-arms target is 1e-9")
         if st.design.method.startswith("exact"):
             designed, control = st.design.control()
             peak = float(np.max(st.design.structure.peak))
