@@ -5,6 +5,7 @@ geometry, and the designs' ends kept within the outlines' boxes."""
 import dataclasses
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -112,7 +113,7 @@ def test_meshes_are_found_as_ros_finds_them(tmp_path, monkeypatch):
 
 def test_a_missing_or_broken_mesh_is_named_and_left_out(tmp_path):
     model, _ = _arm(tmp_path, mesh="package://nowhere/tri.stl")
-    assert any("1 meshes were not found ('package://nowhere/tri.stl')" in note for note in model.notes)
+    assert any("1 mesh not found ('package://nowhere/tri.stl')" in note for note in model.notes)
     np.testing.assert_allclose(model.outline[2].max(0), [0.03, 0.03, 0.33])  # the tool's sphere only
     (tmp_path / "broken.stl").write_bytes(b"\x00" * 7)
     model, _ = _arm(tmp_path, mesh="broken.stl")
@@ -123,7 +124,8 @@ def test_a_malformed_shape_is_skipped_with_a_note():
     shapes, notes = link_shapes('<robot><link name="a"><collision><geometry><box size="1 nan 2"/></geometry>'
                                 '</collision><visual><geometry><sphere radius="0.1"/></geometry></visual></link></robot>')
     assert "malformed" in notes[0]
-    assert shapes["a"][0].kind == "sphere"  # no usable collision shape: the visual one
+    collision, visual = shapes["a"]
+    assert collision == () and visual[0].kind == "sphere"  # no usable collision shape: the visual one
 
 
 def test_a_file_without_geometry_keeps_the_default_reach():
@@ -189,3 +191,53 @@ def test_the_cli_takes_package_dirs_and_refuses_a_missing_one(tmp_path, capsys):
                  str(tmp_path / "nowhere"), "--json", str(out), "--quiet"])
     err = capsys.readouterr().err
     assert code == 2 and "--package-dir" in err and err.count("\n") == 1 and not out.exists()
+
+
+def test_a_collision_mesh_not_found_falls_back_to_the_visual_shapes(tmp_path):
+    text = ARM.format(mesh="x.stl").replace(
+        '<collision><origin xyz="0 0 0.2"/><geometry><cylinder radius="0.04" length="0.4"/></geometry></collision>',
+        '<collision><geometry><mesh filename="package://nowhere/upper.stl"/></geometry></collision>'
+        '<visual><origin xyz="0 0 0.2"/><geometry><cylinder radius="0.04" length="0.4"/></geometry></visual>')
+    model = read_revolute_chain(text, source="two.urdf", folder=tmp_path)
+    np.testing.assert_allclose([model.outline[1][:, 2].min(), model.outline[1][:, 2].max()], [0, 0.4], atol=1e-12)
+    assert any("package 'nowhere' with --package-dir" in note for note in model.notes)
+
+
+@pytest.mark.parametrize(("size", "message"), [("1e9 1e9 1e9", "more than"), ("0 0 0", "a point")])
+def test_an_outline_out_of_proportion_is_ignored_with_a_note(size, message):
+    text = ARM.format(mesh="x.stl").replace('<box size="0.2 0.2 0.1"/>', f'<box size="{size}"/>')
+    model = read_revolute_chain(text, source="two.urdf")
+    assert len(model.outline[0]) == 0  # the base falls back to the default reach
+    assert any("'base'" in note and message in note for note in model.notes)
+    assert np.all(np.isfinite(attachment_boxes(model)[1]))
+
+
+def test_a_collada_mesh_in_millimetres_is_read_in_metres(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    text = trimesh.exchange.dae.export_collada(trimesh.creation.box([60, 60, 300]))
+    text = text.decode() if isinstance(text, bytes) else text
+    unit = '<unit meter="0.001" name="millimeter"/>'
+    text = re.sub(r"<unit[^>]*/>", unit, text) if "<unit" in text else text.replace("</asset>", unit + "</asset>")
+    (tmp_path / "box.dae").write_text(text)
+    model = read_revolute_chain(ARM.format(mesh="box.dae"), source="two.urdf", folder=tmp_path)
+    fore = model.outline[2]  # the box, 0.3 m long, y scaled by 2, and the tool's sphere 0.3 m out
+    np.testing.assert_allclose([fore[:, 1].min(), fore[:, 2].min(), fore[:, 2].max()], [-0.06, -0.15, 0.33], atol=1e-9)
+    assert any("converted to metres" in note for note in model.notes)
+
+
+def test_a_reach_longer_than_the_arm_is_refused(tmp_path, capsys):
+    out = tmp_path / "so101.json"
+    code = main(["design", str(robot_urdf("SO-101")), "--reach", "3", "--json", str(out), "--quiet"])
+    err = capsys.readouterr().err
+    assert code == 2 and "longer than the arm itself" in err and err.count("\n") == 1 and not out.exists()
+
+
+def test_reach_or_package_dir_designs_a_line_chain_urdf_on_the_general_model(tmp_path, capsys):
+    out = tmp_path / "example.json"
+    assert main(["design", "notebooks/arms/example_arm.urdf", "--reach", "0", "--json", str(out), "--quiet"]) == 0
+    data = json.loads(out.read_text())
+    assert data["inputs"]["reach_m"] == 0.0 and "ideal" in data
+    assert main(["design", "notebooks/arms/example_arm.urdf", "--reach", "abc", "--json", str(out), "--quiet"]) == 2
+    assert "--reach" in capsys.readouterr().err
+    code = main(["design", "notebooks/arms/paper001_arm.toml", "--reach", "3 cm", "--json", str(out), "--quiet"])
+    assert code == 2 and "--reach applies to arms for paper 000's method" in capsys.readouterr().err

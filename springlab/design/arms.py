@@ -171,7 +171,8 @@ def _planar(model, loaded, w, vertical, up) -> tuple[bool, str]:
                            "parallel: not a planar chain")
     if np.max(np.abs(ref @ up)) > PARALLEL:
         return False, "the loaded joints' axes are not horizontal: gravity acts out of their plane"
-    return True, (f"{', '.join(names)} turn about parallel horizontal axes after vertical ones: a planar chain, "
+    before = " after vertical ones" if first > 0 else ""
+    return True, (f"{', '.join(names)} turn about parallel horizontal axes{before}: a planar chain, "
                   "balanced exactly by zero-free-length springs (one per pair of its links at most)")
 
 
@@ -345,7 +346,10 @@ def attachment_boxes(model: RevoluteChain, reach=None) -> tuple[np.ndarray, np.n
     its frame's horizontal plane (the mounting surface, when the base frame's up is one of its
     axes): nothing is attached under the table."""
     length = float(np.sum(np.linalg.norm(model.placements[:, :3, 3], axis=1)))
-    given = None if reach is None else _checks.positive("reach", reach, allow_zero=True, unit="m")
+    given = None if reach is None else _checks.positive("reach", reach, allow_zero=True, unit="m") + 0.0
+    if given is not None and given > max(length, 0.1):
+        raise SpringlabError(f"reach = {given:g} m is longer than the arm itself ({length:.3g} m, the sum of its "
+                             "joints' distances): a bracket beyond a link is a few centimetres, e.g. '3 cm'")
     margin = max(0.05, 0.15 * length) if given is None else given
     centres, half = np.zeros((model.n + 1, 3)), np.zeros((model.n + 1, 3))
     for b in range(model.n + 1):
@@ -803,13 +807,14 @@ def _reach_note(model: RevoluteChain, reach) -> str:
     if all(known):
         return (f"spring ends lie within each body's outline (the bounding box of its URDF geometry) and "
                 f"{100 * bracket:.3g} cm beyond it (a bracket; --reach)")
+    box = (f"a box centred between its joint and the next, half their distance plus {100 * margin:.3g} cm each "
+           "way along its axes")
     if not any(known):
-        return (f"spring ends lie within {100 * margin:.3g} cm of the segment between each body's joints "
-                "(the file gives no geometry; --reach)")
+        return f"spring ends lie, on each body, within {box} (the file gives no geometry; --reach)"
     missing = ", ".join(repr(model.bodies[i]) for i, k in enumerate(known) if not k)
     return (f"spring ends lie within each body's outline (the bounding box of its URDF geometry) and "
             f"{100 * bracket:.3g} cm beyond it; for {missing}, which {'has' if missing.count(',') == 0 else 'have'} "
-            f"no geometry, within {100 * margin:.3g} cm of the segment between its joints (--reach)")
+            f"no geometry, within {box} (--reach)")
 
 
 def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, fit_poses: int = 300, seed: int = 1,

@@ -10,8 +10,11 @@ the hull then lies inside the shape by at most 1 - cos(pi / ROUND_POINTS) of its
 
 Mesh paths are resolved as ROS does (:func:`resolve_mesh`): ``package://PKG/rest`` in the
 folders given, in a folder named PKG above the URDF (or beside one of those folders), in
-``ROS_PACKAGE_PATH`` and under ``AMENT_PREFIX_PATH``'s ``share``; ``file://`` and relative
-paths from the URDF's folder. A mesh that cannot be found or read is named in a note and left
+``ROS_PACKAGE_PATH`` and under ``AMENT_PREFIX_PATH``'s ``share``; an absolute path or ``file://``
+path as it is; a relative one (also after ``file://``) from the URDF's folder. A COLLADA mesh in
+other units (``<unit meter="0.001">``) is converted to metres, as ROS's viewers read it (Pinocchio's
+loader keeps the numbers as they are: such a file is where the two differ). A mesh file over
+:data:`MAX_MESH_BYTES` is skipped. A mesh that cannot be found or read is named in a note and left
 out (the link then bounds springs by its other shapes, or by the default reach):
 :class:`~springlab.errors.MeshError`, caught by the reader.
 """
@@ -75,9 +78,9 @@ def _frame(element) -> np.ndarray | None:
 
 
 def link_shapes(text: str) -> tuple[dict, list]:
-    """Each link's shapes in a URDF text: link name -> tuple of :class:`Shape` (its collision
-    geometry, else its visual geometry; links with neither are left out), and notes on what was
-    skipped (a malformed size or origin: named)."""
+    """Each link's shapes in a URDF text: link name -> (collision shapes, visual shapes), each a
+    tuple of :class:`Shape` (links with neither are left out), and notes on what was skipped (an
+    unknown geometry, a missing or malformed size, scale or origin: named)."""
     if not isinstance(text, str):
         raise SpringlabError(f"text must be a URDF's text (a string), got {type(text).__name__}")
     try:
@@ -87,6 +90,7 @@ def link_shapes(text: str) -> tuple[dict, list]:
     out, notes = {}, []
     for link in root.findall("link"):
         name = link.get("name")
+        found = []
         for tag in ("collision", "visual"):
             shapes = []
             for element in link.findall(tag):
@@ -96,15 +100,22 @@ def link_shapes(text: str) -> tuple[dict, list]:
                 g = geometry[0]
                 T = _frame(element)
                 shape = None if T is None else _shape(g, T)
-                if shape is None:
-                    notes.append(f"link {name!r}: a <{tag}> <{g.tag}> with a missing or malformed size or origin "
-                                 "was skipped")
+                if g.tag not in KINDS:
+                    notes.append(f"link {name!r}: a <{tag}> <{g.tag}> was skipped (springlab reads "
+                                 f"{', '.join(KINDS)})")
+                elif shape is None:
+                    what = "filename" if g.tag == "mesh" and not g.get("filename") else "size, scale or origin"
+                    notes.append(f"link {name!r}: a <{tag}> <{g.tag}> with a missing or malformed {what} was skipped")
                 else:
                     shapes.append(shape)
-            if shapes:
-                out[name] = tuple(shapes)
-                break
+            found.append(tuple(shapes))
+        if any(found):
+            out[name] = tuple(found)
     return out, notes
+
+
+KINDS = ("box", "cylinder", "sphere", "capsule", "mesh")
+"""The URDF geometries springlab reads."""
 
 
 def _shape(g, T) -> Shape | None:
@@ -126,8 +137,7 @@ def _shape(g, T) -> Shape | None:
 def resolve_mesh(filename: str, folder: Path | None, package_dirs=()) -> Path | None:
     """The file a URDF's mesh name points to, or None (see the module docstring for the search)."""
     if filename.startswith("file://"):
-        path = Path(filename[len("file://"):])
-        return path if path.is_file() else None
+        filename = filename[len("file://"):]  # an absolute path, or (loosely) one relative to the URDF
     if not filename.startswith("package://"):
         path = Path(filename) if Path(filename).is_absolute() or folder is None else Path(folder) / filename
         return path if path.is_file() else None
@@ -160,23 +170,42 @@ def _ball(radius: float, centre_z: float = 0.0, half: int = 0) -> np.ndarray:
     return np.vstack(pts)
 
 
-def _mesh_points(path: Path, scale) -> np.ndarray:
+MAX_MESH_BYTES = 64 * 2**20
+"""The largest mesh file springlab reads (64 MiB; a link's scan of millions of triangles bounds it
+no better than its hull): a larger one is skipped with a note."""
+
+
+def _mesh_points(path: Path, scale, notes: list | None = None) -> np.ndarray:
     import trimesh
     from scipy.spatial import ConvexHull, QhullError
 
+    size = path.stat().st_size
+    if size > MAX_MESH_BYTES:
+        raise MeshError(f"{path}: {size / 2**20:.0f} MiB, more than springlab reads ({MAX_MESH_BYTES / 2**20:.0f} "
+                        "MiB): give the link a simpler collision mesh", filename=str(path))
     mesh = trimesh.load(path, force="mesh", process=False)
+    units = getattr(mesh, "units", None)
+    if units and units != "meters":  # a COLLADA file's <unit meter="0.001">: its own unit, as ROS's viewers take it
+        mesh.convert_units("meters")
+        if notes is not None:
+            notes.append(f"mesh {path.name} is in {units}: converted to metres")
     v = np.asarray(mesh.vertices, dtype=float) * np.asarray(scale, dtype=float)
-    if len(v) == 0 or not np.all(np.isfinite(v)):
-        raise MeshError(f"{path}: no finite vertices", filename=str(path))
+    if len(v) == 0:
+        raise MeshError(f"{path}: no vertices (an empty or unreadable mesh)", filename=str(path))
+    if not np.all(np.isfinite(v)):
+        raise MeshError(f"{path}: vertices that are not finite numbers", filename=str(path))
+    if len(v) > 100_000:  # a scan's unmerged vertices: the hull needs each point once
+        v = np.unique(v, axis=0)
     try:
         return v[ConvexHull(v).vertices]
     except (QhullError, ValueError):  # flat or degenerate: its points bound it as well
         return v
 
 
-def shape_points(shape: Shape, folder: Path | None = None, package_dirs=()) -> np.ndarray:
+def shape_points(shape: Shape, folder: Path | None = None, package_dirs=(), notes: list | None = None) -> np.ndarray:
     """Points (m, in the link's frame) whose convex hull is the shape, (k, 3). A mesh that cannot be
-    found or read raises :class:`~springlab.errors.MeshError` (``found`` says which)."""
+    found or read raises :class:`~springlab.errors.MeshError` (``found`` says which); a mesh in
+    other units than metres is converted, with a line added to ``notes``."""
     if shape.kind == "box":
         h = np.asarray(shape.size) / 2
         local = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]) * h
@@ -194,7 +223,7 @@ def shape_points(shape: Shape, folder: Path | None = None, package_dirs=()) -> n
             raise MeshError(f"mesh {shape.filename!r} not found: give the folder that holds its package",
                             filename=shape.filename, found=False)
         try:
-            local = _mesh_points(path, shape.scale)
+            local = _mesh_points(path, shape.scale, notes)
         except MeshError:
             raise
         except Exception as err:  # trimesh raises many kinds on a file it cannot read

@@ -762,7 +762,8 @@ def read_revolute_chain(text: str, *, source: str = "arm.urdf", up=None, tip: st
     if shapes:
         T_body = {link: np.linalg.solve(frames[body], pose[link]) for link, body in owner.items()}
         names = (sel.root, *(j.child for j in movers))
-        outline, said = _outlines(text, owner, T_body, names, folder, package_dirs)
+        length = float(np.sum(np.linalg.norm(np.array(placements)[:, :3, 3], axis=1)))
+        outline, said = _outlines(text, owner, T_body, names, folder, package_dirs, length)
         notes += said
     return RevoluteChain(sel.name, (sel.root, *(j.child for j in movers)), tuple(j.name for j in movers),
                          np.array(placements), np.array([j.axis for j in movers]),
@@ -781,35 +782,72 @@ def _hull(points: np.ndarray) -> np.ndarray:
         return points
 
 
-def _outlines(text, owner, T_body, names, folder, package_dirs) -> tuple[tuple, list]:
-    """Each body's outline (points, m, body frame) from its links' shapes, and notes on what was
-    read and what was not (a mesh not found or unreadable, a body with no geometry)."""
+OUTLINE_LIMITS = (1e-3, 5.0)
+"""A body's outline is ignored (with a note) when its largest side is under 1 mm (a point: a zero
+scale or size) or over 5 times the arm's length (at least 2 m: a mesh in millimetres read as metres,
+a misplaced scale)."""
+
+
+def _outlines(text, owner, T_body, names, folder, package_dirs, length) -> tuple[tuple, list]:
+    """Each body's outline (points, m, body frame) from its links' shapes (collision, else visual:
+    also where no collision shape of a link could be read), and notes on what was read and what was
+    not (a mesh not found or unreadable, an outline out of proportion, a body with no geometry)."""
     from springlab.model.shapes import link_shapes, shape_points
 
     found, notes = link_shapes(text)
     points = [[] for _ in names]
-    missing, unreadable, read = [], [], 0
+    missing, unreadable, read = {}, {}, 0
     for link, body in owner.items():
-        for shape in found.get(link, ()):
-            try:
-                local = shape_points(shape, folder, package_dirs)
-            except MeshError as err:
-                (unreadable if err.found else missing).append(str(err) if err.found else shape.filename)
-                continue
-            read += 1
-            T = T_body[link]
-            points[body].append(local @ T[:3, :3].T + T[:3, 3])
+        for shapes in found.get(link, ((), ())):
+            placed = []
+            for shape in shapes:
+                try:
+                    local = shape_points(shape, folder, package_dirs, notes)
+                except MeshError as err:
+                    if err.found:
+                        unreadable.setdefault(str(err), None)
+                    else:
+                        missing.setdefault(shape.filename, None)
+                    continue
+                T = T_body[link]
+                placed.append(local @ T[:3, :3].T + T[:3, 3])
+            if placed:  # the collision shapes read, else the visual ones
+                points[body] += placed
+                read += len(placed)
+                break
     if missing:
-        shown = ", ".join(map(repr, missing[:3])) + (f" and {len(missing) - 3} more" if len(missing) > 3 else "")
-        notes.append(f"{len(missing)} meshes were not found ({shown}): give the folder that holds their package "
-                     "(--package-dir), or their links' reach falls back to the default")
+        shown = ", ".join(map(repr, list(missing)[:3])) + (f" and {len(missing) - 3} more" if len(missing) > 3 else "")
+        packages = sorted({m[len("package://"):].lstrip("/").split("/")[0] for m in missing if m.startswith("package://")})
+        where = (f"give the folder that holds package {', '.join(map(repr, packages))} with --package-dir (searched: "
+                 "folders above the URDF, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH)" if packages
+                 else "relative paths are read from the URDF's folder")
+        notes.append(f"{_plural(len(missing), 'mesh', 'meshes')} not found ({shown}): {where}; those links fall "
+                     "back to their other shapes or the default reach")
     if unreadable:
-        notes.append(f"{len(unreadable)} meshes could not be read ({unreadable[0]}): left out")
+        notes.append(f"{_plural(len(unreadable), 'mesh', 'meshes')} could not be read ({next(iter(unreadable))}): "
+                     "left out")
     if not read:
         return (), notes
-    outline = tuple(_hull(np.vstack(p)) if p else np.zeros((0, 3)) for p in points)
+    small, large = OUTLINE_LIMITS[0], max(2.0, OUTLINE_LIMITS[1] * length)
+    outline = []
+    for i, p in enumerate(points):
+        hull = _hull(np.vstack(p)) if p else np.zeros((0, 3))
+        side = float(np.max(np.ptp(hull, axis=0))) if len(hull) else 0.0
+        if len(hull) and not small <= side <= large:
+            why = "a point (a zero scale or size?)" if side < small else (
+                f"{side:.3g} m across, more than {large:.3g} m (5 times the arm's length, at least 2 m): a mesh in "
+                "other units, or a wrong scale?")
+            notes.append(f"the geometry of {names[i]!r} is {why}: ignored, the default reach there")
+            hull = np.zeros((0, 3))
+        outline.append(hull)
     empty = [repr(names[i]) for i, p in enumerate(outline) if len(p) == 0]
-    notes.append(f"the bodies' outlines (where springs attach) come from {read} shapes of the file's geometry"
-                 + (f"; {', '.join(empty)} {'has' if len(empty) == 1 else 'have'} none (the default reach there)"
-                    if empty else ""))
-    return outline, notes
+    if len(empty) == len(outline):
+        return (), notes
+    notes.append(f"the bodies' outlines (where springs attach) come from {_plural(read, 'shape', 'shapes')} of the "
+                 "file's geometry" + (f"; {', '.join(empty)} {'has' if len(empty) == 1 else 'have'} none (the default "
+                                      "reach there)" if empty else ""))
+    return tuple(outline), notes
+
+
+def _plural(n: int, one: str, many: str) -> str:
+    return f"{n} {one if n == 1 else many}"

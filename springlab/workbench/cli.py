@@ -87,7 +87,7 @@ def _design(args) -> int:
     if is_dh_arm(data):
         return _design_dh(args, path)
     for folder in args.package_dir:
-        if not Path(folder).is_dir():
+        if not folder.strip() or not Path(folder).is_dir():
             raise SpringlabError(f"--package-dir = {folder!r} is not a folder: give the folder that holds the "
                                  "URDF's mesh packages")
     if (args.reach is not None or args.package_dir) and path.suffix != ".urdf":
@@ -96,8 +96,8 @@ def _design(args) -> int:
     if args.workspace is not None and path.suffix != ".urdf":
         raise SpringlabError(f"--workspace = {args.workspace!r} applies to URDF files (an arm file gives each "
                              "joint's range in its links' 'range')")
-    if path.suffix == ".urdf" and args.workspace is not None:
-        return _design_general(args, path, data, "")
+    if path.suffix == ".urdf" and (args.workspace is not None or args.reach is not None or args.package_dir):
+        return _design_general(args, path, data, "")  # ranges, reaches and outlines: the general model's
     try:
         spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up), tip=args.tip, base=args.base,
                         payload=args.payload)
@@ -183,7 +183,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     mjcf = _mjcf_paths(args)
     started = time.perf_counter()
     reach = None if args.reach is None else _checks.positive(
-        "--reach", parse_quantity(args.reach, "length", "--reach"), allow_zero=True, unit="m")
+        "--reach", parse_quantity(args.reach, "length", "--reach"), allow_zero=True, unit="m") + 0.0
     design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material, reach=reach)
     seconds = time.perf_counter() - started
     print(f"# {model.name}: {model.n} revolute joints from {model.bodies[0]!r} to {model.bodies[-1]!r}"
@@ -263,7 +263,8 @@ def _design_dh(args, path: Path) -> int:
                              f"{path} is designed by paper 001's pseudobase method, whose springs ride on "
                              "parallelogram auxiliary links (RSSR modules) that springlab does not export: leave out --mjcf")
     for flag, given in (("--sheet", args.sheet), ("--up", args.up), ("--tip", args.tip), ("--base", args.base),
-                        ("--payload", args.payload), ("--method", args.method != "fewest springs")):
+                        ("--payload", args.payload), ("--method", args.method != "fewest springs"),
+                        ("--reach", args.reach), ("--package-dir", args.package_dir), ("--workspace", args.workspace)):
         if given:
             raise SpringlabError(f"{flag} applies to arms for paper 000's method; {path} describes its arm by DH "
                                  "frames, designed by paper 001's pseudobase method")
@@ -365,7 +366,7 @@ def main(argv=None) -> int:
     p.add_argument("--reach", help="how far beyond a URDF arm's links a spring end may sit, e.g. '5 cm': beyond "
                                    "each link's geometry (its collision shapes' bounding box; default 3 cm, '0' for "
                                    "none), or beyond the link's joints where the file gives no geometry (default 15 %% "
-                                   "of the arm's length); the general model")
+                                   "of the arm's length); designs a URDF arm on the general model")
     p.add_argument("--package-dir", action="append", default=[], metavar="DIR",
                    help="a folder that holds the packages a URDF's package:// meshes name (repeatable; also "
                         "searched: folders above the URDF, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH)")
