@@ -128,3 +128,56 @@ def test_bad_mjcf_is_one_line_exit_2_nothing_written(args, message, tmp_path, ca
     err = capsys.readouterr().err
     assert code == 2 and message in err and err.count("\n") == 1
     assert not out.exists() and not list(tmp_path.glob("*.xml"))
+
+
+@pytest.fixture(scope="module")
+def ur5_pulleys():
+    return design_model(load_robot("UR5"), samples=400, fit_poses=100, pulley_radius=0.005)
+
+
+def test_the_ur5_over_5_mm_pulleys_keeps_90_percent_by_route_2_and_mujoco(ur5_pulleys):
+    design = ur5_pulleys
+    assert all(r.pulley_radius == 0.005 for r, kind in zip(design.realised, design.kinds, strict=True)
+               if kind == "cable over a pulley")
+    removed = design.removed("realised")
+    assert all(removed[i] >= 90 for i in design.structure.loaded)
+    model, q = design.model, design.q
+    held = mujoco_holding_torques(to_mjcf(model, design.realised), model, q)
+    ours = geometry.joint_torques(model, design.realised, q)
+    scale = np.max(np.abs(geometry.gravity_torques(model, q)))
+    assert np.max(np.abs(held - ours)) < AGREE * scale  # MuJoCo's wrapped cylinders: route 2's cable path
+    # negative control: the same springs exported with 4 mm pulleys must disagree
+    smaller = [PointSpring(**(s.as_dict() | {"pulley_radius": 0.004})) if s.pulley_radius else s
+               for s in design.realised]
+    off = mujoco_holding_torques(to_mjcf(model, smaller), model, q[:50])
+    assert np.max(np.abs(off - ours[:50])) > 1e3 * AGREE * scale
+
+
+def test_route_2s_pulley_torques_are_the_energys_gradient(ur5_pulleys):
+    model, springs = ur5_pulleys.model, ur5_pulleys.realised
+    q = ur5_pulleys.q[:4]
+    torques = geometry.joint_torques(model, springs, q)
+    step = 1e-6
+    for j in range(model.n):
+        e = np.zeros(model.n)
+        e[j] = step
+        slope = (geometry.potential(model, springs, q + e)["total"] - geometry.potential(model, springs, q - e)["total"])
+        np.testing.assert_allclose(slope / (2 * step), torques[:, j], atol=1e-6)
+
+
+def test_a_pulley_spring_is_checked_and_exudyn_refuses_it():
+    from springlab.energy import simulation
+    from springlab.errors import SpringlabError
+
+    with pytest.raises(SpringlabError, match="lead of"):
+        PointSpring("a", (0, 0, 0), "b", (0, 0, 1), 10.0, pulley_radius=0.01)
+    with pytest.raises(SpringlabError, match="pulley_radius of"):
+        PointSpring("a", (0, 0, 0), "b", (0, 0, 1), 10.0, pulley_radius=-0.01, lead=(1, 0, 0))
+    with pytest.raises(SpringlabError, match="give pulley_radius > 0"):
+        PointSpring("a", (0, 0, 0), "b", (0, 0, 1), 10.0, lead=(1, 0, 0))
+    spring = PointSpring("shoulder_link", (0, 0, 0.05), "forearm_link", (0, 0, 0.2), 100.0, pulley_radius=0.005,
+                         lead=(0, 0, 2))
+    assert spring.lead == (0.0, 0.0, 1.0) and spring.as_dict()["pulley_radius"] == 0.005
+    model = load_robot("UR5")
+    with pytest.raises(SpringlabError, match="exudyn's springs cannot model"):
+        simulation.joint_torques(model, [spring], model.random_q(1, 0))

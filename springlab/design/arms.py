@@ -686,22 +686,25 @@ class ArmDesign:
         return torque_table(self.model, self.q, {"ideal": self.ideal, "realised": self.realised},
                             unloaded=self.structure.unloaded)
 
-    def springs_table(self) -> Table:
-        """Each spring: its ends (link, point in mm in the link's URDF frame) and rate, and how it is
-        built: the kind, the coil's own free length and longest stretched length (mm, inside the hooks),
-        its initial tension (N) and wire (mm); or why no stocked spring fits."""
-        built = {(r.link_a, r.point_a, r.link_b, r.point_b): (r, kind, coil)
-                 for r, kind, (coil, _) in zip(self.realised, self.kinds, self.coils, strict=True)}
+    def springs_table(self, which: str = "realised") -> Table:
+        """Each spring as a shop builds it (``which='ideal'``: as designed): its ends (link, point in mm
+        in the link's URDF frame) and rate, and how it is built: the kind, the pulley's radius and the
+        cable's lead, the coil's own free length and longest stretched length (mm, inside the hooks),
+        its initial tension (N) and wire (mm). A spring no stocked wire realises is named in the notes."""
+        mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
+        if which == "ideal":
+            return Table(["link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)"],
+                         [(s.link_a, mm(s.point_a), s.link_b, mm(s.point_b), f"{s.k:.4g}") for s in self.ideal])
         rows = []
-        for s in self.ideal:
-            r, kind, coil = built.get((s.link_a, s.point_a, s.link_b, s.point_b), (None, "not realised (see the notes)",
-                                                                                    None))
-            mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
-            rows.append((s.link_a, mm(s.point_a), s.link_b, mm(s.point_b), f"{s.k:.4g}", kind,
-                         f"{1e3 * coil.free_length:.1f}" if coil else "", f"{1e3 * coil.max_length:.1f}" if coil else "",
-                         f"{coil.initial_tension:.3g}" if coil else "", f"{1e3 * coil.wire:.2g}" if coil else ""))
+        for r, kind, (coil, _) in zip(self.realised, self.kinds, self.coils, strict=True):
+            pulley = (f"{1e3 * r.pulley_radius:g}, lead ({', '.join(f'{v + 0.0:.2f}' for v in r.lead)})"
+                      if r.pulley_radius > 0 else "")
+            rows.append((r.link_a, mm(r.point_a), r.link_b, mm(r.point_b), f"{r.k:.4g}", kind, pulley,
+                         f"{1e3 * coil.free_length:.1f}", f"{1e3 * coil.max_length:.1f}", f"{coil.initial_tension:.3g}",
+                         f"{1e3 * coil.wire:.2g}"))
         return Table(["link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)", "realised as",
-                      "coil free length (mm)", "coil longest (mm)", "initial tension (N)", "wire (mm)"], rows)
+                      "pulley (mm), lead", "coil free length (mm)", "coil longest (mm)", "initial tension (N)",
+                      "wire (mm)"], rows)
 
     def control(self, factor: float = 0.9) -> tuple[float, float]:
         """The negative control: the largest holding torque (N m, over joints and the workspace poses)
@@ -758,44 +761,168 @@ def _coil_fields(kind: str, coil, span) -> dict:
     return out
 
 
-def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music wire") -> tuple[tuple, tuple]:
+def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music wire", pulley_radius: float = 0.0,
+                    reach=None, fit=None, max_stiffness: float = MAX_STIFFNESS) -> tuple[tuple, tuple, tuple]:
     """Each ideal spring as a helical extension spring from stocked wire (:mod:`springlab.design.buildable`):
-    a zero-length spring (F_i = k L_0) where one can be wound, else a spring whose cable runs over a
-    pulley at end A to end B, cut so that the force is k times the cable's path (for a point pulley,
-    |B - A|: the pulley's radius is not modelled on a general arm). Returns the realised springs
-    (free length L_0 and initial tension F_i as wound; a cable spring's free length is the cable's
-    equivalent, F_i / k) and their kinds.
+    a zero-length spring (F_i = k L_0) where one can be wound, else a spring mounted on link_a whose
+    cable runs over a pulley at end A to end B, cut so that the force is k times the cable's path.
+    Returns the realised springs (free length L_0 and initial tension F_i as wound; a cable spring's
+    free length is the cable's equivalent, F_i / k), their kinds and coils.
+
+    With ``pulley_radius`` (m) > 0 the pulley is modelled (route 2's cable path,
+    :func:`springlab.energy.geometry.cable_geometry`): it adds a pose-dependent energy of about
+    k L rho alpha that no ideal spring had. So the cable springs are re-balanced on the poses ``fit``
+    (default: ``q``'s first 150): each spring's lead (the direction its cable arrives from) is chosen
+    among its body's axes and the mean direction to B, and then their rates and ends (within
+    :func:`attachment_boxes` with ``reach``, rates at most ``max_stiffness``) are moved to bring the
+    largest holding torque down again (:func:`_rebalance`). The zero-length springs stay as designed.
 
     :raises SpringlabError: naming the spring when neither realisation fits
     """
     from springlab.design.buildable import cable_spring, zero_length_spring
-    from springlab.model.revolute import world_points
 
+    q = model.check_q(q)
+    pulley_radius = _checks.positive("pulley_radius", pulley_radius, allow_zero=True, unit="m")
+    springs = check_point_springs(model, springs)
     R, o = body_frames(model, q)
-    out, kinds, coils = [], [], []
+    kinds = []
     for s in springs:
-        A = world_points(R, o, *model.locate(s.link_a, s.point_a))
-        B = world_points(R, o, *model.locate(s.link_b, s.point_b))
-        length = np.linalg.norm(B - A, axis=1)
-        lengths = (max(float(length.min()), 1e-6), max(float(length.max()), 1e-6))
+        lengths = _length_range(model, s, R, o)
         coil, why = zero_length_spring(s.k, lengths, material)
-        if coil is not None:
-            out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, coil.free_length,
-                                   s.k * coil.free_length))
-            kinds.append("zero-length spring")
-            coils.append((coil, lengths))
+        kinds.append(("zero-length spring", coil, lengths) if coil is not None else ("cable", None, why))
+    cable = [i for i, (kind, _, _) in enumerate(kinds) if kind == "cable"]
+    built = list(springs)
+    if pulley_radius > 0 and cable:
+        fit = q[:150] if fit is None else model.check_q(fit)
+        built = _rebalance(model, _leads(model, built, cable, fit, pulley_radius), cable, fit, reach, max_stiffness)
+    out, names, coils = [], [], []
+    for i, s in enumerate(built):
+        kind, coil, detail = kinds[i]
+        if kind == "zero-length spring":
+            out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, coil.free_length, s.k * coil.free_length))
+            names.append(kind)
+            coils.append((coil, detail))
             continue
+        lengths = _length_range(model, s, R, o)
         coil, why_cable = cable_spring(s.k, lengths, material)
         if coil is None:
-            kinds.append(f"not realised: no zero-length spring ({why}) and no cable spring ({why_cable})")
+            names.append(f"not realised: no zero-length spring ({detail}) and no cable spring ({why_cable})")
             out.append(None)
             coils.append(None)
             continue
         out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, coil.initial_tension / s.k,
-                               coil.initial_tension))
-        kinds.append("cable over a pulley")
+                               coil.initial_tension, s.pulley_radius, s.lead))
+        names.append("cable over a pulley")
         coils.append((coil, lengths))
-    return tuple(out), tuple(kinds), tuple(coils)
+    return tuple(out), tuple(names), tuple(coils)
+
+
+def _length_range(model: RevoluteChain, spring, R, o) -> tuple[float, float]:
+    """The shortest and longest length (m) of a spring (its cable's path over a pulley) at the poses."""
+    from springlab.energy.geometry import spring_lengths
+
+    length = spring_lengths(model, [spring], R, o)[0]
+    return max(float(length.min()), 1e-6), max(float(length.max()), 1e-6)
+
+
+def _worst(model: RevoluteChain, springs, q, scale) -> float:
+    return float(np.max(np.abs(joint_torques(model, springs, q)) / scale))
+
+
+def _with(s, **changes) -> PointSpring:
+    fields = {"link_a": s.link_a, "point_a": s.point_a, "link_b": s.link_b, "point_b": s.point_b, "k": s.k,
+              "free_length": s.free_length, "initial_tension": s.initial_tension, "pulley_radius": s.pulley_radius,
+              "lead": s.lead}
+    return PointSpring(**(fields | changes))
+
+
+def _leads(model: RevoluteChain, springs, cable, q, radius: float) -> list:
+    """Each cable spring over a pulley of ``radius`` (m), its lead (in link_a's frame) chosen, one
+    spring at a time and twice over, among +-x, +-y, +-z of link_a, the direction from its joint to A
+    and the mean direction from A to B and its opposite: whichever leaves the smallest largest
+    holding torque (relative to each joint's scale) at the poses ``q``."""
+    from springlab.model.revolute import world_points
+
+    R, o = body_frames(model, q)
+    scale = _joint_scales(model, q)
+    out = list(springs)
+    candidates = {}
+    for i in cable:
+        s = springs[i]
+        a, pa = model.locate(s.link_a, s.point_a)
+        A, B = world_points(R, o, a, pa), world_points(R, o, *model.locate(s.link_b, s.point_b))
+        towards = np.einsum("pji,pj->i", R[:, a], B - A)  # summed over the poses, in body a's frame
+        own = [np.asarray(model.locate(s.link_a, (0.0, 0.0, 0.0))[1])]  # link_a's frame in body a's
+        found = [*np.eye(3), *-np.eye(3), towards, -towards, np.asarray(pa) - own[0]]
+        rotation = np.array([model.locate(s.link_a, e)[1] - own[0] for e in np.eye(3)]).T  # link_a -> body
+        candidates[i] = [tuple(rotation.T @ (u / np.linalg.norm(u))) for u in found if np.linalg.norm(u) > 1e-9]
+        out[i] = _with(s, pulley_radius=radius, lead=candidates[i][-1])  # from link_a's origin to A, or -towards
+    for _ in range(2):
+        for i in cable:
+            trials = [out[:i] + [_with(out[i], lead=u)] + out[i + 1:] for u in candidates[i]]
+            out = min(trials, key=lambda t: _worst(model, t, q, scale))
+    return out
+
+
+def _rebalance(model: RevoluteChain, springs, cable, q, reach, max_stiffness) -> list:
+    """Move the cable springs' rates and ends (within :func:`attachment_boxes`) to bring the largest
+    holding torque at the poses ``q`` down, by least squares on p-norms (p = 2, 8, 20) of the torques
+    relative to each joint's scale (trust-region reflective, finite-difference Jacobian). Kept only
+    where it lowers the largest torque."""
+    from scipy.optimize import least_squares
+
+    centres, half = attachment_boxes(model, reach)
+    scale = _joint_scales(model, q)
+    ends = {i: (model.locate(springs[i].link_a, springs[i].point_a), model.locate(springs[i].link_b, springs[i].point_b))
+            for i in cable}
+    x0, lo, hi = [], [], []
+    for i in cable:
+        (a, pa), (b, pb) = ends[i]
+        x0 += [springs[i].k, *pa, *pb]
+        lo += [0.0, *(centres[a] - half[a]), *(centres[b] - half[b])]
+        hi += [max_stiffness, *(centres[a] + half[a]), *(centres[b] + half[b])]
+    x0, lo, hi = (np.array(v, dtype=float) for v in (x0, lo, hi))
+    hi = np.maximum(hi, x0)  # a designed rate above the cap stays reachable
+    x0 = np.clip(x0, lo, hi)
+
+    def build(x):
+        out = list(springs)
+        for m, i in enumerate(cable):
+            (a, _), (b, _) = ends[i]
+            v = x[7 * m:7 * m + 7]
+            out[i] = PointSpring(model.bodies[a], tuple(v[1:4]), model.bodies[b], tuple(v[4:7]), max(v[0], 1e-9),
+                                 pulley_radius=springs[i].pulley_radius,
+                                 lead=tuple(_lead_in_body(model, springs[i])))
+        return out
+
+    best_x, best = x0, _worst(model, build(x0), q, scale)
+    x = x0
+    for p in (2, 8, 20):
+        def fun(v, p=p):
+            r = (joint_torques(model, build(v), q) / scale).ravel()
+            m = max(float(np.max(np.abs(r))), 1e-300)
+            return (r / m) * np.abs(r / m) ** (p / 2 - 1)
+        try:
+            x = least_squares(fun, x, bounds=(lo, hi), method="trf", diff_step=1e-6, max_nfev=15).x
+        except (ValueError, SpringlabError):
+            break
+        value = _worst(model, build(x), q, scale)
+        if value < best:
+            best_x, best = x, value
+    return build(best_x)
+
+
+def _joint_scales(model: RevoluteChain, q) -> np.ndarray:
+    """Each joint's scale (N m) for the realised springs' re-balance: its own peak gravity torque over
+    the poses (each loaded joint keeps its share removed, however light), a tenth of the largest for a
+    joint gravity leaves (nearly) alone."""
+    peak = np.max(np.abs(gravity_torques(model, q)), axis=0)
+    return np.where(peak > NEGLIGIBLE * np.max(peak), peak, 0.1 * np.max(peak))
+
+
+def _lead_in_body(model: RevoluteChain, spring) -> np.ndarray:
+    """A spring's lead (given in link_a's frame) in its body's frame."""
+    return np.asarray(model.locate(spring.link_a, spring.lead)[1]) - model.locate(spring.link_a, (0.0, 0.0, 0.0))[1]
 
 
 def _reach_note(model: RevoluteChain, reach) -> str:
@@ -819,7 +946,8 @@ def _reach_note(model: RevoluteChain, reach) -> str:
 
 def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, fit_poses: int = 300, seed: int = 1,
                  target: float = 0.1, reach: float | None = None, max_springs: int = 8,
-                 max_stiffness: float = MAX_STIFFNESS, material: str = "music wire") -> ArmDesign:
+                 max_stiffness: float = MAX_STIFFNESS, material: str = "music wire",
+                 pulley_radius: float = 0.0) -> ArmDesign:
     """Springs for an arm of the general model over its workspace (:func:`workspace_ranges`): its
     structure (:func:`structure`); the exact planar springs where its loaded joints form a planar
     chain (:func:`planar_springs`), else the best springs (:func:`best_springs`, fitted on
@@ -845,7 +973,9 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         ideal, method = fit.springs, "best springs"
         notes.append(f"not exact: {found.why}; springlab's exact construction needs a planar chain, so the "
                      f"best springs were searched: {fit.note}")
-    realised, kinds, coils = realise_springs(model, ideal, check, material=material)
+    realised, kinds, coils = realise_springs(model, ideal, check, material=material, pulley_radius=pulley_radius,
+                                             reach=reach, fit=rng.uniform(ranges[:, 0], ranges[:, 1], (150, model.n)),
+                                             max_stiffness=max_stiffness)
     for spring, kind in zip(ideal, kinds, strict=True):
         if kind.startswith("not realised"):
             notes.append(f"spring {spring.label} (k = {spring.k:.4g} N/m) is {kind}: the realised design leaves it out")
@@ -858,7 +988,17 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         notes.append(f"joint {model.joints[i]}: the springs leave {left[i]:.3g} N m at worst, more than gravity's own "
                      f"{gravity[i]:.3g} N m (the search holds every joint below the larger of its own peak and a tenth "
                      f"of the largest, {0.1 * float(np.max(gravity)):.3g} N m)")
-    if "cable over a pulley" in kinds:
-        notes.append("cable springs are modelled with a point pulley (the force k times |B - A|); the pulley's radius "
-                     "is not modelled on a general arm")
+    real = np.max(np.abs(joint_torques(model, realised, check)), axis=0)
+    for i in found.loaded:
+        if pulley_radius > 0 and real[i] > 0.5 * gravity[i] and gravity[i] > 0:
+            notes.append(f"joint {model.joints[i]}: the realised springs over {1e3 * pulley_radius:g} mm pulleys leave "
+                         f"{real[i]:.3g} N m of its {gravity[i]:.3g} N m (the ideal ones {left[i]:.3g}): each pulley adds "
+                         "about k rho times the change of its wrap angle, large against this arm's levers and rates; a "
+                         "smaller --pulley-radius (or 0, a point) or longer brackets (--reach) do better")
+    if "cable over a pulley" in kinds and pulley_radius == 0:
+        notes.append("cable springs are modelled with a point pulley (the force k times |B - A|): give a pulley radius "
+                     "(--pulley-radius) to model the pulley")
+    elif "cable over a pulley" in kinds:
+        notes.append(f"cable springs run over pulleys of radius {1e3 * pulley_radius:g} mm (route 2's cable path); "
+                     "their leads, rates and ends were re-balanced for it on 150 poses the table does not use")
     return ArmDesign(model, found, method, ideal, realised, kinds, coils, check, tuple(notes))

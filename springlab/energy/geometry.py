@@ -207,6 +207,61 @@ def holding_torques(chain: Chain, springs, X, *, out=None) -> np.ndarray:
     return out
 
 
+def cable_geometry(A, B, u, radius: float) -> tuple[np.ndarray, np.ndarray]:
+    """A cable from a spring mounted along ``u`` over a pulley of ``radius`` (m) centred at A to B:
+    its path (m), (N,), and the point T (N, 3) where it leaves the pulley. The cable arrives along
+    u (unit, (N, 3) or (3,)), the pulley swivels about u so that its plane holds B, and the cable
+    wraps it until it leaves along the tangent towards B::
+
+        path = rho (alpha + asin(rho / L)) + sqrt(L^2 - rho^2)
+
+    with L = |B - A| and alpha the angle between u and B - A: the wrapped arc plus the straight run
+    (:mod:`springlab.energy.pulley`). The cable pulls B towards T.
+
+    :raises GeometryError: where B comes within the pulley's radius of A
+    """
+    A, B = np.atleast_2d(A), np.atleast_2d(B)
+    u = np.broadcast_to(np.asarray(u, dtype=float), A.shape)
+    D = B - A
+    L = np.linalg.norm(D, axis=1)
+    if np.any(L <= radius):
+        p = int(np.argmax(L <= radius))
+        raise GeometryError(f"the cable's end B comes within the pulley's radius ({radius:g} m) of its centre A at pose "
+                            f"{p} (|B - A| = {L[p]:.3g} m): use a smaller pulley or move the attachments")
+    along = np.einsum("ij,ij->i", D, u)
+    normal = D - along[:, None] * u
+    q = np.linalg.norm(normal, axis=1)
+    trial = np.where(np.abs(u[:, :1]) < 0.9, np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+    any_normal = np.cross(u, trial)
+    any_normal /= np.linalg.norm(any_normal, axis=1)[:, None]  # B on the lead's line: any plane holds it
+    e2 = np.where(q[:, None] > 1e-15 * L[:, None], normal / np.maximum(q, 1e-300)[:, None], any_normal)
+    alpha = np.arctan2(q, along)  # in [0, pi]
+    wrap = alpha + np.arcsin(radius / L)
+    path = radius * wrap + np.sqrt(L**2 - radius**2)
+    phi = wrap - np.pi / 2  # T's polar angle about A in the plane (u, e2)
+    T = A + radius * (np.cos(phi)[:, None] * u + np.sin(phi)[:, None] * e2)
+    return path, T
+
+
+def _spring_ends(model: RevoluteChain, s, R, o):
+    """A spring's line of action at each pose: the points it pulls together (on its bodies a and b:
+    A, or the point T where its cable leaves the pulley, and B), its length l (m, the cable's path
+    over a pulley), (N, 3), (N, 3), (N,), and the bodies' indices."""
+    (ia, pa), (ib, pb) = model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)
+    A, B = world_points(R, o, ia, pa), world_points(R, o, ib, pb)
+    if s.pulley_radius > 0:
+        lead = model.locate(s.link_a, s.lead)[1] - model.locate(s.link_a, (0.0, 0.0, 0.0))[1]  # a direction
+        path, T = cable_geometry(A, B, R[:, ia] @ lead, s.pulley_radius)
+        return T, B, path, ia, ib
+    return A, B, np.linalg.norm(B - A, axis=1), ia, ib
+
+
+def spring_lengths(model: RevoluteChain, springs, R, o) -> np.ndarray:
+    """Each spring's length l (m) at the poses of :func:`~springlab.model.revolute.body_frames`' ``R``,
+    ``o``: |B - A|, or its cable's path over a pulley; (S, N)."""
+    return np.array([_spring_ends(model, s, R, o)[2] for s in check_point_springs(model, springs)])
+
+
 # --- the general model: any revolute chain, springs between any two points ------------------
 def _loads(model: RevoluteChain, springs, q, *, gravity: bool = True):
     """Per body, the force (N) and its moment about the base origin (N m) of the loads on it:
@@ -221,18 +276,16 @@ def _loads(model: RevoluteChain, springs, q, *, gravity: bool = True):
         F[:, 1:] = model.mass[1:, None] * model.gravity  # the base's weight is the ground's
         M[:, 1:] = np.cross(centres_of_mass(model, R, o)[:, 1:], F[:, 1:])
     for s in springs:
-        (ia, pa), (ib, pb) = model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)
-        A, B = world_points(R, o, ia, pa), world_points(R, o, ib, pb)
+        A, B, length, ia, ib = _spring_ends(model, s, R, o)  # A: where the pull on body a acts (T over a pulley)
         d = B - A
         l0 = s.effective_free_length
-        k_eff = np.full(N, s.k)
-        if l0:
-            length = np.linalg.norm(d, axis=1)
-            if np.any(length == 0):
-                p = int(np.argmax(length == 0))
-                raise GeometryError(f"{s.label}'s ends coincide at pose {p}: a spring of effective free length {l0:g} m "
-                                    "has no line of action there; move its attachments or leave that pose out")
-            k_eff = s.k * (1.0 - l0 / length)
+        chord = np.linalg.norm(d, axis=1) if (l0 or s.pulley_radius) else None
+        if chord is not None and np.any(chord == 0):
+            p = int(np.argmax(chord == 0))
+            raise GeometryError(f"{s.label}'s ends coincide at pose {p}: a spring of effective free length {l0:g} m "
+                                "has no line of action there; move its attachments or leave that pose out")
+        # the tension k (l - l0) along the line from B to A (or T), l the length (the cable's path)
+        k_eff = np.full(N, s.k) if chord is None else s.k * (length - l0) / chord
         f_b = -k_eff[:, None] * d  # the spring pulls B towards A
         F[:, ib] += f_b
         M[:, ib] += np.cross(B, f_b)
@@ -279,8 +332,6 @@ def potential(model: RevoluteChain, springs, q) -> dict[str, np.ndarray]:
     grav = -np.einsum("pjc,j,c->p", c[:, 1:], model.mass[1:], model.gravity)
     elastic = np.zeros(R.shape[0])
     for s in springs:
-        A = world_points(R, o, *model.locate(s.link_a, s.point_a))
-        B = world_points(R, o, *model.locate(s.link_b, s.point_b))
-        length = np.linalg.norm(B - A, axis=1)
+        length = _spring_ends(model, s, R, o)[2]  # |B - A|, or the cable's path over its pulley
         elastic += 0.5 * s.k * (length - s.effective_free_length) ** 2
     return {"gravity": grav, "springs": elastic, "total": grav + elastic}

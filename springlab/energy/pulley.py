@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from springlab import _checks
-from springlab.energy.geometry import attachment_points, holding_torques
+from springlab.energy.geometry import attachment_points, cable_geometry, holding_torques
 from springlab.errors import GeometryError
 from springlab.model.chain import Chain
 from springlab.model.springs import Spring, check_springs
@@ -42,30 +42,10 @@ def cable_path(chain: Chain, spring: Spring, X, radius: float) -> tuple[np.ndarr
     radius = _checks.positive("radius", radius, allow_zero=True, unit="m")
     X = chain.check_directions(X)
     A, B = attachment_points(chain, spring, X)
-    u = X[:, spring.i - 1]  # the cable arrives along link i's direction
-    D = B - A
-    L = np.linalg.norm(D, axis=1)
-    if np.any(L <= radius):
-        p = int(np.argmax(L <= radius))
-        raise GeometryError(f"{spring.label}'s end B comes within the pulley's radius ({radius:g} m) of A at pose {p} "
-                            f"(|B - A| = {L[p]:.3g} m): use a smaller pulley or move the attachments")
-    along = np.einsum("ij,ij->i", D, u)
-    normal = D - along[:, None] * u
-    q = np.linalg.norm(normal, axis=1)
-    e2 = np.where(q[:, None] > 1e-15 * L[:, None], normal / np.maximum(q, 1e-300)[:, None], _any_normal(u))
-    alpha = np.arctan2(q, along)  # in [0, pi]
-    wrap = alpha + np.arcsin(radius / L)
-    path = radius * wrap + np.sqrt(L**2 - radius**2)
-    phi = wrap - np.pi / 2  # T's polar angle about A in the plane (u, e2)
-    T = A + radius * (np.cos(phi)[:, None] * u + np.sin(phi)[:, None] * e2)
-    return path, T
-
-
-def _any_normal(u: np.ndarray) -> np.ndarray:
-    """A unit vector normal to each row of ``u`` (where B lies on the link's line any plane holds it)."""
-    trial = np.where(np.abs(u[:, :1]) < 0.9, np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
-    n = np.cross(u, trial)
-    return n / np.linalg.norm(n, axis=1)[:, None]
+    try:
+        return cable_geometry(A, B, X[:, spring.i - 1], radius)  # the cable arrives along link i's direction
+    except GeometryError as err:
+        raise GeometryError(f"{spring.label}: {err}") from None
 
 
 def cable_energy(chain: Chain, spring: Spring, X, radius: float) -> np.ndarray:

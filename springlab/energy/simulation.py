@@ -401,6 +401,11 @@ def build_locked_model(model: RevoluteChain, springs, q, *, settings: SimSetting
     origin with z along its axis, constraining all six motions, each spring an exudyn spring-damper
     between its two points. Returns (SC, mbs, joints, axes): the joint items and their axes frames."""
     springs = check_point_springs(model, springs)
+    for spring in springs:
+        if spring.pulley_radius > 0:
+            raise SpringlabError(f"{spring.label} runs as a cable over a pulley of radius {spring.pulley_radius:g} m, which "
+                                 "exudyn's springs cannot model: check it with route 2 and MuJoCo "
+                                 "(springlab.model.mjcf), or give its point-pulley equivalent (pulley_radius 0)")
     q = model.check_q(q)
     if q.shape[0] != 1:
         raise SpringlabError(f"build_locked_model takes one pose, got {q.shape[0]}")

@@ -15,6 +15,9 @@ and its :class:`~springlab.model.springs.PointSpring` springs, in SI units and r
   with the spring's rate (``stiffness``) and its force law's zero (``springlength``: the
   effective free length L_0 - F_i / k, 0 for an ideal spring, so that MuJoCo's force
   k (l - springlength) equals F_i + k (l - L_0));
+* a spring whose cable runs over a pulley of nonzero radius: the tendon starts on the lead's line,
+  wraps a cylinder of the pulley's radius at A (its side site on the far side from the lead) and
+  ends at B; the pulley swivels about the lead on a light hinge, as route 2's pulley does;
 * each body drawn as the hull of its outline (the URDF's collision geometry,
   :mod:`springlab.model.shapes`) where known, else as a capsule from its joint to the next, none of
   them colliding (statics and release only).
@@ -85,16 +88,51 @@ def to_mjcf(model: RevoluteChain, springs=(), *, name: str | None = None) -> str
         _shape(model, b, parents[b], asset)
     tendons = ET.SubElement(root, "tendon") if springs else None
     for k, s in enumerate(springs, start=1):
-        for end, (link, point) in (("A", (s.link_a, s.point_a)), ("B", (s.link_b, s.point_b))):
-            body, local = model.locate(link, point)
-            ET.SubElement(parents[body], "site", name=f"S{k} {end}", pos=_vec(local))
+        body_b, local_b = model.locate(s.link_b, s.point_b)
+        ET.SubElement(parents[body_b], "site", name=f"S{k} B", pos=_vec(local_b))
+        body_a, local_a = model.locate(s.link_a, s.point_a)
+        run = 0.0
+        if s.pulley_radius > 0:
+            run = _pulley(model, s, k, parents[body_a], local_a)
+        else:
+            ET.SubElement(parents[body_a], "site", name=f"S{k} A", pos=_vec(local_a))
         tendon = ET.SubElement(tendons, "spatial", name=f"S{k}", stiffness=repr(float(s.k)),
-                               springlength=repr(float(s.effective_free_length)), width="0.003",
+                               springlength=repr(float(run + s.effective_free_length)), width="0.003",
                                rgba="0.85 0.2 0.2 1")
         ET.SubElement(tendon, "site", site=f"S{k} A")
+        if s.pulley_radius > 0:
+            ET.SubElement(tendon, "geom", geom=f"S{k} pulley", sidesite=f"S{k} side")
         ET.SubElement(tendon, "site", site=f"S{k} B")
     ET.indent(root)
     return ET.tostring(root, encoding="unicode") + "\n"
+
+
+LEAD_RUN = 0.05
+"""m: the length of cable drawn between the spring's end and its pulley (straight along the lead,
+so it adds a constant to the tendon's length, taken out of its ``springlength``)."""
+
+
+def _pulley(model: RevoluteChain, s, k: int, parent, centre) -> float:
+    """Spring k's pulley: a body at A (``centre``, in link_a's body frame) that swivels about the
+    lead (a hinge, 'S{k} swivel'; its x axis the lead), carrying the pulley (a cylinder of the
+    spring's radius about its z axis), the cable's start 'S{k} A' on the lead's line at the
+    pulley's rim, :data:`LEAD_RUN` back, and the side site that makes the cable wrap the pulley
+    away from where it arrives. At rest the swivel holds B in the pulley's plane
+    (:func:`springlab.workbench.references.mujoco_holding_torques` sets it so). Returns the run."""
+    rho = s.pulley_radius
+    u = model.locate(s.link_a, s.lead)[1] - model.locate(s.link_a, (0.0, 0.0, 0.0))[1]
+    u = u / np.linalg.norm(u)
+    trial = np.array([1.0, 0.0, 0.0]) if abs(u[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    n0 = np.cross(u, trial)
+    n0 /= np.linalg.norm(n0)
+    frame = np.column_stack([u, n0, np.cross(u, n0)])
+    body = ET.SubElement(parent, "body", name=f"S{k} pulley", pos=_vec(centre), quat=_vec(_quat(frame)))
+    ET.SubElement(body, "joint", name=f"S{k} swivel", type="hinge", axis="1 0 0", armature="1e-6", damping="1e-4")
+    ET.SubElement(body, "inertial", pos="0 0 0", mass=repr(TINY_MASS), diaginertia=_vec([TINY_MASS] * 3))
+    ET.SubElement(body, "geom", name=f"S{k} pulley", type="cylinder", size=_vec((rho, rho / 2)), rgba="0.3 0.3 0.35 1")
+    ET.SubElement(body, "site", name=f"S{k} A", pos=_vec((-LEAD_RUN, -rho, 0.0)))
+    ET.SubElement(body, "site", name=f"S{k} side", pos=_vec((1.5 * rho, 0.0, 0.0)))
+    return LEAD_RUN
 
 
 def _inertial(body, mass: float, com, inertia) -> None:

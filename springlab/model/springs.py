@@ -231,6 +231,12 @@ class PointSpring:
     :ivar k: stiffness (N/m), > 0
     :ivar free_length: free length L_0 (m), >= 0
     :ivar initial_tension: the pull F_i (N), >= 0, at the free length: the force is F_i + k (l - L_0)
+    :ivar pulley_radius: rho (m), >= 0: 0 for a spring from A to B (or a cable over a point pulley);
+        else the spring is mounted on link_a and its cable arrives at A along ``lead`` and runs over a
+        pulley of this radius centred at A (swivelling about ``lead`` so that its plane holds B) to
+        B: l is then the cable's path (:func:`springlab.energy.geometry.cable_geometry`)
+    :ivar lead: with a pulley, the unit direction (in link_a's frame) along which the cable arrives
+        at A
 
     >>> PointSpring("base", (0, 0, 0.1), "upper_arm", (0.2, 0, 0), k=500.0).label
     'base-upper_arm'
@@ -243,6 +249,8 @@ class PointSpring:
     k: float
     free_length: float = 0.0
     initial_tension: float = 0.0
+    pulley_radius: float = 0.0
+    lead: tuple | None = None
 
     def __post_init__(self):
         for name in ("link_a", "link_b"):
@@ -258,6 +266,20 @@ class PointSpring:
                                      f"got {getattr(self, name)!r}")
             object.__setattr__(self, name, tuple(float(v) for v in p))
         _check_force_law(self)
+        rho = _checks.number(f"pulley_radius of {self.label}", self.pulley_radius)
+        if not (np.isfinite(rho) and rho >= 0):
+            raise SpringlabError(f"pulley_radius of {self.label} must be a finite radius >= 0 m, got {self.pulley_radius}")
+        object.__setattr__(self, "pulley_radius", rho)
+        if rho > 0:
+            lead = _checks.real_array(f"lead of {self.label}", self.lead if self.lead is not None else (),
+                                      finite_only=False)
+            if lead.shape != (3,) or not np.all(np.isfinite(lead)) or not np.linalg.norm(lead) > 0:
+                raise SpringlabError(f"lead of {self.label} must be a nonzero direction (3 numbers, link_a's frame) "
+                                     f"along which the cable arrives at its pulley, got {self.lead!r}")
+            object.__setattr__(self, "lead", tuple(float(v) for v in lead / np.linalg.norm(lead)))
+        elif self.lead is not None:
+            raise SpringlabError(f"lead of {self.label} is the direction of a cable over a pulley: give pulley_radius > 0 "
+                                 "too, or leave lead out")
 
     @property
     def label(self) -> str:
@@ -272,13 +294,17 @@ class PointSpring:
         """The same spring with its force law multiplied by ``factor`` (stiffness and initial
         tension; the ends and the free length kept): the negative control's spring at 0.9."""
         return PointSpring(self.link_a, self.point_a, self.link_b, self.point_b, self.k * factor, self.free_length,
-                           self.initial_tension * factor)
+                           self.initial_tension * factor, self.pulley_radius, self.lead)
 
     def as_dict(self) -> dict:
-        """The spring as the ``--json`` contract names it (SI numbers)."""
-        return {"link_a": self.link_a, "point_a": list(self.point_a), "link_b": self.link_b,
-                "point_b": list(self.point_b), "k": self.k, "free_length": self.free_length,
-                "initial_tension": self.initial_tension}
+        """The spring as the ``--json`` contract names it (SI numbers; ``pulley_radius`` and ``lead``
+        only for a cable over a pulley of nonzero radius)."""
+        out = {"link_a": self.link_a, "point_a": list(self.point_a), "link_b": self.link_b,
+               "point_b": list(self.point_b), "k": self.k, "free_length": self.free_length,
+               "initial_tension": self.initial_tension}
+        if self.pulley_radius > 0:
+            out |= {"pulley_radius": self.pulley_radius, "lead": list(self.lead)}
+        return out
 
 
 def point_springs(chain, springs) -> tuple[PointSpring, ...]:

@@ -184,7 +184,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     started = time.perf_counter()
     reach = None if args.reach is None else _checks.positive(
         "--reach", parse_quantity(args.reach, "length", "--reach"), allow_zero=True, unit="m") + 0.0
-    design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material, reach=reach)
+    design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material, reach=reach,
+                          pulley_radius=args.pulley_radius)
     seconds = time.perf_counter() - started
     print(f"# {model.name}: {model.n} revolute joints from {model.bodies[0]!r} to {model.bodies[-1]!r}"
           + (f", payload {payload:g} kg at the tip frame" if payload else ""))
@@ -212,7 +213,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     inputs = {"tip": args.tip, "base": model.bodies[0], "payload_kg": payload, "up": _up(args.up) or [0.0, 0.0, 1.0],
               "workspace_deg": {name: [float(np.degrees(lo)), float(np.degrees(hi))]
                                 for name, (lo, hi) in zip(model.joints, workspace_ranges(model, workspace), strict=True)},
-              "reach_m": reach, "package_dirs": list(args.package_dir), "seed": args.seed + 1,
+              "reach_m": reach, "pulley_radius_m": args.pulley_radius, "package_dirs": list(args.package_dir),
+              "seed": args.seed + 1,
               "material": args.material}
     try:
         out.write_text(json.dumps({"source": str(path), "inputs": inputs} | design.as_dict(), indent=1) + "\n")
@@ -355,8 +357,9 @@ def main(argv=None) -> int:
                    help="also write the built springs' spec sheet beside the JSON (.sheet.csv, .sheet.md)")
     p.add_argument("--material", default="music wire", choices=("music wire", "stainless 302"),
                    help="spring wire for --sheet (default music wire)")
-    p.add_argument("--pulley-radius", type=float, default=0.01,
-                   help="m, the pulley of a spring realised as a cable over a pulley (--sheet; default 0.01)")
+    p.add_argument("--pulley-radius", type=float, default=0.005,
+                   help="m, the pulley of a spring realised as a cable over a pulley (a URDF arm's realised springs, "
+                        "and --sheet; default 0.005, a 10 mm wheel; 0 for a point)")
     p.add_argument("--up", help="a URDF arm's up direction in its base link's frame, e.g. 0,1,0 (default 0,0,1: "
                                 "URDF's gravity acts along -z)")
     p.add_argument("--tip", help="a URDF arm's last link: the joints from the base to it are the arm; every other "

@@ -147,15 +147,44 @@ def mujoco_holding_torques(mjcf: str, model, q) -> np.ndarray:
     q = model.check_q(q)
     mj = mujoco.MjModel.from_xml_string(mjcf)
     data = mujoco.MjData(mj)
-    if mj.nq != model.n:
-        raise SpringlabError(f"the MJCF has {mj.nq} joint coordinates, the model {model.n}: not the same arm")
+    arm = [_joint(mujoco, mj, name) for name in model.joints]
+    swivels = [_joint(mujoco, mj, f"S{k} swivel") for k in range(1, mj.ntendon + 1)
+               if mujoco.mj_name2id(mj, mujoco.mjtObj.mjOBJ_JOINT, f"S{k} swivel") >= 0]
+    if mj.nq != len(arm) + len(swivels):
+        raise SpringlabError(f"the MJCF has {mj.nq} joint coordinates, the model {model.n} and {len(swivels)} "
+                             "pulleys: not the same arm")
+    qpos = [int(mj.jnt_qposadr[j]) for j in arm]
+    dof = [int(mj.jnt_dofadr[j]) for j in arm]
     out = np.empty(q.shape)
     for p, angles in enumerate(q):
-        data.qpos[:] = angles
+        data.qpos[:] = 0.0
+        data.qpos[qpos] = angles
         data.qvel[:] = 0.0
+        _swivel(mujoco, mj, data, swivels)
         mujoco.mj_forward(mj, data)
-        out[p] = data.qfrc_bias - data.qfrc_passive
+        out[p] = (data.qfrc_bias - data.qfrc_passive)[dof]
     return out
+
+
+def _joint(mujoco, mj, name: str) -> int:
+    index = mujoco.mj_name2id(mj, mujoco.mjtObj.mjOBJ_JOINT, name)
+    if index < 0:
+        raise SpringlabError(f"the MJCF has no joint {name!r}: not the arm it was given with")
+    return index
+
+
+def _swivel(mujoco, mj, data, swivels) -> None:
+    """Turn each pulley about its lead (the swivel's x axis) until spring k's end B lies in its
+    plane (the swivel's local x-y plane, B on the +y side), from MuJoCo's own kinematics."""
+    if not swivels:
+        return
+    mujoco.mj_kinematics(mj, data)
+    for j in swivels:
+        k = mujoco.mj_id2name(mj, mujoco.mjtObj.mjOBJ_JOINT, j).split()[0]
+        body = int(mj.jnt_bodyid[j])
+        B = data.site_xpos[mujoco.mj_name2id(mj, mujoco.mjtObj.mjOBJ_SITE, f"{k} B")]
+        local = data.xmat[body].reshape(3, 3).T @ (B - data.xpos[body])
+        data.qpos[mj.jnt_qposadr[j]] += np.arctan2(local[2], local[1])
 
 
 def mujoco_release(mjcf: str, q0, seconds: float, *, every: int = 10) -> tuple[np.ndarray, np.ndarray]:
