@@ -24,7 +24,7 @@ import numpy as np
 from springlab.design.arms import design_model
 from springlab.energy import geometry, simulation
 from springlab.model.robots import OTHER_ARMS, ROBOTS, load_robot, robot_urdf
-from springlab.workbench.real_arms import outline_difference
+from springlab.workbench.real_arms import PULLEY, outline_difference
 from springlab.workbench.references import pinocchio_gravity
 
 
@@ -57,13 +57,13 @@ def main() -> None:
     print("(target: round-off for meshes, r (1 - cos(pi/64)) < 3e-4 m for round shapes)\n")
 
     print("designs (design_model, checked on 2,000 poses it was not fitted on; ends within each link's outline")
-    print("box and a 3 cm bracket):")
+    print(f"box and a 3 cm bracket; realised cable springs over {1e3 * PULLEY:g} mm pulleys):")
     print(f"{'arm':16s} {'method':20s} {'springs':>7s} {'seconds':>8s}  removed % (ideal / realised), loaded joints")
     designs = {}
     for label in ROBOTS:
         model = load_robot(label)
         start = time.perf_counter()
-        design = design_model(model)
+        design = design_model(model, pulley_radius=PULLEY)
         seconds = time.perf_counter() - start
         designs[label] = design
         ideal, real = design.removed(), design.removed("realised")

@@ -775,7 +775,8 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
     (default: ``q``'s first 150): each spring's lead (the direction its cable arrives from) is chosen
     among its body's axes and the mean direction to B, and then their rates and ends (within
     :func:`attachment_boxes` with ``reach``, rates at most ``max_stiffness``) are moved to bring the
-    largest holding torque down again (:func:`_rebalance`). The zero-length springs stay as designed.
+    largest holding torque down again (least squares on p-norms, as the best springs are polished). The
+    zero-length springs stay as designed.
 
     :raises SpringlabError: naming the spring when neither realisation fits
     """
