@@ -756,7 +756,7 @@ def _coil_fields(kind: str, coil, span) -> dict:
     out = {"kind": kind, "coil_free_length": coil.free_length, "coil_max_length": coil.max_length,
            "wire_diameter": coil.wire, "mean_diameter": coil.mean_diameter, "body_coils": coil.body_coils,
            "material": coil.material, "end_distance_range": list(span)}
-    if kind == "cable over a pulley":
+    if kind.startswith("cable over a pulley"):
         out["cable_offset"] = coil.free_length - coil.initial_tension / coil.rate
     return out
 
@@ -795,7 +795,12 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
     built = list(springs)
     if pulley_radius > 0 and cable:
         fit = q[:150] if fit is None else model.check_q(fit)
-        built = _rebalance(model, _leads(model, built, cable, fit, pulley_radius), cable, fit, reach, max_stiffness)
+        led = _leads(model, built, cable, fit, pulley_radius)
+        built = _rebalance(model, led, cable, fit, reach, max_stiffness)
+        windable = lambda spring: cable_spring(spring.k, _length_range(model, spring, R, o), material)[0] is not None  # noqa: E731
+        for i in cable:  # a re-balanced spring no stocked wire carries keeps its designed rate and ends
+            if not windable(built[i]) and windable(led[i]):
+                built[i] = led[i]
     out, names, coils = [], [], []
     for i, s in enumerate(built):
         kind, coil, detail = kinds[i]
@@ -805,17 +810,29 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
             coils.append((coil, detail))
             continue
         lengths = _length_range(model, s, R, o)
-        coil, why_cable = cable_spring(s.k, lengths, material)
+        for parallel in range(1, MAX_PARALLEL + 1):  # too strong for one wire: side by side, k / m each
+            coil, why = cable_spring(s.k / parallel, lengths, material)
+            why_cable = why if parallel == 1 else why_cable
+            if coil is not None:
+                break
         if coil is None:
-            names.append(f"not realised: no zero-length spring ({detail}) and no cable spring ({why_cable})")
+            names.append(f"not realised: spring {s.label} (k = {s.k:.4g} N/m): no zero-length spring ({detail}) and no "
+                         f"cable spring ({why_cable}), nor {MAX_PARALLEL} side by side")
             out.append(None)
             coils.append(None)
             continue
-        out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, coil.initial_tension / s.k,
-                               coil.initial_tension, s.pulley_radius, s.lead))
-        names.append("cable over a pulley")
-        coils.append((coil, lengths))
+        k = s.k / parallel
+        for m in range(parallel):
+            out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, coil.initial_tension / k,
+                                   coil.initial_tension, s.pulley_radius, s.lead))
+            names.append("cable over a pulley" + (f" ({m + 1} of {parallel} side by side)" if parallel > 1 else ""))
+            coils.append((coil, lengths))
     return tuple(out), tuple(names), tuple(coils)
+
+
+MAX_PARALLEL = 3
+"""The most springs a realised spring is split into, side by side on the same ends, when no stocked
+wire carries its force alone."""
 
 
 def _length_range(model: RevoluteChain, spring, R, o) -> tuple[float, float]:
@@ -977,9 +994,9 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     realised, kinds, coils = realise_springs(model, ideal, check, material=material, pulley_radius=pulley_radius,
                                              reach=reach, fit=rng.uniform(ranges[:, 0], ranges[:, 1], (150, model.n)),
                                              max_stiffness=max_stiffness)
-    for spring, kind in zip(ideal, kinds, strict=True):
+    for kind in kinds:
         if kind.startswith("not realised"):
-            notes.append(f"spring {spring.label} (k = {spring.k:.4g} N/m) is {kind}: the realised design leaves it out")
+            notes.append(f"{kind}: the realised design leaves it out")
     realised = tuple(r for r in realised if r is not None)
     coils = tuple(c for c in coils if c is not None)
     kinds = tuple(k for k in kinds if not k.startswith("not realised"))
@@ -996,10 +1013,11 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                          f"{real[i]:.3g} N m of its {gravity[i]:.3g} N m (the ideal ones {left[i]:.3g}): each pulley adds "
                          "about k rho times the change of its wrap angle, large against this arm's levers and rates; a "
                          "smaller --pulley-radius (or 0, a point) or longer brackets (--reach) do better")
-    if "cable over a pulley" in kinds and pulley_radius == 0:
+    cables = any(kind.startswith("cable over a pulley") for kind in kinds)
+    if cables and pulley_radius == 0:
         notes.append("cable springs are modelled with a point pulley (the force k times |B - A|): give a pulley radius "
                      "(--pulley-radius) to model the pulley")
-    elif "cable over a pulley" in kinds:
+    elif cables:
         notes.append(f"cable springs run over pulleys of radius {1e3 * pulley_radius:g} mm (route 2's cable path); "
                      "their leads, rates and ends were re-balanced for it on 150 poses the table does not use")
     return ArmDesign(model, found, method, ideal, realised, kinds, coils, check, tuple(notes))

@@ -75,6 +75,11 @@ it stays stretched past its free length there (by 20 % of that force) when built
 MIN_BODY_COILS = 3.0
 """Fewest body coils of a realised spring (fewer make a ring, not a spring)."""
 
+STRESS_SHARE = 0.85
+"""A realised spring's body stress at its largest force is at most this share of the allowable: the
+sheet designs to a margin of 1 / 0.85 = 1.18 on the allowable stress, room for the maker's
+tolerances on the wire and coil diameters (the stress goes as D / d^3) and on the rate."""
+
 
 @dataclass(frozen=True)
 class Material:
@@ -244,13 +249,17 @@ class ExtensionSpring:
             out.append(f"index C = {self.index:.2f} outside {lo:g}-{hi:g}")
         if self.body_coils < MIN_BODY_COILS:
             out.append(f"{self.body_coils:.2f} body coils (fewer than {MIN_BODY_COILS:g})")
-        _, t_hi = self.initial_tension_range
+        t_lo, t_hi = self.initial_tension_range
         if self.initial_tension > t_hi * (1 + 1e-9):
             out.append(f"initial tension {self.initial_tension:.3g} N above the windable {t_hi:.3g} N")
+        if self.initial_tension < t_lo * (1 - 1e-9):
+            out.append(f"initial tension {self.initial_tension:.3g} N below the windable {t_lo:.3g}-{t_hi:.3g} N: "
+                       "wound within the range, then stress-relieved (a heat treatment lowers it), or wound with "
+                       "the coils apart and pre-stretched")
         stress = float(self.stress(self.max_force))
-        if stress > self.allowable_stress:
-            out.append(f"stress {stress / 1e6:.0f} MPa at the largest force {self.max_force:.1f} N above the allowable "
-                       f"{self.allowable_stress / 1e6:.0f} MPa")
+        if stress > STRESS_SHARE * self.allowable_stress * (1 + 1e-9):
+            out.append(f"stress {stress / 1e6:.0f} MPa at the largest force {self.max_force:.1f} N above "
+                       f"{100 * STRESS_SHARE:.0f} % of the allowable {self.allowable_stress / 1e6:.0f} MPa")
         return out
 
 
@@ -279,8 +288,8 @@ def zero_length_spring(k: float, lengths, material: str = "music wire", *, tensi
         Nb = _coils_for(mat, d, C, k)
         L0 = (2 * C - 1 + Nb) * d
         need = 8 * k * L0 * C / (np.pi * d**2)  # the stress of F_i = k L_0
-        _, hi = initial_tension_stress_range(C)
-        ratio = need / (hi * tension_scale)
+        lo, hi = initial_tension_stress_range(C)
+        ratio = np.where(need >= lo, need / (hi * tension_scale), np.inf)  # inside the windable range only
         if closest is None or ratio.min() < closest[0]:
             at = int(np.argmin(ratio))
             closest = (float(ratio[at]), d_mm, float(C[at]), float(need[at]), float(hi[at] * tension_scale))
@@ -292,8 +301,9 @@ def zero_length_spring(k: float, lengths, material: str = "music wire", *, tensi
         ok = windable & (Nb >= MIN_BODY_COILS) & (L0 <= short)
         for c, nb, l0 in zip(C[ok], Nb[ok], L0[ok], strict=True):
             spring = ExtensionSpring(material, d, float(c * d), float(nb), float(k * l0), long)
-            if spring.stress(spring.max_force) > spring.allowable_stress:
-                other.setdefault("stress", f"a stress above the allowable at {k * long:.1f} N")
+            if spring.stress(spring.max_force) > STRESS_SHARE * spring.allowable_stress:
+                other.setdefault("stress", f"a stress above {100 * STRESS_SHARE:.0f} % of the allowable at "
+                                           f"{k * long:.1f} N")
             elif best is None or _volume(spring) < _volume(best):
                 best = spring
     if best is not None:
@@ -311,8 +321,10 @@ def cable_spring(k: float, lengths, material: str = "music wire", *, room: float
     """A spring for the cable realisation (force k times the cable's path over ``lengths`` = (shortest,
     longest) m): initial tension in the middle of the windable range, or :data:`STRETCH_MARGIN` times
     k times the shortest path where that is less (the spring must be stretched past its free length
-    everywhere, with a margin for the maker's tolerances; a lighter initial tension is wound with the
-    coils just touching), stress within the allowable. Among those, the
+    everywhere, with a margin for the maker's tolerances), inside the windable range where a wire and
+    index allow it (else below it, flagged by :meth:`ExtensionSpring.problems` and on the sheet:
+    wound at the range and stress-relieved down to it), stress within :data:`STRESS_SHARE` of the
+    allowable. Among those, the
     shortest when fully stretched (it lies along a link), then the least wire; ``room`` (m) bounds that
     length if given.
 
@@ -322,6 +334,18 @@ def cable_spring(k: float, lengths, material: str = "music wire", *, room: float
     short, long = _lengths(lengths)
     mat = _material(material)
     room = _checks.optional_positive("room", room, "m")
+    spring, why = _cable_spring(k, short, long, mat, material, room, in_range=True)
+    if spring is not None:
+        return spring, ""
+    below, why_below = _cable_spring(k, short, long, mat, material, room, in_range=False)
+    if below is not None:  # flagged by its problems() and on the sheet: stress-relieved down to it
+        return below, ""
+    return None, why_below
+
+
+def _cable_spring(k, short, long, mat, material, room, *, in_range: bool):
+    """:func:`cable_spring`'s search; ``in_range=False`` lets the initial tension fall below the
+    windable range (for a spring the range cannot give: flagged)."""
     best, reasons = None, {}
     C = np.arange(INDEX_RANGE[0], INDEX_RANGE[1] + 1e-9, 0.05)
     K = wahl_factor(C)
@@ -329,20 +353,27 @@ def cable_spring(k: float, lengths, material: str = "music wire", *, room: float
     for d_mm in mat.diameters_mm:  # each wire's indices at once; the spring built for the winner only
         d = d_mm * 1e-3
         Nb = _coils_for(mat, d, C, k)
-        Fi = np.minimum(0.5 * (lo + hi) * np.pi * d**3 / (8 * C * d), STRETCH_MARGIN * k * short)
+        per = np.pi * d**3 / (8 * C * d)  # N per Pa of initial-tension stress
+        # in the windable range, nearest its middle, and at most STRETCH_MARGIN of the force at the shortest path
+        Fi = np.minimum(0.5 * (lo + hi) * per, STRETCH_MARGIN * k * short)
+        windable = Fi >= lo * per * (1 - 1e-9) if in_range else np.ones_like(C, dtype=bool)
         L0 = (2 * C - 1 + Nb) * d
         longest = L0 + long - Fi / k
         stress = K * 8 * (k * long) * C * d / (np.pi * d**3)  # at the largest force, k times the longest path
         coils = Nb >= MIN_BODY_COILS
-        strong = stress <= mat.body_allowable * mat.tensile_strength(d)
+        strong = stress <= STRESS_SHARE * mat.body_allowable * mat.tensile_strength(d)
         fits = np.ones_like(C, dtype=bool) if room is None else longest <= room
         if not coils.all():
             reasons.setdefault("coils", f"fewer than {MIN_BODY_COILS:g} body coils for k = {k:.4g} N/m")
         if np.any(coils & ~strong):
-            reasons.setdefault("stress", f"the stress at {k * long:.1f} N exceeds the allowable for every wire")
-        if np.any(coils & strong & ~fits):
+            reasons.setdefault("stress", f"the stress at {k * long:.1f} N exceeds {100 * STRESS_SHARE:.0f} % of the "
+                                         "allowable for every wire")
+        if np.any(coils & strong & ~windable):
+            reasons.setdefault("tension", f"the windable initial tension exceeds {STRETCH_MARGIN:g} of the force at the "
+                                          f"shortest path, {k * short:.3g} N (the coil would go slack)")
+        if np.any(coils & strong & windable & ~fits):
             reasons.setdefault("room", f"no spring stretched to carry it is shorter than the room, {room:g} m")
-        ok = np.flatnonzero(coils & strong & fits)
+        ok = np.flatnonzero(coils & strong & windable & fits)
         if not len(ok):
             continue
         volume = np.pi * d**2 / 4 * np.pi * C * d * (Nb + 2)
@@ -540,12 +571,20 @@ def pulley_study(chain: Chain, springs, X, radii, *, material: str = "music wire
 SHEET_COLUMNS = ("spring", "realisation", "material", "wire d (mm)", "mean coil D (mm)", "outer diameter (mm)",
                  "index C", "body coils", "active coils", "free length inside hooks (mm)", "initial tension (N)",
                  "windable initial tension (N)", "rate (N/mm)", "longest in service (mm)", "largest force (N)",
-                 "stress at largest force (MPa)", "allowable stress (MPa)", "a (mm)", "b (mm)",
-                 "cable offset L0 - Fi/k (mm)", "pulley radius (mm)", "room along link i (mm)")
+                 "stress at largest force (MPa)", "allowable stress (MPa)", "stress / allowable (%)", "a (mm)", "b (mm)",
+                 "cable offset L0 - Fi/k (mm)", "pulley radius (mm)", "room along link i (mm)", "maker's note")
+
+
+SHEET_NOTE = (f"Designed to: body stress at the largest force at most {100 * STRESS_SHARE:.0f} % of the allowable "
+              f"(a margin of {1 / STRESS_SHARE:.2f} on it); initial tension inside the windable range where a stocked "
+              "wire allows it (the cable offset takes up the rest of the force law), else below it and flagged: wound "
+              "at the range and stress-relieved down to it; at least 3 body coils; index C 4-12.")
+"""The sheet's statement of what it designs to, printed with it."""
 
 
 def spec_sheet(realisations) -> Table:
-    """One row per spring: what a spring maker needs (and where it goes on the arm)."""
+    """One row per spring: what a spring maker needs (and where it goes on the arm); :data:`SHEET_NOTE`
+    says what it is designed to."""
     rows = []
     for r in realisations:
         c = r.coil
@@ -555,11 +594,14 @@ def spec_sheet(realisations) -> Table:
                      f"{c.index:.2f}", f"{c.body_coils:.2f}", f"{c.active_coils:.2f}", f"{c.free_length * 1e3:.1f}",
                      f"{c.initial_tension:.2f}", f"{lo:.2f}-{hi:.2f}", f"{c.rate / 1e3:.4f}", f"{c.max_length * 1e3:.1f}",
                      f"{c.max_force:.1f}", f"{c.stress(c.max_force) / 1e6:.0f}", f"{c.allowable_stress / 1e6:.0f}",
+                     f"{100 * c.stress(c.max_force) / c.allowable_stress:.0f}",
                      f"{r.spring.a * 1e3:.1f}", f"{r.spring.b * 1e3:.1f}",
                      f"{r.cable_offset * 1e3:.1f}" if r.cable else "",
                      f"{r.pulley_radius * 1e3:.1f}" if r.pulley_radius is not None else "",
                      "" if not r.cable else "base column" if r.room is None else
-                     f"{r.room * 1e3:.0f}" + ("" if r.fits else " (too short: mount it past the joint)")))
+                     f"{r.room * 1e3:.0f}" + ("" if r.fits else " (too short: mount it past the joint)"),
+                     f"wind at {lo:.2f} N or more, then stress-relieve to {c.initial_tension:.2f} N (below the windable "
+                     "range)" if c.initial_tension < lo * (1 - 1e-9) else ""))
     return Table(list(SHEET_COLUMNS), rows)
 
 

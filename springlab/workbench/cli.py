@@ -322,7 +322,8 @@ def _write_sheet(args, spec, chosen, out: Path) -> None:
     notes = [f"- {r.spring.label}: {r.kind}" + (f" (no zero-length spring: {r.note})" if r.note else "") for r in built]
     md = (f"# Spring spec sheet: {spec.name}, design {args.pick} ({chosen.label()})\n\n"
           f"{workspace_note(spec).replace('workspace', 'Workspace', 1)}. Lengths in mm, forces in N, stresses in MPa; "
-          f"a, b locate each end on its link (springlab.model.springs).\n\n{buildable.spec_sheet(built).markdown()}\n\n"
+          f"a, b locate each end on its link (springlab.model.springs). {buildable.SHEET_NOTE}\n\n"
+          f"{buildable.spec_sheet(built).markdown()}\n\n"
           + "\n".join(notes) + "\n\n## Balance the built springs leave (route 2)\n\n"
           f"Gravity's own largest holding torque (no springs): {loss.gravity:.3g} N m.\n\n{loss.table().markdown()}\n"
           f"\n## Clearance from the links\n\nOver the same poses ({workspace_note(spec)}); links of radius "
