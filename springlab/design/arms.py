@@ -810,11 +810,11 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
             coils.append((coil, detail))
             continue
         lengths = _length_range(model, s, R, o)
-        for parallel in range(1, MAX_PARALLEL + 1):  # too strong for one wire: side by side, k / m each
-            coil, why = cable_spring(s.k / parallel, lengths, material)
-            why_cable = why if parallel == 1 else why_cable
-            if coil is not None:
-                break
+        coil, why_cable = cable_spring(s.k, lengths, material)
+        parallel = 1
+        while coil is None and parallel < MAX_PARALLEL:  # too strong for one wire: side by side, k / m each
+            parallel += 1
+            coil, _ = cable_spring(s.k / parallel, lengths, material)
         if coil is None:
             names.append(f"not realised: spring {s.label} (k = {s.k:.4g} N/m): no zero-length spring ({detail}) and no "
                          f"cable spring ({why_cable}), nor {MAX_PARALLEL} side by side")
