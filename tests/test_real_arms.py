@@ -188,3 +188,18 @@ def test_an_empty_robot_is_named(tmp_path, capsys):
     path.write_text('<robot name="e"></robot>')
     assert main(["design", str(path), "--quiet"]) == 2
     assert "defines no <link>" in capsys.readouterr().err
+
+
+def test_a_spring_too_strong_for_one_wire_is_wound_as_two_side_by_side():
+    """The UR10's elbow spring (2692 N/m, some 1600 N) exceeds every stocked wire's stress within the
+    share the sheet designs to; two springs of half the rate on the same ends carry it, and with point
+    pulleys the realised set holds the arm as the ideal one does."""
+    from springlab.design.arms import realise_springs
+
+    model = load_robot("UR10")
+    springs = planar_springs(model, structure(model))
+    q = model.random_q(300, 6)
+    realised, kinds, coils = realise_springs(model, springs, q)
+    assert any("side by side" in kind for kind in kinds) and None not in realised
+    np.testing.assert_allclose(geometry.joint_torques(model, realised, q), geometry.joint_torques(model, springs, q),
+                               atol=1e-9)
