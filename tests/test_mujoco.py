@@ -4,6 +4,8 @@ at rest the exact design stays put while the 0.9-rate control falls, and a tendo
 rate fails the agreement (the negative control). Bad --mjcf input is refused before anything is
 written."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -99,6 +101,17 @@ def test_the_cli_writes_both_models(tmp_path, capsys):
     mjcf = tmp_path / "ur5_balanced.xml"
     assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--mjcf", str(mjcf), "--quiet"]) == 0
     assert mjcf.exists() and (tmp_path / "ur5_balanced.realised.xml").exists()
+    # the --json contract read alone rebuilds the realised springs over their pulleys: route 2 on them is
+    # what MuJoCo holds with the realised file
+    data = json.loads(out.read_text())
+    assert all(s["pulley_radius"] == 0.005 and len(s["lead"]) == 3 for s in data["realised"])
+    fields = ("link_a", "point_a", "link_b", "point_b", "k", "free_length", "initial_tension", "pulley_radius", "lead")
+    springs = [PointSpring(**{key: s[key] for key in fields}) for s in data["realised"]]
+    model = load_robot("UR5")
+    q = model.random_q(20, 9)
+    realised = (tmp_path / "ur5_balanced.realised.xml").read_text()
+    ours = geometry.joint_torques(model, springs, q)
+    assert np.max(np.abs(mujoco_holding_torques(realised, model, q) - ours)) < AGREE * 100
     mj = mujoco.MjModel.from_xml_path(str(mjcf))
     assert mj.ntendon == 6 and mj.nq == 6
     names = [mujoco.mj_id2name(mj, mujoco.mjtObj.mjOBJ_JOINT, i) for i in range(mj.njnt)]

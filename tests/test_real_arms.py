@@ -100,7 +100,7 @@ def test_workspace_ranges_stay_within_the_limits():
 
 def test_the_cli_writes_the_json_contract(tmp_path, capsys):
     out = tmp_path / "ur5.json"
-    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--quiet"]) == 0
+    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--quiet", "--pulley-radius", "0"]) == 0
     printed = capsys.readouterr().out
     assert "exact: planar chain" in printed and "negative control" in printed
     data = json.loads(out.read_text())
@@ -160,7 +160,8 @@ def test_bad_input_is_one_line_exit_2_nothing_written(extra, message, tmp_path, 
 
 def test_a_smaller_reach_keeps_every_end_closer(tmp_path):
     out = tmp_path / "so101.json"
-    assert main(["design", str(robot_urdf("SO-101")), "--reach", "1 cm", "--json", str(out), "--quiet"]) == 0
+    assert main(["design", str(robot_urdf("SO-101")), "--reach", "1 cm", "--json", str(out), "--quiet",
+                 "--pulley-radius", "0"]) == 0
     model = load_robot("SO-101")
     springs = [PointSpring(**{key: s[key] for key in ("link_a", "point_a", "link_b", "point_b", "k")})
                for s in json.loads(out.read_text())["ideal"]]

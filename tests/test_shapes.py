@@ -20,6 +20,7 @@ from springlab.design.arms import (
 from springlab.energy import geometry
 from springlab.model.robots import ROBOTS, load_robot, robot_urdf, robots_folder
 from springlab.model.shapes import ROUND_POINTS, Shape, link_shapes, resolve_mesh, shape_points
+from springlab.model.springs import PointSpring
 from springlab.model.urdf import read_revolute_chain
 from springlab.workbench.cli import main
 from springlab.workbench.real_arms import outline_difference
@@ -182,7 +183,7 @@ def test_the_cli_takes_package_dirs_and_refuses_a_missing_one(tmp_path, capsys):
     out = tmp_path / "ur5.json"
     share = robots_folder().parent.parent
     assert main(["design", str(robot_urdf("UR5")), "--tip", "wrist_3_link", "--package-dir", str(share),
-                 "--reach", "0", "--json", str(out), "--quiet"]) == 0
+                 "--reach", "0", "--json", str(out), "--quiet", "--pulley-radius", "0"]) == 0
     data = json.loads(out.read_text())
     assert data["inputs"]["package_dirs"] == [str(share)] and data["inputs"]["reach_m"] == 0.0
     assert "outline (the bounding box of its URDF geometry) and 0 cm beyond it" in capsys.readouterr().out
@@ -233,11 +234,20 @@ def test_a_reach_longer_than_the_arm_is_refused(tmp_path, capsys):
 
 
 def test_reach_or_package_dir_designs_a_line_chain_urdf_on_the_general_model(tmp_path, capsys):
-    out = tmp_path / "example.json"
-    assert main(["design", "notebooks/arms/example_arm.urdf", "--reach", "0", "--json", str(out), "--quiet"]) == 0
+    path = tmp_path / "two.urdf"  # a planar arm with its links on one line: paper 000's method would take it
+    _arm(tmp_path)
+    path.write_text(ARM.format(mesh="meshes/tri.stl"))
+    out = tmp_path / "two.json"
+    assert main(["design", str(path), "--json", str(out), "--quiet", "--max-designs", "1"]) == 0
+    assert "general model" not in capsys.readouterr().out and "ideal" not in json.loads(out.read_text())
+    assert main(["design", str(path), "--reach", "0", "--json", str(out), "--quiet", "--pulley-radius", "0"]) == 0
     data = json.loads(out.read_text())
-    assert data["inputs"]["reach_m"] == 0.0 and "ideal" in data
-    assert main(["design", "notebooks/arms/example_arm.urdf", "--reach", "abc", "--json", str(out), "--quiet"]) == 2
+    assert data["inputs"]["reach_m"] == 0.0 and data["ideal"]
+    model = read_revolute_chain(path.read_text(), source="two.urdf", folder=tmp_path)
+    springs = [PointSpring(**{key: s[key] for key in ("link_a", "point_a", "link_b", "point_b", "k")})
+               for s in data["ideal"]]
+    assert ends_outside(model, springs, 0.0) < 1e-9  # on the outlines, no bracket
+    assert main(["design", str(path), "--reach", "abc", "--json", str(out), "--quiet"]) == 2
     assert "--reach" in capsys.readouterr().err
     code = main(["design", "notebooks/arms/paper001_arm.toml", "--reach", "3 cm", "--json", str(out), "--quiet"])
     assert code == 2 and "--reach applies to arms for paper 000's method" in capsys.readouterr().err

@@ -773,7 +773,8 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
     :func:`springlab.energy.geometry.cable_geometry`): it adds a pose-dependent energy of about
     k L rho alpha that no ideal spring had. So the cable springs are re-balanced on the poses ``fit``
     (default: ``q``'s first 150): each spring's lead (the direction its cable arrives from) is chosen
-    among its body's axes and the mean direction to B, and then their rates and ends (within
+    among its body's axes and the mean direction to B, and, where that leaves more than
+    :data:`REBALANCE` of a loaded joint's peak, their rates and ends (within
     :func:`attachment_boxes` with ``reach``, rates at most ``max_stiffness``) are moved to bring the
     largest holding torque down again (least squares on p-norms, as the best springs are polished). The
     zero-length springs stay as designed.
@@ -796,7 +797,9 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
     if pulley_radius > 0 and cable:
         fit = q[:150] if fit is None else model.check_q(fit)
         led = _leads(model, built, cable, fit, pulley_radius)
-        built = _rebalance(model, led, cable, fit, reach, max_stiffness)
+        built = led
+        if _worst(model, led, fit, _joint_scales(model, fit)) > REBALANCE:  # the leads alone leave too much
+            built = _rebalance(model, led, cable, fit, reach, max_stiffness)
         windable = lambda spring: cable_spring(spring.k, _length_range(model, spring, R, o), material)[0] is not None  # noqa: E731
         for i in cable:  # a re-balanced spring no stocked wire carries keeps its designed rate and ends
             if not windable(built[i]) and windable(led[i]):
@@ -829,6 +832,10 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
             coils.append((coil, lengths))
     return tuple(out), tuple(names), tuple(coils)
 
+
+REBALANCE = 0.1
+"""Where the realised springs over their pulleys, leads chosen, leave more than this fraction of a
+loaded joint's peak gravity torque on the fitting poses, their rates and ends are re-balanced too."""
 
 MAX_PARALLEL = 3
 """The most springs a realised spring is split into, side by side on the same ends, when no stocked
@@ -992,7 +999,8 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         notes.append(f"not exact: {found.why}; springlab's exact construction needs a planar chain, so the "
                      f"best springs were searched: {fit.note}")
     realised, kinds, coils = realise_springs(model, ideal, check, material=material, pulley_radius=pulley_radius,
-                                             reach=reach, fit=rng.uniform(ranges[:, 0], ranges[:, 1], (150, model.n)),
+                                             reach=reach,
+                                             fit=rng.uniform(ranges[:, 0], ranges[:, 1], (min(150, fit_poses), model.n)),
                                              max_stiffness=max_stiffness)
     for kind in kinds:
         if kind.startswith("not realised"):
@@ -1019,5 +1027,6 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                      "(--pulley-radius) to model the pulley")
     elif cables:
         notes.append(f"cable springs run over pulleys of radius {1e3 * pulley_radius:g} mm (route 2's cable path); "
-                     "their leads, rates and ends were re-balanced for it on 150 poses the table does not use")
+                     "their leads (and where those leave more than a tenth of a joint's peak, their rates and ends) "
+                     f"were chosen for it on {min(150, fit_poses)} poses the table does not use")
     return ArmDesign(model, found, method, ideal, realised, kinds, coils, check, tuple(notes))
