@@ -251,3 +251,20 @@ def test_reach_or_package_dir_designs_a_line_chain_urdf_on_the_general_model(tmp
     assert "--reach" in capsys.readouterr().err
     code = main(["design", "notebooks/arms/paper001_arm.toml", "--reach", "3 cm", "--json", str(out), "--quiet"])
     assert code == 2 and "--reach applies to arms for paper 000's method" in capsys.readouterr().err
+
+
+def test_clearance_is_measured_from_the_outlines_and_can_fail(tmp_path):
+    """The two-link arm's base is a 0.2 x 0.2 x 0.1 m box: a spring from the upper arm to the forearm
+    straight above it, starting 0.25 m above its top, passes it at 0.25 m (less half the sampling's
+    spacing, the bound's margin); one run from inside the box passes through it (negative), the check
+    that must be able to fail."""
+    from springlab.design.arms import clearance
+
+    model, _ = _arm(tmp_path)
+    q = np.zeros((1, 2))  # both links straight up from the shoulder at z = 0.1
+    above = PointSpring("upper", (0.0, 0.0, 0.25), "fore", (0.0, 0.0, 0.1), 10.0)  # z = 0.35 to 0.6 m
+    through = PointSpring("upper", (0.0, 0.0, -0.05), "fore", (0.3, 0.0, 0.1), 10.0)  # from inside the base box
+    table = clearance(model, [above, through], q)
+    far, inside = (float(row[2]) for row in table.rows)
+    assert table.rows[0][1] == "base" and far == pytest.approx(250.0 - 0.5 * 250 / 31, abs=0.05)
+    assert inside < 0 and table.rows[1][3] == "yes"

@@ -310,6 +310,54 @@ def _offsets(W, end_j, end_k, centres, half, frames) -> tuple[complex, complex]:
     return best[1], best[2]
 
 
+CLEARANCE_SAMPLES = 32
+"""Points along each spring at which its clearance from the bodies is measured."""
+
+CLEARANCE_POSES = 100
+"""The most workspace poses the clearance is measured at (a mesh's hull has thousands of faces)."""
+
+
+def clearance(model: RevoluteChain, springs, q) -> Table:
+    """Each spring's clearance from the bodies it is not attached to, over the poses ``q`` (the first
+    :data:`CLEARANCE_POSES`): the
+    nearest body and the smallest distance (mm) from the spring's straight run (A to B, or from its
+    pulley to B) to that body's outline (the convex hull of its URDF geometry), negative where the
+    spring passes through it. Measured as the largest signed distance to the hull's face planes at
+    :data:`CLEARANCE_SAMPLES` points along the run, less half their spacing: a lower bound (the
+    distance is 1-Lipschitz along the run, and the face planes' distance never exceeds the hull's).
+    Bodies without an outline are not checked (named in the table)."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    from springlab.energy.geometry import spring_lines
+
+    q = model.check_q(q)[:CLEARANCE_POSES]
+    R, o = body_frames(model, q)
+    planes = {}
+    for b, points in enumerate(model.outline):
+        try:
+            planes[b] = ConvexHull(points).equations if len(points) >= 4 else None
+        except (QhullError, ValueError):
+            planes[b] = None
+    t = np.linspace(0.0, 1.0, CLEARANCE_SAMPLES)
+    rows = []
+    for s, (P, B, a, b) in zip(springs, spring_lines(model, springs, q), strict=True):
+        pts = P[:, None] + t[None, :, None] * (B - P)[:, None]  # (N, K, 3)
+        half = 0.5 * np.max(np.linalg.norm(B - P, axis=1)) / (CLEARANCE_SAMPLES - 1)
+        best, nearest = np.inf, None
+        for c, eq in planes.items():
+            if c in (a, b) or eq is None:
+                continue
+            local = np.einsum("pji,pkj->pki", R[:, c], pts - o[:, c, None])
+            signed = np.max(local @ eq[:, :3].T + eq[:, 3], axis=2)  # (N, K)
+            value = float(np.min(signed)) - half
+            if value < best:
+                best, nearest = value, model.bodies[c]
+        unchecked = [model.bodies[c] for c, eq in planes.items() if eq is None and c not in (a, b)]
+        rows.append((s.label, nearest or "", f"{1e3 * best:.1f}" if nearest else "", "yes" if best < 0 else "no",
+                     ", ".join(unchecked)))
+    return Table(["spring", "nearest body", "smallest clearance (mm)", "passes through it", "bodies not checked"], rows)
+
+
 def torque_table(model: RevoluteChain, q, cases: dict, *, unloaded=()) -> Table:
     """Per joint: peak and RMS gravity torque (N m), the same with each set of springs in ``cases``
     (name -> springs), and the percentage of the peak each removes (blank for the ``unloaded``
@@ -705,6 +753,10 @@ class ArmDesign:
         return Table(["link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)", "realised as",
                       "pulley (mm), lead", "coil free length (mm)", "coil longest (mm)", "initial tension (N)",
                       "wire (mm)"], rows)
+
+    def clearance_table(self) -> Table:
+        """The realised springs' clearance from the bodies over the workspace (:func:`clearance`)."""
+        return clearance(self.model, self.realised, self.q)
 
     def control(self, factor: float = 0.9) -> tuple[float, float]:
         """The negative control: the largest holding torque (N m, over joints and the workspace poses)

@@ -256,6 +256,18 @@ def _spring_ends(model: RevoluteChain, s, R, o):
     return A, B, np.linalg.norm(B - A, axis=1), ia, ib
 
 
+def spring_lines(model: RevoluteChain, springs, q) -> list:
+    """Each spring's straight run at the poses ``q`` (N, n) rad: (P, B, a, b), P the point its pull
+    on body a acts at (A, or where its cable leaves the pulley), B its end on body b, (N, 3) m each,
+    and the two bodies' indices."""
+    R, o = body_frames(model, q)
+    out = []
+    for s in check_point_springs(model, springs):
+        P, B, _, a, b = _spring_ends(model, s, R, o)
+        out.append((P, B, a, b))
+    return out
+
+
 def spring_lengths(model: RevoluteChain, springs, R, o) -> np.ndarray:
     """Each spring's length l (m) at the poses of :func:`~springlab.model.revolute.body_frames`' ``R``,
     ``o``: |B - A|, or its cable's path over a pulley; (S, N)."""

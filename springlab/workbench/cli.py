@@ -210,6 +210,10 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     print(f"\nnegative control: the same springs at 0.9 of their rates leave {control:.3g} N m at worst (as designed: "
           f"{designed:.3g} N m)\n")
     print(design.springs_table())
+    if design.realised and model.outline:
+        print(f"\nclearance of the realised springs from the bodies (their outlines), over "
+              f"{min(len(design.q), 100)} workspace poses:")
+        print(design.clearance_table())
     inputs = {"tip": args.tip, "base": model.bodies[0], "payload_kg": payload, "up": _up(args.up) or [0.0, 0.0, 1.0],
               "workspace_deg": {name: [float(np.degrees(lo)), float(np.degrees(hi))]
                                 for name, (lo, hi) in zip(model.joints, workspace_ranges(model, workspace), strict=True)},
