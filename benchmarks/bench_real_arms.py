@@ -9,6 +9,8 @@
   targets (planar chains >= 99.9 % ideal and >= 90 % realised; Panda joints 2, 3, 4: 90, 80, 80 %);
 * each link's outline (its URDF collision geometry) beside Pinocchio's placement of the same
   geometry, and the time to read it with the meshes;
+* MuJoCo's holding torques of the UR5's, the Panda's and the SO-101's designs exported as MJCF,
+  ideal and realised, beside route 2, and the time of export and check (target: 5 s each);
 * exudyn's holding torques of the UR5's and the Panda's designs beside route 2 (target: 1e-6 N m).
 
     make bench
@@ -23,9 +25,10 @@ import numpy as np
 
 from springlab.design.arms import design_model
 from springlab.energy import geometry, simulation
+from springlab.model.mjcf import to_mjcf
 from springlab.model.robots import OTHER_ARMS, ROBOTS, load_robot, robot_urdf
 from springlab.workbench.real_arms import PULLEY, outline_difference
-from springlab.workbench.references import pinocchio_gravity
+from springlab.workbench.references import mujoco_holding_torques, pinocchio_gravity
 
 
 def main() -> None:
@@ -87,6 +90,19 @@ def main() -> None:
     print(f"{len(OTHER_ARMS) - len(refused)} of {len(OTHER_ARMS)} designed, {len(refused)} refused\n")
     panda = designs["Panda"].removed()
     print(f"Panda joints 2, 3, 4: {panda[1]:.1f}, {panda[2]:.1f}, {panda[3]:.1f} % (targets 90, 80, 80)\n")
+
+    print("MuJoCo: the design exported (ideal and realised, --mjcf) and held at the design's 2,000 poses:")
+    for label in ("UR5", "Panda", "SO-101"):
+        design = designs[label]
+        start = time.perf_counter()
+        files = (to_mjcf(design.model, design.ideal), to_mjcf(design.model, design.realised))
+        held = [mujoco_holding_torques(text, design.model, design.q) for text in files]
+        seconds = time.perf_counter() - start
+        scale = float(np.max(np.abs(geometry.gravity_torques(design.model, design.q))))
+        diff = max(float(np.max(np.abs(h - geometry.joint_torques(design.model, springs, design.q)))) / scale
+                   for h, springs in zip(held, (design.ideal, design.realised), strict=True))
+        print(f"{label:8s} {seconds:5.2f} s (target 5 s), max |MuJoCo - route 2| / max |gravity| = {diff:.1e}")
+    print()
 
     print("exudyn's holding torques beside route 2 (3 poses):")
     for label in ("UR5", "Panda"):

@@ -124,6 +124,14 @@ def test_the_cli_writes_both_models(tmp_path, capsys):
     assert mujoco.MjModel.from_xml_path(str(tmp_path / "a.xml")).ntendon >= 1
 
 
+def test_a_pulley_larger_than_a_link_is_refused(tmp_path, capsys):
+    out = tmp_path / "so101.json"
+    code = main(["design", str(robot_urdf("SO-101")), "--pulley-radius", "0.05", "--json", str(out), "--quiet"])
+    err = capsys.readouterr().err
+    assert code == 2 and "pulley_radius = 0.05 m is larger than link" in err and err.count("\n") == 1
+    assert not out.exists()
+
+
 MJCF_BAD = [
     (["notebooks/arms/paper001_arm.toml"], "pseudobase"),
     ([None, "--mjcf", "{tmp}"], "is a directory"),

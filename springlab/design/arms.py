@@ -1002,6 +1002,27 @@ def _lead_in_body(model: RevoluteChain, spring) -> np.ndarray:
     return np.asarray(model.locate(spring.link_a, spring.lead)[1]) - model.locate(spring.link_a, (0.0, 0.0, 0.0))[1]
 
 
+def _check_pulley(model: RevoluteChain, pulley_radius) -> float:
+    """``pulley_radius`` (m), refused when a pulley that size would not fit on a link: more than half
+    the smallest moving link's size (its outline's largest side, else the distance to the next joint)."""
+    pulley_radius = _checks.positive("pulley_radius", pulley_radius, allow_zero=True, unit="m")
+    if pulley_radius == 0:
+        return pulley_radius
+    sizes = []
+    for b in range(1, model.n + 1):
+        if model.outline and len(model.outline[b]):
+            sizes.append((float(np.max(np.ptp(model.outline[b], axis=0))), model.bodies[b]))
+        elif b < model.n and np.linalg.norm(model.placements[b][:3, 3]) > 1e-3:
+            sizes.append((float(np.linalg.norm(model.placements[b][:3, 3])), model.bodies[b]))
+    sizes = [item for item in sizes if item[0] > 1e-3]
+    if sizes:
+        size, name = min(sizes)
+        if pulley_radius > 0.5 * size:
+            raise SpringlabError(f"pulley_radius = {pulley_radius:g} m is larger than link {name!r} ({size:.3g} m across) "
+                                 f"can carry: a pulley rides on a link; give at most {0.5 * size:.3g} m (e.g. 0.005)")
+    return pulley_radius
+
+
 def _reach_note(model: RevoluteChain, reach) -> str:
     """Where the spring ends may sit (``attachment_boxes``), in words."""
     known = [bool(model.outline) and len(p) > 0 for p in (model.outline or [()] * (model.n + 1))]
@@ -1032,6 +1053,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     ``samples`` other random poses of the workspace."""
     _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
     samples = _checks.count("samples", samples, least=1)
+    _check_pulley(model, pulley_radius)
     ranges = workspace_ranges(model, workspace)
     rng = np.random.default_rng(seed)
     check = rng.uniform(ranges[:, 0], ranges[:, 1], (samples, model.n))
