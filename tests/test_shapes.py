@@ -268,3 +268,16 @@ def test_clearance_is_measured_from_the_outlines_and_can_fail(tmp_path):
     far, inside = (float(row[2]) for row in table.rows)
     assert table.rows[0][1] == "base" and far == pytest.approx(250.0 - 0.5 * 250 / 31, abs=0.05)
     assert inside < 0 and table.rows[1][3] == "yes"
+
+
+def test_a_cable_whose_ends_meet_runs_over_a_point_pulley(tmp_path):
+    """A spring whose ends pass within the pulley's radius of each other (here 4 mm apart, across the
+    elbow) cannot wrap a 5 mm pulley: it is realised with a point pulley and named, never a crash."""
+    from springlab.design.arms import realise_springs
+
+    model, _ = _arm(tmp_path)
+    spring = PointSpring("upper", (0.0, 0.004, 0.4), "fore", (0.0, 0.0, 0.0), 50.0)
+    q = model.random_q(100, 1)
+    realised, kinds, _ = realise_springs(model, [spring], q, pulley_radius=0.005)
+    assert all(r is None or r.pulley_radius == 0 for r in realised)
+    assert all("point pulley" in kind or kind.startswith(("zero-length", "not realised")) for kind in kinds)

@@ -846,6 +846,14 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
         kinds.append(("zero-length spring", coil, lengths) if coil is not None else ("cable", None, why))
     cable = [i for i, (kind, _, _) in enumerate(kinds) if kind == "cable"]
     built = list(springs)
+    if pulley_radius > 0:  # a cable whose ends come within the pulley's radius cannot run over it
+        fit = q[:150] if fit is None else model.check_q(fit)
+        Rf, of = body_frames(model, fit)
+        near = [i for i in cable if min(_length_range(model, springs[i], R, o)[0],
+                                        _length_range(model, springs[i], Rf, of)[0]) <= 2 * pulley_radius]
+        cable = [i for i in cable if i not in near]
+    else:
+        near = []
     if pulley_radius > 0 and cable:
         fit = q[:150] if fit is None else model.check_q(fit)
         led = _leads(model, built, cable, fit, pulley_radius)
@@ -880,7 +888,8 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
         for m in range(parallel):
             out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, coil.initial_tension / k,
                                    coil.initial_tension, s.pulley_radius, s.lead))
-            names.append("cable over a pulley" + (f" ({m + 1} of {parallel} side by side)" if parallel > 1 else ""))
+            names.append("cable over a pulley" + (f" ({m + 1} of {parallel} side by side)" if parallel > 1 else "")
+                         + (" (a point pulley: its ends come within twice the pulley's radius)" if i in near else ""))
             coils.append((coil, lengths))
     return tuple(out), tuple(names), tuple(coils)
 
