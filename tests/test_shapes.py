@@ -18,7 +18,7 @@ from springlab.design.arms import (
     structure,
 )
 from springlab.energy import geometry
-from springlab.model.robots import ROBOTS, load_robot, robot_urdf, robots_folder
+from springlab.model.robots import load_robot, robot_urdf, robots_folder
 from springlab.model.shapes import ROUND_POINTS, Shape, link_shapes, resolve_mesh, shape_points
 from springlab.model.springs import PointSpring
 from springlab.model.urdf import read_revolute_chain
@@ -138,13 +138,15 @@ def test_a_file_without_geometry_keeps_the_default_reach():
     assert np.all(half >= 0.05)  # the link and a 5 cm bracket at least
 
 
-@pytest.mark.parametrize("label", list(ROBOTS))
+@pytest.mark.parametrize("label", ["UR5", "Panda", "Kinova Jaco", "Z1", "Talos left arm", "Baxter left arm"])
 def test_outlines_agree_with_pinocchios_geometry(label):
     """Pinocchio reads the file and its meshes itself (assimp, not trimesh) and places every
     collision object; each body's bounding box at random poses must agree with ours: meshes
     exactly (ours are their hulls' vertices), round shapes within r (1 - cos(pi / 64)), below
     3e-4 m for these arms' radii below 0.25 m. Bodies whose geometry is visual only (Pinocchio
-    reads collision geometry) are not compared."""
+    reads collision geometry) are not compared. STL, COLLADA (Kinova), cylinders and STL (Z1), a
+    torso's meshes (Talos), boxes, spheres and cylinders (Baxter); the SO-101 in the Real arms
+    chapter, all twelve in `make bench`."""
     pytest.importorskip("pinocchio")
     model = load_robot(label)
     assert outline_difference(label, model, model.random_q(2, 3)) < 3e-4
