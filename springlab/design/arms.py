@@ -938,9 +938,9 @@ def _leads(model: RevoluteChain, springs, cable, q, radius: float) -> list:
         a, pa = model.locate(s.link_a, s.point_a)
         A, B = world_points(R, o, a, pa), world_points(R, o, *model.locate(s.link_b, s.point_b))
         towards = np.einsum("pji,pj->i", R[:, a], B - A)  # summed over the poses, in body a's frame
-        own = [np.asarray(model.locate(s.link_a, (0.0, 0.0, 0.0))[1])]  # link_a's frame in body a's
-        found = [*np.eye(3), *-np.eye(3), towards, -towards, np.asarray(pa) - own[0]]
-        rotation = np.array([model.locate(s.link_a, e)[1] - own[0] for e in np.eye(3)]).T  # link_a -> body
+        own = np.asarray(model.locate(s.link_a, (0.0, 0.0, 0.0))[1])  # link_a's origin in body a's frame
+        found = [*np.eye(3), *-np.eye(3), towards, -towards, np.asarray(pa) - own]
+        rotation = np.array([model.locate(s.link_a, e)[1] - own for e in np.eye(3)]).T  # link_a -> body
         candidates[i] = [tuple(rotation.T @ (u / np.linalg.norm(u))) for u in found if np.linalg.norm(u) > 1e-9]
         out[i] = _with(s, pulley_radius=radius, lead=candidates[i][-1])  # from link_a's origin to A, or -towards
     for _ in range(2):
@@ -971,14 +971,15 @@ def _rebalance(model: RevoluteChain, springs, cable, q, reach, max_stiffness) ->
     hi = np.maximum(hi, x0)  # a designed rate above the cap stays reachable
     x0 = np.clip(x0, lo, hi)
 
+    leads = {i: tuple(_lead_in_body(model, springs[i])) for i in cable}  # the ends move to the bodies' frames
+
     def build(x):
         out = list(springs)
         for m, i in enumerate(cable):
             (a, _), (b, _) = ends[i]
             v = x[7 * m:7 * m + 7]
             out[i] = PointSpring(model.bodies[a], tuple(v[1:4]), model.bodies[b], tuple(v[4:7]), max(v[0], 1e-9),
-                                 pulley_radius=springs[i].pulley_radius,
-                                 lead=tuple(_lead_in_body(model, springs[i])))
+                                 pulley_radius=springs[i].pulley_radius, lead=leads[i])
         return out
 
     best_x, best = x0, _worst(model, build(x0), q, scale)
