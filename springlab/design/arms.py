@@ -940,7 +940,7 @@ def _leads(model: RevoluteChain, springs, cable, q, radius: float) -> list:
         towards = np.einsum("pji,pj->i", R[:, a], B - A)  # summed over the poses, in body a's frame
         own = np.asarray(model.locate(s.link_a, (0.0, 0.0, 0.0))[1])  # link_a's origin in body a's frame
         found = [*np.eye(3), *-np.eye(3), towards, -towards, np.asarray(pa) - own]
-        rotation = np.array([model.locate(s.link_a, e)[1] - own for e in np.eye(3)]).T  # link_a -> body
+        rotation = np.array([model.direction(s.link_a, e)[1] for e in np.eye(3)]).T  # link_a -> body
         candidates[i] = [tuple(rotation.T @ (u / np.linalg.norm(u))) for u in found if np.linalg.norm(u) > 1e-9]
         out[i] = _with(s, pulley_radius=radius, lead=candidates[i][-1])  # from link_a's origin to A, or -towards
     for _ in range(2):
@@ -971,7 +971,7 @@ def _rebalance(model: RevoluteChain, springs, cable, q, reach, max_stiffness) ->
     hi = np.maximum(hi, x0)  # a designed rate above the cap stays reachable
     x0 = np.clip(x0, lo, hi)
 
-    leads = {i: tuple(_lead_in_body(model, springs[i])) for i in cable}  # the ends move to the bodies' frames
+    leads = {i: tuple(model.direction(springs[i].link_a, springs[i].lead)[1]) for i in cable}  # in the bodies' frames
 
     def build(x):
         out = list(springs)
@@ -1005,11 +1005,6 @@ def _joint_scales(model: RevoluteChain, q) -> np.ndarray:
     joint gravity leaves (nearly) alone."""
     peak = np.max(np.abs(gravity_torques(model, q)), axis=0)
     return np.where(peak > NEGLIGIBLE * np.max(peak), peak, 0.1 * np.max(peak))
-
-
-def _lead_in_body(model: RevoluteChain, spring) -> np.ndarray:
-    """A spring's lead (given in link_a's frame) in its body's frame."""
-    return np.asarray(model.locate(spring.link_a, spring.lead)[1]) - model.locate(spring.link_a, (0.0, 0.0, 0.0))[1]
 
 
 def _check_pulley(model: RevoluteChain, pulley_radius) -> float:

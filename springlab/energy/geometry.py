@@ -250,8 +250,7 @@ def _spring_ends(model: RevoluteChain, s, R, o):
     (ia, pa), (ib, pb) = model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)
     A, B = world_points(R, o, ia, pa), world_points(R, o, ib, pb)
     if s.pulley_radius > 0:
-        lead = model.locate(s.link_a, s.lead)[1] - model.locate(s.link_a, (0.0, 0.0, 0.0))[1]  # a direction
-        path, T = cable_geometry(A, B, R[:, ia] @ lead, s.pulley_radius)
+        path, T = cable_geometry(A, B, R[:, ia] @ model.direction(s.link_a, s.lead)[1], s.pulley_radius)
         return T, B, path, ia, ib
     return A, B, np.linalg.norm(B - A, axis=1), ia, ib
 

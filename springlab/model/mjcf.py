@@ -120,7 +120,7 @@ def _pulley(model: RevoluteChain, s, k: int, parent, centre) -> float:
     away from where it arrives. At rest the swivel holds B in the pulley's plane
     (:func:`springlab.workbench.references.mujoco_holding_torques` sets it so). Returns the run."""
     rho = s.pulley_radius
-    u = model.locate(s.link_a, s.lead)[1] - model.locate(s.link_a, (0.0, 0.0, 0.0))[1]
+    u = model.direction(s.link_a, s.lead)[1]
     u = u / np.linalg.norm(u)
     trial = np.array([1.0, 0.0, 0.0]) if abs(u[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
     n0 = np.cross(u, trial)

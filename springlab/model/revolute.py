@@ -183,6 +183,12 @@ class RevoluteChain:
             raise SpringlabError(f"{name!r} is not a link of {self.name!r}: give one of {shown}")
         return self.bodies.index(name), np.asarray(point, dtype=float)
 
+    def direction(self, name, vector) -> tuple[int, np.ndarray]:
+        """A direction given in a named frame (a body or a fixed frame) as (body index, the direction
+        in that body's frame): :meth:`locate` for vectors, rotated but not moved."""
+        body, origin = self.locate(name, (0.0, 0.0, 0.0))
+        return body, self.locate(name, vector)[1] - origin
+
     def check_q(self, q) -> np.ndarray:
         """Joint angles (rad) as a float array (N, n); a single pose (n,) becomes N = 1."""
         q = _checks.real_array("q (joint angles)", q, finite_only=False)
