@@ -25,7 +25,7 @@ and route 3 (:func:`springlab.energy.simulation.joint_torques`) take this model 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -188,6 +188,32 @@ class RevoluteChain:
         in that body's frame): :meth:`locate` for vectors, rotated but not moved."""
         body, origin = self.locate(name, (0.0, 0.0, 0.0))
         return body, self.locate(name, vector)[1] - origin
+
+    def with_point_mass(self, name, point, mass) -> RevoluteChain:
+        """The same chain carrying ``mass`` (kg) more at ``point`` (m, in the named frame): a payload
+        added, or with a negative mass one taken off again (down to none). The body's mass, centre of
+        mass and inertia are combined as one rigid body's (parallel axes); the gravity torques are
+        linear in ``mass``.
+
+        :raises SpringlabError: when the body would be left with a negative mass
+        """
+        mass = _checks.finite("mass", mass, unit="kg")
+        body, p = self.locate(name, point)
+        total = float(self.mass[body]) + mass
+        if total < -1e-12 * max(1.0, float(self.mass[body])):
+            raise SpringlabError(f"mass = {mass:g} kg takes more off body {self.bodies[body]!r} than its "
+                                 f"{float(self.mass[body]):g} kg: give a payload of at least 0 kg")
+        masses, coms, inertias = self.mass.copy(), self.com.copy(), self.inertia.copy()
+        if total <= 0:
+            masses[body], coms[body] = 0.0, p
+        else:
+            com = (self.mass[body] * self.com[body] + mass * p) / total
+            J = self.inertia[body].copy()
+            for m, c in ((self.mass[body], self.com[body]), (mass, p)):
+                d = c - com
+                J += m * (float(d @ d) * np.eye(3) - np.outer(d, d))
+            masses[body], coms[body], inertias[body] = total, com, 0.5 * (J + J.T)
+        return replace(self, mass=masses, com=coms, inertia=inertias)
 
     def check_q(self, q) -> np.ndarray:
         """Joint angles (rad) as a float array (N, n); a single pose (n,) becomes N = 1."""

@@ -1,0 +1,306 @@
+"""The payload a design holds, and the payload dial that keeps it balanced when the payload changes.
+
+A design is made for a nominal payload: a point mass at a frame of the arm (the tip frame's origin
+for ``springlab design --payload``). Another payload adds (or takes off) a point mass there
+(:meth:`springlab.model.revolute.RevoluteChain.with_point_mass`), whose gravity torques are linear
+in its mass; the springs, unchanged, leave those torques unbalanced (:func:`payload_torques`).
+
+**The dial.** Moving a zero-free-length spring's end A by a fixed vector d in its link's frame
+changes its energy from k |B - A|^2 / 2 to k |B - A - d|^2 / 2 = k |B - A|^2 / 2 - k d . (B - A)
++ k |d|^2 / 2: the last term is a constant (d turns with its link), so the holding torques are
+exactly linear in the moves, as they are in the payload's mass. The moves that cancel one
+kilogram are therefore a linear least-squares problem over the design's poses: route 2's torques
+of the payload's kilogram against those of unit moves of the candidate ends. Three sets are tried,
+in the order an engineer would rather adjust them:
+
+1. the ends on the bodies the loaded joints do not move (anchors on the base, the usual slot of
+   a gravity balancer);
+2. every spring's proximal end (the one on the body nearer the base);
+3. each single end alone (the best one is the dial where no set is exact).
+
+A set is exact when what it leaves of the kilogram's torques is round-off (:data:`EXACT`); the
+first exact set is the dial. For a planar chain balanced by springlab's construction the base
+anchors are exact: each anchor's product with its spring's other offset is what gravity's first
+moment fixes, and that is linear in the payload. Otherwise the dial is the best single end, and what
+it leaves is stated.
+
+Springs with a free length, or cables over a pulley, are not linear in the moves: their dial is the
+linearisation (finite differences of :data:`STEP`), and :func:`payload_torques` checks it by route 2
+at the payloads themselves.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from springlab import _checks
+from springlab.energy.geometry import joint_torques
+from springlab.errors import SpringlabError
+from springlab.model.revolute import RevoluteChain, check_point_springs
+from springlab.tables import Table
+
+EXACT = 1e-9
+"""A set of moves restores the balance exactly when the largest holding torque it leaves of one
+kilogram's is at most this fraction of the kilogram's own largest (round-off is about 1e-14)."""
+
+STEP = 1e-3
+"""m: the moves' finite-difference step (exact for zero-free-length springs, whose torques are
+linear in the moves; a linearisation for the others)."""
+
+MAX_PAYLOAD_RANGE = 1e3
+"""kg: the largest payload a range may reach (more is a unit mistake for an arm's payload)."""
+
+
+@dataclass(frozen=True)
+class PayloadDial:
+    """Which spring ends to move, and by how much per kilogram of payload, to keep the balance.
+
+    :ivar frame: the frame the payload is carried at (a link name)
+    :ivar point: where in that frame (m)
+    :ivar moves: per moved end, (spring index, 'A' or 'B', link name, the move per kilogram as a
+        vector in that link's frame, m/kg)
+    :ivar exact: True when the moves restore the balance exactly (to :data:`EXACT`)
+    :ivar left: the largest holding torque the moves leave of one kilogram's, as a fraction of the
+        kilogram's own largest (0 exact, 1 nothing restored)
+    :ivar how: which candidate set the moves come from, in words
+    """
+
+    frame: str
+    point: tuple
+    moves: tuple
+    exact: bool
+    left: float
+    how: str
+
+    def turned(self, springs, kg: float) -> tuple:
+        """The springs with the dial turned for ``kg`` (kg, may be negative) more payload."""
+        kg = _checks.finite("kg", kg, unit="kg")
+        out = list(springs)
+        for i, end, _, per_kg in self.moves:
+            s = out[i]
+            moved = tuple(np.asarray(s.point_a if end == "A" else s.point_b) + kg * np.asarray(per_kg))
+            out[i] = replace(s, **({"point_a": moved} if end == "A" else {"point_b": moved}))
+        return tuple(out)
+
+    def table(self) -> Table:
+        """Each move: the spring, its end and link, the move per kilogram (mm/kg, in the link's frame)
+        and its length (mm/kg)."""
+        return Table(["spring", "end", "link", "move per kg (mm/kg, link frame)", "length (mm/kg)"],
+                     [(f"S{i + 1}", end, link, "(" + ", ".join(f"{1e3 * v + 0.0:.2f}" for v in per_kg) + ")",
+                       f"{1e3 * float(np.linalg.norm(per_kg)):.2f}") for i, end, link, per_kg in self.moves])
+
+    def as_dict(self) -> dict:
+        """For ``springlab design --json``: lengths in m per kg, in each link's frame."""
+        return {"frame": self.frame, "point_m": list(self.point), "exact": self.exact,
+                "left_fraction": self.left, "how": self.how,
+                "moves": [{"spring": i + 1, "end": end, "link": link, "move_m_per_kg": list(map(float, per_kg))}
+                          for i, end, link, per_kg in self.moves]}
+
+
+def _ground(model: RevoluteChain, q) -> int:
+    """The last body the loaded joints do not move: bodies 0..this index are the loaded chain's base."""
+    from springlab.energy.geometry import gravity_torques
+
+    peak = np.max(np.abs(gravity_torques(model, q)), axis=0)
+    loaded = np.flatnonzero(peak > 1e-10 * max(float(np.max(peak)), 1e-300))
+    return int(loaded[0]) if len(loaded) else model.n
+
+
+def _columns(model, springs, q, ends, base):
+    """Route 2's holding torques (N m, flattened over poses and joints) of unit moves of ``ends``
+    ((spring, 'A' or 'B') each, three axes of its body), by finite differences of :data:`STEP`."""
+    columns = []
+    for i, end in ends:
+        s = springs[i]
+        for e in np.eye(3):
+            link = s.link_a if end == "A" else s.link_b
+            axis = np.linalg.solve(_rotation(model, link), e)  # the body's axis e in the link's frame
+            point = np.asarray(s.point_a if end == "A" else s.point_b) + STEP * axis
+            moved = list(springs)
+            moved[i] = replace(s, **({"point_a": tuple(point)} if end == "A" else {"point_b": tuple(point)}))
+            columns.append(((joint_torques(model, moved, q) - base) / STEP).ravel())
+    return np.array(columns).T
+
+
+def _rotation(model: RevoluteChain, link) -> np.ndarray:
+    """The rotation from a link's frame to its body's (columns: the link's axes in the body's frame)."""
+    return np.array([model.direction(link, e)[1] for e in np.eye(3)]).T
+
+
+def payload_dial(model: RevoluteChain, springs, q, frame: str, point=(0.0, 0.0, 0.0), *, ends=None) -> PayloadDial:
+    """The payload dial of ``springs`` on ``model`` (module docstring) over the poses ``q`` (N, n) rad,
+    for a payload at ``point`` (m) in ``frame``. ``ends`` ((spring index, 'A' or 'B') each) fixes the
+    ends to move (for the realised springs: those of the ideal springs' dial); the moves are then
+    those that leave the least, exact or not.
+
+    :raises SpringlabError: when there are no springs to move, or the payload loads no joint
+    """
+    _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
+    springs = check_point_springs(model, springs)
+    q = model.check_q(q)
+    point = tuple(float(v) for v in _checks.real_array("point", point, shape=(3,)))
+    if not springs:
+        raise SpringlabError("a payload dial moves spring ends: this design has no springs")
+    base = joint_torques(model, springs, q)
+    kilo = (joint_torques(model.with_point_mass(frame, point, 1.0), springs, q) - base).ravel()
+    scale = float(np.max(np.abs(kilo)))
+    if scale == 0:
+        raise SpringlabError(f"a payload at {point} in {frame!r} loads no joint: nothing to dial")
+    cache = {}
+
+    def solve(chosen):
+        J = np.hstack([cache.setdefault(e, _columns(model, springs, q, [e], base)) for e in chosen])
+        x, *_ = np.linalg.lstsq(J, -kilo, rcond=1e-12)
+        return x, float(np.max(np.abs(kilo + J @ x))) / scale
+
+    if ends is not None:
+        ends = [(_checks.count("ends: spring index", i), _checks.choice("ends: end", e, ("A", "B"))) for i, e in ends]
+        if not ends or any(i >= len(springs) for i, _ in ends):
+            raise SpringlabError(f"ends = {ends}: give (spring index 0..{len(springs) - 1}, 'A' or 'B') pairs")
+        x, left = solve(ends)
+        return PayloadDial(frame, point, _moves(model, springs, ends, x), left <= EXACT, left,
+                           "the ends given (those of the ideal springs' dial)")
+    ground = _ground(model, q)
+    body = [(model.locate(s.link_a, (0, 0, 0))[0], model.locate(s.link_b, (0, 0, 0))[0]) for s in springs]
+    proximal = [(i, "A" if a <= b else "B") for i, (a, b) in enumerate(body)]
+    sets = []
+    anchors = [(i, end) for i, end in proximal if min(body[i]) <= ground]
+    if anchors:
+        sets.append((anchors, "the springs' anchors on the bodies the loaded joints do not move"))
+    if len(proximal) > len(anchors):
+        sets.append((proximal, "every spring's end on the body nearer the base"))
+    for ends, how in sets:
+        x, left = solve(ends)
+        if left <= EXACT:
+            return PayloadDial(frame, point, _moves(model, springs, ends, x), True, left, how)
+    best = None
+    for e in [(i, end) for i in range(len(springs)) for end in "AB"]:
+        x, left = solve([e])
+        if best is None or left < best[2] - 1e-12:
+            best = ([e], x, left)
+    ends, x, left = best
+    return PayloadDial(frame, point, _moves(model, springs, ends, x), left <= EXACT, left,
+                       "the best single end (no set of ends restores the balance exactly)" if left > EXACT
+                       else "a single end")
+
+
+def _moves(model, springs, ends, x) -> tuple:
+    out = []
+    for m, (i, end) in enumerate(ends):
+        link = springs[i].link_a if end == "A" else springs[i].link_b
+        per_kg = np.linalg.solve(_rotation(model, link), x[3 * m:3 * m + 3])  # body frame -> link frame
+        if np.linalg.norm(per_kg) > 1e-12:
+            out.append((i, end, link, tuple(float(v) + 0.0 for v in per_kg)))
+    return tuple(out)
+
+
+def payload_range(low, high) -> tuple[float, float]:
+    """A payload range (kg), checked: finite, 0 <= low <= high <= :data:`MAX_PAYLOAD_RANGE`."""
+    low = _checks.finite("payload range: low", low, unit="kg")
+    high = _checks.finite("payload range: high", high, unit="kg")
+    if low < 0 or high < low or high > MAX_PAYLOAD_RANGE:
+        raise SpringlabError(f"payload range = {low:g} to {high:g} kg: give 0 <= low <= high <= "
+                             f"{MAX_PAYLOAD_RANGE:g} kg, e.g. 0 to 5 kg")
+    return low, high
+
+
+def payload_torques(model: RevoluteChain, springs, q, frame: str, masses, *, nominal: float = 0.0,
+                    point=(0.0, 0.0, 0.0), dial: PayloadDial | None = None) -> np.ndarray:
+    """Route 2's peak holding torque (N m) per joint over the poses ``q``, at each payload of
+    ``masses`` (kg): ``model`` carries ``nominal`` kg at ``point`` in ``frame``, each payload changes
+    it; with ``dial``, the dial turned for the change. (len(masses), n)."""
+    _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
+    springs = check_point_springs(model, springs)
+    q = model.check_q(q)
+    nominal = _checks.positive("nominal", nominal, allow_zero=True, unit="kg")
+    masses = _checks.real_array("masses", masses, shape=(None,))
+    if np.any(masses < 0):
+        raise SpringlabError(f"masses = {masses.tolist()} kg: a payload is at least 0 kg")
+    out = []
+    for m in masses:
+        carried = model.with_point_mass(frame, point, float(m) - nominal)
+        used = springs if dial is None else dial.turned(springs, float(m) - nominal)
+        out.append(np.max(np.abs(joint_torques(carried, used, q)), axis=0))
+    return np.array(out)
+
+
+@dataclass(frozen=True)
+class PayloadStudy:
+    """A design's springs at other payloads than its nominal one, unchanged and with the dial turned.
+
+    :ivar frame: the frame the payload is carried at; ``point`` where in it (m)
+    :ivar nominal: the payload (kg) the design was made for
+    :ivar masses: the payloads studied (kg)
+    :ivar dials: the dial of the ideal and of the realised springs (:func:`payload_dial`)
+    :ivar peaks: per case ('gravity alone', 'ideal', 'ideal, dial turned', 'realised', 'realised, dial
+        turned'), route 2's peak holding torque (N m) per joint over the design's poses, (len(masses), n)
+    :ivar outside: per payload, how far (m) the dial takes a moved ideal end outside its body's box
+        (:func:`springlab.design.arms.ends_outside`; 0: every end stays where the design may put it)
+    :ivar loaded: the loaded joints' indices; ``joints`` all joints' names
+    """
+
+    frame: str
+    point: tuple
+    nominal: float
+    masses: np.ndarray
+    dials: dict
+    peaks: dict
+    outside: np.ndarray
+    loaded: tuple
+    joints: tuple
+
+    def table(self) -> Table:
+        """Per payload and case: the peak holding torque (N m) of each loaded joint."""
+        rows = []
+        for m, mass in enumerate(self.masses):
+            for case, peaks in self.peaks.items():
+                rows.append((f"{mass:g}", case, *(f"{peaks[m, i]:.3g}" for i in self.loaded)))
+        return Table(["payload (kg)", "springs", *(f"{self.joints[i]} peak (N m)" for i in self.loaded)], rows)
+
+    def left(self, case: str = "ideal, dial turned") -> np.ndarray:
+        """Per payload, the largest peak over the loaded joints a case leaves, as a fraction of gravity's
+        own largest peak at that payload."""
+        loaded = list(self.loaded)
+        return np.max(self.peaks[case][:, loaded], axis=1) / np.max(self.peaks["gravity alone"][:, loaded], axis=1)
+
+    def as_dict(self) -> dict:
+        """For ``springlab design --json``: the dials and their check at the payloads (N m, kg, m)."""
+        return {"frame": self.frame, "point_m": list(self.point), "nominal_kg": self.nominal,
+                "dial": {"ideal": self.dials["ideal"].as_dict(), "realised": self.dials["realised"].as_dict()},
+                "checked_by": "route 2 (direct geometry) over the design's poses",
+                "checks": [{"payload_kg": float(mass), "dial_end_outside_box_m": float(self.outside[m]),
+                            "peak_Nm": {case: {self.joints[i]: float(peaks[m, i]) for i in self.loaded}
+                                        for case, peaks in self.peaks.items()}}
+                           for m, mass in enumerate(self.masses)]}
+
+
+def payload_study(design, frame: str, masses, *, nominal: float = 0.0, point=(0.0, 0.0, 0.0), reach=None,
+                  dial_poses: int = 200) -> PayloadStudy:
+    """The payload study of an :class:`~springlab.design.arms.ArmDesign` made for ``nominal`` kg at
+    ``point`` (m) in ``frame``: its dials (fitted on the design's first ``dial_poses`` poses) and
+    route 2's peak holding torques at ``masses`` (kg) over all its poses. The realised springs' dial
+    moves the same ends as the ideal springs' where the two designs pair spring by spring."""
+    from springlab.design.arms import ArmDesign, ends_outside
+
+    _checks.instance("design", design, ArmDesign, "springlab ArmDesign (design_model)")
+    masses = _checks.real_array("masses", masses, shape=(None,))
+    if not len(masses) or np.any(masses < 0) or np.any(masses > MAX_PAYLOAD_RANGE):
+        raise SpringlabError(f"masses = {masses.tolist()} kg: give payloads from 0 to {MAX_PAYLOAD_RANGE:g} kg")
+    model, q = design.model, design.q
+    fit = q[:_checks.count("dial_poses", dial_poses, least=1)]
+    ideal = payload_dial(model, design.ideal, fit, frame, point)
+    pairs = lambda springs: [(s.link_a, s.link_b) for s in springs]  # noqa: E731
+    same = pairs(design.ideal) == pairs(design.realised)
+    realised = payload_dial(model, design.realised, fit, frame, point,
+                            ends=[(i, end) for i, end, _, _ in ideal.moves] if same and ideal.moves else None)
+    peaks = {"gravity alone": payload_torques(model, [], q, frame, masses, nominal=nominal, point=point)}
+    for which, dial in (("ideal", ideal), ("realised", realised)):
+        springs = getattr(design, which)
+        peaks[which] = payload_torques(model, springs, q, frame, masses, nominal=nominal, point=point)
+        peaks[f"{which}, dial turned"] = payload_torques(model, springs, q, frame, masses, nominal=nominal, point=point,
+                                                         dial=dial)
+    outside = np.array([ends_outside(model, ideal.turned(design.ideal, float(m) - nominal), reach) for m in masses])
+    return PayloadStudy(frame, tuple(float(v) for v in point), float(nominal), masses, {"ideal": ideal, "realised": realised},
+                        peaks, outside, tuple(design.structure.loaded), tuple(model.joints))
