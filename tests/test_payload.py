@@ -9,7 +9,13 @@ import numpy as np
 import pytest
 
 from springlab.design.arms import design_model
-from springlab.design.payload import EXACT, payload_dial, payload_range, payload_study, payload_torques
+from springlab.design.payload import (
+    EXACT,
+    payload_dial,
+    payload_range,
+    payload_study,
+    payload_torques,
+)
 from springlab.energy.geometry import gravity_torques
 from springlab.errors import SpringlabError
 from springlab.model.robots import ROBOTS, load_robot
