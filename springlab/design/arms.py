@@ -754,6 +754,67 @@ class ArmDesign:
                       "pulley (mm), lead", "coil free length (mm)", "coil longest (mm)", "initial tension (N)",
                       "wire (mm)"], rows)
 
+    def sheet(self) -> Table:
+        """The spec sheet a spring maker works from, one row per realised spring: where it goes (its ends,
+        mm in their links' URDF frames), how it is realised, the coil
+        (:data:`~springlab.design.buildable.COIL_COLUMNS`), the cable's offset L_0 - F_i / k, the pulley's
+        radius and lead, and the maker's note (:func:`~springlab.design.buildable.maker_note`);
+        :data:`~springlab.design.buildable.SHEET_NOTE` says what it is designed to."""
+        from springlab.design.buildable import COIL_COLUMNS, coil_cells, maker_note
+
+        mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
+        rows = []
+        for n, (r, kind, (coil, _)) in enumerate(zip(self.realised, self.kinds, self.coils, strict=True), start=1):
+            cable = kind.startswith("cable")
+            rows.append((f"S{n}", f"{r.link_a} {mm(r.point_a)}", f"{r.link_b} {mm(r.point_b)}", kind, *coil_cells(coil),
+                         f"{1e3 * (coil.free_length - r.free_length):.1f}" if cable else "",
+                         f"{1e3 * r.pulley_radius:g}" if r.pulley_radius > 0 else "",
+                         "(" + ", ".join(f"{v + 0.0:.2f}" for v in r.lead) + ")" if r.pulley_radius > 0 else "",
+                         maker_note(coil)))
+        return Table(["spring", "end A: link (mm)", "end B: link (mm)", "realisation", *COIL_COLUMNS,
+                      "cable offset L0 - Fi/k (mm)", "pulley radius (mm)", "lead (link_a frame)", "maker's note"], rows)
+
+    def built(self, *, tension: float = 1.0, free_length: float = 1.0, stiffness: float = 1.0) -> tuple:
+        """The realised springs as wound, each coil's initial tension, free length and rate multiplied by
+        the factors (1: as specified; :data:`~springlab.design.buildable.TOLERANCES`). A cable's length
+        stays as cut: its offset c = L_0 - F_i / k is kept, so the force along its path is
+        F_i' + k' (path + c - L_0')."""
+        out = []
+        for r, (coil, _) in zip(self.realised, self.coils, strict=True):
+            offset = coil.free_length - r.free_length  # the cable's offset; 0 for a zero-length spring
+            k = r.k * _checks.positive("stiffness", stiffness)
+            L0 = coil.free_length * _checks.positive("free_length", free_length) - offset
+            Fi = r.initial_tension * _checks.positive("tension", tension)
+            fields = {"free_length": L0, "initial_tension": Fi} if L0 >= 0 else {"free_length": 0.0,
+                                                                                  "initial_tension": Fi - k * L0}
+            out.append(_with(r, k=k, **fields))
+        return tuple(out)
+
+    def tolerance_table(self, tolerances: dict | None = None) -> Table:
+        """The balance the built springs leave (route 2, the design's poses): per loaded joint, the
+        percentage of its peak gravity torque removed, by the ideal springs, the realised ones as
+        specified, and with each of the maker's tolerances (default
+        :data:`~springlab.design.buildable.TOLERANCES`) at its + and - limit on every spring at once."""
+        from springlab.design.buildable import TOLERANCES
+
+        tolerances = dict(TOLERANCES if tolerances is None else tolerances)
+        for name, value in tolerances.items():
+            _checks.choice("tolerance", name, tuple(TOLERANCES))
+            _checks.at_most(f"tolerance {name}", _checks.positive(f"tolerance {name}", value, allow_zero=True), 0.5)
+        loaded = list(self.structure.loaded)
+        peak = np.max(np.abs(gravity_torques(self.model, self.q)), axis=0)[loaded]
+
+        def removed(springs):
+            left = np.max(np.abs(joint_torques(self.model, springs, self.q)), axis=0)[loaded]
+            return [f"{100 * (1 - v / p):.1f}" for v, p in zip(left, peak, strict=True)]
+
+        rows = [("as designed (ideal springs)", *removed(self.ideal)), ("as specified", *removed(self.built()))]
+        for name, value in tolerances.items():
+            for sign in (1, -1):
+                rows.append((f"{name.replace('_', ' ')} {'+' if sign > 0 else '-'}{100 * value:g} %",
+                             *removed(self.built(**{name: 1 + sign * value}))))
+        return Table(["built", *(f"{self.model.joints[i]} removed (%)" for i in loaded)], rows)
+
     def clearance_table(self) -> Table:
         """The realised springs' clearance from the bodies over the workspace (:func:`clearance`)."""
         return clearance(self.model, self.realised, self.q)

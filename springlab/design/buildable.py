@@ -568,11 +568,14 @@ def pulley_study(chain: Chain, springs, X, radii, *, material: str = "music wire
     return out
 
 
-SHEET_COLUMNS = ("spring", "realisation", "material", "wire d (mm)", "mean coil D (mm)", "outer diameter (mm)",
-                 "index C", "body coils", "active coils", "free length inside hooks (mm)", "initial tension (N)",
-                 "windable initial tension (N)", "rate (N/mm)", "longest in service (mm)", "largest force (N)",
-                 "stress at largest force (MPa)", "allowable stress (MPa)", "stress / allowable (%)", "a (mm)", "b (mm)",
-                 "cable offset L0 - Fi/k (mm)", "pulley radius (mm)", "room along link i (mm)", "maker's note")
+COIL_COLUMNS = ("material", "wire d (mm)", "mean coil D (mm)", "outer diameter (mm)", "index C", "body coils",
+                "active coils", "free length inside hooks (mm)", "initial tension (N)", "windable initial tension (N)",
+                "rate (N/mm)", "longest in service (mm)", "largest force (N)", "stress at largest force (MPa)",
+                "allowable stress (MPa)", "stress / allowable (%)")
+"""The spec sheet's columns that describe the coil itself (:func:`coil_cells`)."""
+
+SHEET_COLUMNS = ("spring", "realisation", *COIL_COLUMNS, "a (mm)", "b (mm)", "cable offset L0 - Fi/k (mm)",
+                 "pulley radius (mm)", "room along link i (mm)", "maker's note")
 
 
 SHEET_NOTE = (f"Designed to: body stress at the largest force at most {100 * STRESS_SHARE:.0f} % of the allowable "
@@ -582,34 +585,51 @@ SHEET_NOTE = (f"Designed to: body stress at the largest force at most {100 * STR
 """The sheet's statement of what it designs to, printed with it."""
 
 
+def coil_cells(coil: ExtensionSpring) -> tuple:
+    """A coil's cells of the spec sheet, as :data:`COIL_COLUMNS` names them (mm, N, N/mm, MPa)."""
+    c = coil
+    lo, hi = c.initial_tension_range
+    return (f"{c.material} ({MATERIALS[c.material].standard})", f"{c.wire * 1e3:.2f}", f"{c.mean_diameter * 1e3:.2f}",
+            f"{c.outer_diameter * 1e3:.2f}", f"{c.index:.2f}", f"{c.body_coils:.2f}", f"{c.active_coils:.2f}",
+            f"{c.free_length * 1e3:.1f}", f"{c.initial_tension:.2f}", f"{lo:.2f}-{hi:.2f}", f"{c.rate / 1e3:.4f}",
+            f"{c.max_length * 1e3:.1f}", f"{c.max_force:.1f}", f"{c.stress(c.max_force) / 1e6:.0f}",
+            f"{c.allowable_stress / 1e6:.0f}", f"{100 * c.stress(c.max_force) / c.allowable_stress:.0f}")
+
+
+def maker_note(coil: ExtensionSpring) -> str:
+    """The sheet's note to the maker: how to reach an initial tension below the windable range ('' when
+    it lies inside it)."""
+    lo, _ = coil.initial_tension_range
+    if coil.initial_tension < lo * (1 - 1e-9):
+        return (f"wind at {lo:.2f} N or more, then stress-relieve to {coil.initial_tension:.2f} N (below the windable "
+                "range)")
+    return ""
+
+
 def spec_sheet(realisations) -> Table:
     """One row per spring: what a spring maker needs (and where it goes on the arm); :data:`SHEET_NOTE`
     says what it is designed to."""
     rows = []
     for r in realisations:
-        c = r.coil
-        lo, hi = c.initial_tension_range
-        rows.append((f"{r.spring.label}{r.spring.pattern}", r.kind, f"{c.material} ({MATERIALS[c.material].standard})",
-                     f"{c.wire * 1e3:.2f}", f"{c.mean_diameter * 1e3:.2f}", f"{c.outer_diameter * 1e3:.2f}",
-                     f"{c.index:.2f}", f"{c.body_coils:.2f}", f"{c.active_coils:.2f}", f"{c.free_length * 1e3:.1f}",
-                     f"{c.initial_tension:.2f}", f"{lo:.2f}-{hi:.2f}", f"{c.rate / 1e3:.4f}", f"{c.max_length * 1e3:.1f}",
-                     f"{c.max_force:.1f}", f"{c.stress(c.max_force) / 1e6:.0f}", f"{c.allowable_stress / 1e6:.0f}",
-                     f"{100 * c.stress(c.max_force) / c.allowable_stress:.0f}",
+        rows.append((f"{r.spring.label}{r.spring.pattern}", r.kind, *coil_cells(r.coil),
                      f"{r.spring.a * 1e3:.1f}", f"{r.spring.b * 1e3:.1f}",
                      f"{r.cable_offset * 1e3:.1f}" if r.cable else "",
                      f"{r.pulley_radius * 1e3:.1f}" if r.pulley_radius is not None else "",
                      "" if not r.cable else "base column" if r.room is None else
                      f"{r.room * 1e3:.0f}" + ("" if r.fits else " (too short: mount it past the joint)"),
-                     f"wind at {lo:.2f} N or more, then stress-relieve to {c.initial_tension:.2f} N (below the windable "
-                     "range)" if c.initial_tension < lo * (1 - 1e-9) else ""))
+                     maker_note(r.coil)))
     return Table(list(SHEET_COLUMNS), rows)
 
 
-def sheet_csv(realisations) -> str:
-    """:func:`spec_sheet` as CSV text."""
-    table = spec_sheet(realisations)
+def table_csv(table: Table) -> str:
+    """A table as CSV text."""
     buf = io.StringIO()
     writer = csv.writer(buf, lineterminator="\n")
     writer.writerow(table.headers)
     writer.writerows(table.rows)
     return buf.getvalue()
+
+
+def sheet_csv(realisations) -> str:
+    """:func:`spec_sheet` as CSV text."""
+    return table_csv(spec_sheet(realisations))

@@ -16,13 +16,13 @@ in the order an engineer would rather adjust them:
 1. the ends on the bodies the loaded joints do not move (anchors on the base, the usual slot of
    a gravity balancer);
 2. every spring's proximal end (the one on the body nearer the base);
-3. each single end alone (the best one is the dial where no set is exact).
+3. each single end alone.
 
 A set is exact when what it leaves of the kilogram's torques is round-off (:data:`EXACT`); the
-first exact set is the dial. For a planar chain balanced by springlab's construction the base
+first exact set is the dial. Where none is, the dial is whichever of them (the best single end
+among them) leaves the least, and what each leaves is stated. For a planar chain balanced by springlab's construction the base
 anchors are exact: each anchor's product with its spring's other offset is what gravity's first
-moment fixes, and that is linear in the payload. Otherwise the dial is the best single end, and what
-it leaves is stated.
+moment fixes, and that is linear in the payload.
 
 Springs with a free length, or cables over a pulley, are not linear in the moves: their dial is the
 linearisation (finite differences of :data:`STEP`), and :func:`payload_torques` checks it by route 2
@@ -171,19 +171,24 @@ def payload_dial(model: RevoluteChain, springs, q, frame: str, point=(0.0, 0.0, 
         sets.append((anchors, "the springs' anchors on the bodies the loaded joints do not move"))
     if len(proximal) > len(anchors):
         sets.append((proximal, "every spring's end on the body nearer the base"))
+    tried = []
     for ends, how in sets:
         x, left = solve(ends)
         if left <= EXACT:
             return PayloadDial(frame, point, _moves(model, springs, ends, x), True, left, how)
-    best = None
+        tried.append((left, ends, x, how))
+    single = None
     for e in [(i, end) for i in range(len(springs)) for end in "AB"]:
         x, left = solve([e])
-        if best is None or left < best[2] - 1e-12:
-            best = ([e], x, left)
-    ends, x, left = best
-    return PayloadDial(frame, point, _moves(model, springs, ends, x), left <= EXACT, left,
-                       "the best single end (no set of ends restores the balance exactly)" if left > EXACT
-                       else "a single end")
+        if single is None or left < single[0] - 1e-12:
+            single = (left, [e], x, "the best single end")
+    if single[0] <= EXACT:
+        return PayloadDial(frame, point, _moves(model, springs, single[1], x=single[2]), True, single[0], "a single end")
+    left, ends, x, how = min([single, *tried], key=lambda t: t[0])
+    others = "; ".join(f"{h}: {100 * v:.2g} %" for v, _, _, h in [single, *tried] if h != how)
+    return PayloadDial(frame, point, _moves(model, springs, ends, x), False, left,
+                       f"{how}, which leave the least of the kilogram's torque ({100 * left:.2g} %; no set of ends "
+                       f"restores the balance exactly; {others})")
 
 
 def _moves(model, springs, ends, x) -> tuple:

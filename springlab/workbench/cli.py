@@ -57,9 +57,22 @@ def _check_arguments(args) -> None:
     _checks.count("--seed", args.seed)
     _checks.positive("--time-limit", args.time_limit, unit="s")
     _checks.positive("--pulley-radius", args.pulley_radius, allow_zero=True, unit="m")
+    args.payloads = None if args.payload_range is None else _payload_range(args.payload_range)
     if args.pick > args.max_designs:
         raise SpringlabError(f"--pick = {args.pick} is above --max-designs = {args.max_designs}: "
                              "raise --max-designs or pick a lower rank")
+
+
+def _payload_range(text: str) -> tuple[float, float]:
+    """--payload-range 'LOW:HIGH' (kg; units allowed) as two checked numbers."""
+    from springlab.design.payload import payload_range
+    from springlab.model.armfile import parse_quantity
+
+    parts = text.split(":")
+    if len(parts) != 2:
+        raise SpringlabError(f"--payload-range = {text!r}: give LOW:HIGH in kg, e.g. --payload-range 0:5")
+    low, high = (parse_quantity(v.strip(), "mass", "--payload-range") for v in parts)
+    return payload_range(low, high)
 
 
 def _up(text):
@@ -96,7 +109,11 @@ def _design(args) -> int:
     if args.workspace is not None and path.suffix != ".urdf":
         raise SpringlabError(f"--workspace = {args.workspace!r} applies to URDF files (an arm file gives each "
                              "joint's range in its links' 'range')")
-    if path.suffix == ".urdf" and (args.workspace is not None or args.reach is not None or args.package_dir):
+    if args.payload_range is not None and path.suffix != ".urdf":
+        raise SpringlabError(f"--payload-range = {args.payload_range!r} applies to URDF files, designed on the general "
+                             "model with a payload dial (an arm file's payload is its [payload] table)")
+    if path.suffix == ".urdf" and (args.workspace is not None or args.reach is not None or args.package_dir
+                                   or args.payload_range is not None):
         return _design_general(args, path, data, "")  # ranges, reaches and outlines: the general model's
     try:
         spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up), tip=args.tip, base=args.base,
@@ -171,15 +188,17 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     from springlab.model.armfile import parse_quantity
     from springlab.model.urdf import read_revolute_chain
 
-    if args.sheet:
-        raise SpringlabError("--sheet writes the spec sheet of a line-chain design; this arm is designed on the "
-                             "general model, whose --json lists every realised spring (free length, initial "
-                             "tension, kind): leave out --sheet")
+    if args.payload_range is not None and not args.tip:
+        raise SpringlabError(f"--payload-range = {args.payload_range!r}: a payload is carried at the tip frame: give "
+                             "the tip link too (--tip LINK)")
     payload = None if args.payload is None else parse_quantity(args.payload, "mass", "payload")
     model = read_revolute_chain(text, source=str(path), up=_up(args.up), tip=args.tip, base=args.base,
                                 payload=payload, folder=path.parent, package_dirs=args.package_dir)
     workspace = None if args.workspace is None else parse_workspace(args.workspace)
     out = _writable(Path(args.json or path.with_suffix(".design.json").name), "--json")
+    if args.sheet:
+        for sheet_path in _sheet_paths(out):
+            _writable(sheet_path, "--sheet")
     mjcf = _mjcf_paths(args)
     started = time.perf_counter()
     reach = None if args.reach is None else _checks.positive(
@@ -214,20 +233,79 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
         print(f"\nclearance of the realised springs from the bodies (their outlines), over "
               f"{min(len(design.q), 100)} workspace poses:")
         print(design.clearance_table())
-    inputs = {"tip": args.tip, "base": model.bodies[0], "payload_kg": payload, "up": _up(args.up) or [0.0, 0.0, 1.0],
+    print("\nthe balance the built springs leave, with a maker's tolerances on every spring at once (route 2):")
+    print(design.tolerance_table())
+    study = None
+    if args.tip and design.ideal:
+        from springlab.design.payload import payload_study
+
+        nominal = payload or 0.0
+        low, high = args.payloads or (0.0, nominal + 1.0)
+        masses = sorted({low, high} | {m for m in (nominal, nominal + 1.0) if low <= m <= high})
+        study = payload_study(design, args.tip, masses, nominal=nominal, reach=reach)
+        _print_dial(study)
+    inputs = {"tip": args.tip, "base": model.bodies[0], "payload_kg": payload,
+              "payload_range_kg": None if args.payloads is None else list(args.payloads), "up": _up(args.up) or [0.0, 0.0, 1.0],
               "workspace_deg": {name: [float(np.degrees(lo)), float(np.degrees(hi))]
                                 for name, (lo, hi) in zip(model.joints, workspace_ranges(model, workspace), strict=True)},
               "reach_m": reach, "pulley_radius_m": args.pulley_radius, "package_dirs": list(args.package_dir),
               "seed": args.seed + 1,
               "material": args.material}
     try:
-        out.write_text(json.dumps({"source": str(path), "inputs": inputs} | design.as_dict(), indent=1) + "\n")
+        extra = {} if study is None else {"payload": study.as_dict()}
+        out.write_text(json.dumps({"source": str(path), "inputs": inputs} | design.as_dict() | extra, indent=1) + "\n")
     except OSError as err:
         raise SpringlabError(f"--json {out} cannot be written ({err.strerror})") from None
     print(f"\ndesign written to {out}")
+    if args.sheet:
+        _write_general_sheet(args, path, design, study, out)
     if mjcf:
         _write_mjcf(mjcf, model, design.ideal, design.realised)
     return 0
+
+
+def _print_dial(study) -> None:
+    dial = study.dials["ideal"]
+    print(f"\npayload dial ({'exact' if dial.exact else 'not exact'}: {dial.how}); per kg of payload at {study.frame!r}, "
+          "move:")
+    print(dial.table())
+    print(f"checked by route 2 at {', '.join(f'{m:g}' for m in study.masses)} kg (design made for {study.nominal:g} kg):")
+    print(study.table())
+
+
+def _dial_markdown(study) -> str:
+    """The sheet's section on the payload dial."""
+    ideal, realised = study.dials["ideal"], study.dials["realised"]
+    outside = ", ".join(f"{m:g} kg: {1e3 * d:.0f} mm" for m, d in zip(study.masses, study.outside, strict=True))
+    return (f"\n## Payload dial\n\nDesigned for {study.nominal:g} kg at the origin of {study.frame!r}. "
+            f"{'Exact' if ideal.exact else 'Not exact'}: {ideal.how}. For each kilogram more, move (each end in its "
+            f"link's URDF frame; fewer kilograms, the other way):\n\n{ideal.table().markdown()}\n\n"
+            f"The built springs' own moves (the same ends, linearised over their pulleys):\n\n"
+            f"{realised.table().markdown()}\n\nHow far the moved ends leave their links' boxes: {outside}.\n\n"
+            f"Checked by route 2 (peak holding torque over the workspace poses, N m):\n\n{study.table().markdown()}\n")
+
+
+def _write_general_sheet(args, path: Path, design, study, out: Path) -> None:
+    """The spec sheet of a design on the general model: the springs for the maker, the balance they
+    leave with the maker's tolerances, their clearance, and the payload dial (with --tip)."""
+    from springlab.design import buildable
+
+    csv_path, md_path = _sheet_paths(out)
+    clearance = (f"\n## Clearance from the links\n\nOver {min(len(design.q), 100)} workspace poses, each spring's "
+                 "distance from the links it is not attached to (their outlines; negative: it passes through one)."
+                 f"\n\n{design.clearance_table().markdown()}\n") if design.model.outline else ""
+    md = (f"# Spring spec sheet: {design.model.name} ({path.name})\n\n{design.method}; checked by route 2 on "
+          f"{design.q.shape[0]} workspace poses. Ends in mm in their links' URDF frames; lengths in mm, forces in N, "
+          f"stresses in MPa. {buildable.SHEET_NOTE}\n\n{design.sheet().markdown()}\n\n"
+          "## Balance the built springs leave (route 2)\n\nPer loaded joint, the percentage of its peak gravity "
+          "torque removed; each tolerance at its limit on every spring at once.\n\n"
+          f"{design.tolerance_table().markdown()}\n{clearance}" + ("" if study is None else _dial_markdown(study)))
+    try:
+        csv_path.write_text(buildable.table_csv(design.sheet()))
+        md_path.write_text(md)
+    except OSError as err:
+        raise SpringlabError(f"--sheet: {csv_path} cannot be written ({err.strerror})") from None
+    print(f"spec sheet written to {csv_path} and {md_path}")
 
 
 def _mjcf_paths(args) -> tuple:
@@ -270,7 +348,8 @@ def _design_dh(args, path: Path) -> int:
                              "parallelogram auxiliary links (RSSR modules) that springlab does not export: leave out --mjcf")
     for flag, given in (("--sheet", args.sheet), ("--up", args.up), ("--tip", args.tip), ("--base", args.base),
                         ("--payload", args.payload), ("--method", args.method != "fewest springs"),
-                        ("--reach", args.reach), ("--package-dir", args.package_dir), ("--workspace", args.workspace)):
+                        ("--reach", args.reach), ("--package-dir", args.package_dir), ("--workspace", args.workspace),
+                        ("--payload-range", args.payload_range)):
         if given:
             raise SpringlabError(f"{flag} applies to arms for paper 000's method; {path} describes its arm by DH "
                                  "frames, designed by paper 001's pseudobase method")
@@ -371,6 +450,9 @@ def main(argv=None) -> int:
                                  "joint (a gripper's fingers) is locked at zero, its bodies carried as fixed mass")
     p.add_argument("--base", help="a URDF arm's base link (default the root link)")
     p.add_argument("--payload", help="a point mass at the tip frame, e.g. '2 kg' (with --tip)")
+    p.add_argument("--payload-range", metavar="LOW:HIGH",
+                   help="payloads (kg) to check the design and its payload dial at, e.g. '0:5' or '0 kg:5 kg' "
+                        "(with --tip; a URDF arm, designed on the general model; default 0 to the payload + 1 kg)")
     p.add_argument("--reach", help="how far beyond a URDF arm's links a spring end may sit, e.g. '5 cm': beyond "
                                    "each link's geometry (its collision shapes' bounding box; default 3 cm, '0' for "
                                    "none), or beyond the link's joints where the file gives no geometry (default 15 %% "
