@@ -5,6 +5,8 @@ payloads, is balanced exactly again (route 2, three payloads) while the unchange
 nominal peak after the dial is turned for +1 kg (the issue's target); a single end cannot restore
 a planar chain's three moments; bad payloads are refused."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -18,7 +20,8 @@ from springlab.design.payload import (
 )
 from springlab.energy.geometry import gravity_torques
 from springlab.errors import SpringlabError
-from springlab.model.robots import ROBOTS, load_robot
+from springlab.model.robots import ROBOTS, load_robot, robot_urdf
+from springlab.workbench.cli import main
 
 NOMINAL = 2.5
 """kg: the UR5 is designed at half its rated 5 kg."""
@@ -82,3 +85,48 @@ def test_a_dial_needs_springs_and_payloads_are_not_negative(ur5):
         payload_dial(design.model, [], design.q[:10], ROBOTS["UR5"].tip)
     with pytest.raises(SpringlabError, match="at least 0 kg"):
         payload_torques(design.model, design.ideal, design.q[:10], ROBOTS["UR5"].tip, [-1.0], nominal=NOMINAL)
+
+
+def test_the_cli_writes_the_sheet_and_the_dial_for_a_urdf_arm(tmp_path, capsys):
+    out = tmp_path / "ur5.design.json"
+    code = main(["design", str(robot_urdf("UR5")), "--tip", "wrist_3_link", "--payload", "2.5 kg", "--payload-range",
+                 "0:5", "--sheet", "--json", str(out), "--quiet"])
+    printed = capsys.readouterr().out
+    assert code == 0 and "payload dial (exact" in printed and "tension +10 %" in printed
+    data = json.loads(out.read_text())["payload"]
+    assert data["dial"]["ideal"]["exact"] and data["nominal_kg"] == 2.5
+    assert [c["payload_kg"] for c in data["checks"]] == [0.0, 2.5, 3.5, 5.0]
+    for check in data["checks"]:  # the dial turned holds every payload; unchanged springs only the nominal one
+        gravity = max(check["peak_Nm"]["gravity alone"].values())
+        assert max(check["peak_Nm"]["ideal, dial turned"].values()) < 1e-10 * gravity
+        assert (max(check["peak_Nm"]["ideal"].values()) < 1e-10 * gravity) == (check["payload_kg"] == 2.5)
+    sheet = (tmp_path / "ur5.sheet.md").read_text()
+    for part in ("## Balance the built springs leave", "## Clearance from the links", "## Payload dial", "lead",
+                 "stress / allowable (%)", "windable initial tension (N)"):
+        assert part in sheet
+    rows = (tmp_path / "ur5.sheet.csv").read_text().splitlines()
+    assert len(rows) == 1 + len(json.loads(out.read_text())["realised"]) and rows[0].startswith("spring,end A")
+
+
+BAD_RANGES = [
+    (["--tip", "wrist_3_link", "--payload-range=-1:5"], "payload range = -1 to 5 kg"),
+    (["--tip", "wrist_3_link", "--payload-range", "nan:5"], "does not parse"),
+    (["--tip", "wrist_3_link", "--payload-range", "5"], "give LOW:HIGH"),
+    (["--tip", "wrist_3_link", "--payload-range", "0:5 m"], "--payload-range"),
+    (["--payload-range", "0:5"], "give the tip link too"),
+]
+
+
+@pytest.mark.parametrize(("extra", "message"), BAD_RANGES, ids=[m for _, m in BAD_RANGES])
+def test_a_bad_payload_range_is_one_line_exit_2_nothing_written(extra, message, tmp_path, capsys):
+    out = tmp_path / "d.json"
+    code = main(["design", str(robot_urdf("UR5")), "--json", str(out), "--sheet", "--quiet", *extra])
+    err = capsys.readouterr().err
+    assert code == 2 and message in err and err.count("\n") == 1
+    assert not list(tmp_path.iterdir())
+
+
+def test_a_payload_range_on_an_arm_file_is_refused(tmp_path, capsys):
+    code = main(["design", "notebooks/arms/paper000_arm.toml", "--payload-range", "0:5", "--json",
+                 str(tmp_path / "d.json"), "--quiet"])
+    assert code == 2 and "applies to URDF files" in capsys.readouterr().err and not list(tmp_path.iterdir())
