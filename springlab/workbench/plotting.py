@@ -529,6 +529,29 @@ def clearance_figure(gaps, *, title: str):
     return fig
 
 
+def payload_figure(study, *, title: str, rated: float | None = None):
+    """The peak holding torque (N m) of each loaded joint against the payload (kg), one panel a joint
+    (a :class:`springlab.design.payload.PayloadStudy`): gravity alone, the realised springs as built and
+    with the payload dial turned; the ideal springs with the dial turned sit at round-off, below
+    what the axes show. The nominal payload is marked, and the rated one when given."""
+    cases = {"gravity alone": dict(color="0.6", ls="-"), "realised": dict(color="C0", ls="--"),
+             "realised, dial turned": dict(color="C1", ls="-", marker="o", ms=3)}
+    loaded = list(study.loaded)
+    fig, axes = plt.subplots(1, len(loaded), figsize=(3.2 * len(loaded), 3.2), squeeze=False)
+    for ax, i in zip(axes[0], loaded, strict=True):
+        for case, style in cases.items():
+            ax.plot(study.masses, study.peaks[case][:, i], label=case.replace("realised", "built springs"), **style)
+        ax.axvline(study.nominal, color="k", lw=0.8, ls=":")
+        ax.set_title(study.joints[i], fontsize=9)
+        ax.set_xlabel("payload (kg)")
+        ax.set_ylim(bottom=0)
+    axes[0, 0].set_ylabel("peak holding torque (N m)")
+    axes[0, 0].legend(fontsize=7, loc="upper left")
+    fig.suptitle(title + f" (designed for {study.nominal:g} kg, dotted"
+                 + (f"; rated {rated:g} kg" if rated is not None else "") + ")", fontsize=10)
+    return fig
+
+
 def pulley_loss_figure(radii, percent: dict, *, title: str):
     """The largest holding torque the built springs leave (% of gravity's) against the pulley's
     radius (m, plotted in mm), one curve per case ({case: values})."""
