@@ -11,7 +11,10 @@
   geometry, and the time to read it with the meshes;
 * MuJoCo's holding torques of the UR5's, the Panda's and the SO-101's designs exported as MJCF,
   ideal and realised, beside route 2, and the time of export and check (target: 5 s each);
-* exudyn's holding torques of the UR5's and the Panda's designs beside route 2 (target: 1e-6 N m).
+* exudyn's holding torques of the UR5's and the Panda's designs beside route 2 (target: 1e-6 N m);
+* the payload dial: the UR5 designed for 2.5 kg and the Panda for 1.5 kg (half their rated payloads),
+  the dial's time and what it leaves from 0 to the rated payload, and the built springs' peak with the
+  dial turned for 1 kg more against their nominal peak (target on the UR5: within 1 %).
 
     make bench
     python benchmarks/bench_real_arms.py
@@ -27,7 +30,7 @@ from springlab.design.arms import design_model
 from springlab.energy import geometry, simulation
 from springlab.model.mjcf import to_mjcf
 from springlab.model.robots import OTHER_ARMS, ROBOTS, load_robot, robot_urdf
-from springlab.workbench.real_arms import PULLEY, outline_difference
+from springlab.workbench.real_arms import PULLEY, RATED_PAYLOADS, outline_difference, payload_study
 from springlab.workbench.references import mujoco_holding_torques, pinocchio_gravity
 
 
@@ -113,6 +116,26 @@ def main() -> None:
         seconds = time.perf_counter() - start
         diff = float(np.max(np.abs(route3 - geometry.joint_torques(design.model, design.ideal, q))))
         print(f"{label:8s} max |route 3 - route 2| = {diff:.2e} N m (target 1e-6), {seconds:.2f} s")
+
+    print()
+
+    print("the payload dial (designed for half the rated payload at the tip frame; route 2 on 2,000 poses):")
+    for label in ("UR5", "Panda"):
+        rated = RATED_PAYLOADS[label][0]
+        model = load_robot(label, payload=rated / 2)
+        design = design_model(model, pulley_radius=PULLEY)
+        start = time.perf_counter()
+        study = payload_study(label, design=design)
+        seconds = time.perf_counter() - start
+        loaded = list(study.loaded)
+        m = int(np.argmin(np.abs(study.masses - (study.nominal + 1))))
+        n = int(np.argmin(np.abs(study.masses - study.nominal)))
+        back = (np.max(study.peaks["realised, dial turned"][m, loaded]) - np.max(study.peaks["realised"][n, loaded])) \
+            / np.max(study.peaks["gravity alone"][m, loaded])
+        dial = study.dials["ideal"]
+        print(f"{label:8s} {seconds:5.2f} s, exact {dial.exact}, ideal with the dial 0-{rated:g} kg leaves "
+              f"{np.max(study.left()):.1e} of gravity's peak (unchanged {np.max(study.left('ideal')):.2f}); built, "
+              f"+1 kg, dial turned: {100 * back:+.2f} % of gravity's peak from nominal (target within 1 %)")
 
 
 if __name__ == "__main__":
