@@ -140,7 +140,7 @@ PANDA_BAD = [
     (["--tip", "panda_link7", "--payload", "2 m"], "payload"),
     (["--tip", "panda_link7", "--workspace", "panda_joint4=0:30"], "outside its limits"),
     (["--tip", "panda_link7", "--workspace", "panda_joint4"], "joint=low:high"),
-    (["--tip", "panda_link7", "--sheet"], "--sheet"),
+    (["--tip", "panda_link7", "--payload-range", "3:1"], "payload range = 3 to 1 kg"),
     (["--tip", "panda_link7", "--reach", "-3 cm"], "reach"),
     (["--tip", "panda_link7", "--reach", "3 kg"], "reach"),
     (["--tip", "panda_link7", "--workspace", "panda_joint2=0:10,panda_joint2=20:30"], "twice"),
