@@ -794,13 +794,11 @@ class ArmDesign:
         """The balance the built springs leave (route 2, the design's poses): per loaded joint, the
         percentage of its peak gravity torque removed, by the ideal springs, the realised ones as
         specified, and with each of the maker's tolerances (default
-        :data:`~springlab.design.buildable.TOLERANCES`) at its + and - limit on every spring at once."""
-        from springlab.design.buildable import TOLERANCES
+        :data:`~springlab.design.buildable.TOLERANCES`; each at most 0.5) at its + and - limit on every
+        spring at once."""
+        from springlab.design.buildable import check_tolerances
 
-        tolerances = dict(TOLERANCES if tolerances is None else tolerances)
-        for name, value in tolerances.items():
-            _checks.choice("tolerance", name, tuple(TOLERANCES))
-            _checks.at_most(f"tolerance {name}", _checks.positive(f"tolerance {name}", value, allow_zero=True), 0.5)
+        tolerances = check_tolerances(tolerances)
         loaded = list(self.structure.loaded)
         peak = np.max(np.abs(gravity_torques(self.model, self.q)), axis=0)[loaded]
 
@@ -1001,7 +999,7 @@ def _leads(model: RevoluteChain, springs, cable, q, radius: float) -> list:
         towards = np.einsum("pji,pj->i", R[:, a], B - A)  # summed over the poses, in body a's frame
         own = np.asarray(model.locate(s.link_a, (0.0, 0.0, 0.0))[1])  # link_a's origin in body a's frame
         found = [*np.eye(3), *-np.eye(3), towards, -towards, np.asarray(pa) - own]
-        rotation = np.array([model.direction(s.link_a, e)[1] for e in np.eye(3)]).T  # link_a -> body
+        rotation = model.rotation(s.link_a)  # link_a -> body
         candidates[i] = [tuple(rotation.T @ (u / np.linalg.norm(u))) for u in found if np.linalg.norm(u) > 1e-9]
         out[i] = _with(s, pulley_radius=radius, lead=candidates[i][-1])  # from link_a's origin to A, or -towards
     for _ in range(2):

@@ -537,14 +537,23 @@ TOLERANCES = {"tension": 0.10, "free_length": 0.02, "stiffness": 0.10}
 free length +-2 %, rate +-10 % (the order makers quote for standard quality; give your maker's)."""
 
 
+def check_tolerances(tolerances: dict | None, *, largest: float = 0.5) -> dict:
+    """A maker's relative tolerances by name (:data:`TOLERANCES`, the default), each checked: a name it
+    knows, a number from 0 to ``largest``."""
+    tolerances = dict(TOLERANCES if tolerances is None else tolerances)
+    for name, value in tolerances.items():
+        _checks.choice("tolerance", name, tuple(TOLERANCES))
+        value = _checks.positive(f"tolerance {name}", value, allow_zero=True)
+        if np.isfinite(largest):
+            _checks.at_most(f"tolerance {name}", value, largest)
+    return tolerances
+
+
 def balance_loss(chain: Chain, realisations, X, *, tolerances: dict | None = None) -> BalanceLoss:
     """What the built springs leave unbalanced over the poses X (route 2): as designed (ideal), as
     built (the pulleys' radii), and with each tolerance at its + and - limit on every spring at once."""
     X = chain.check_directions(X)
-    tolerances = dict(TOLERANCES if tolerances is None else tolerances)
-    for name, value in tolerances.items():
-        _checks.choice("tolerance", name, tuple(TOLERANCES))
-        _checks.positive(f"tolerance {name}", value, allow_zero=True)
+    tolerances = check_tolerances(tolerances, largest=np.inf)
     gravity = _worst(holding_torques(chain, [], X))
     rows = [("as designed (ideal springs)", _worst(holding_torques(chain, [r.spring for r in realisations], X))),
             ("as specified", _worst(realised_torques(chain, realisations, X)))]

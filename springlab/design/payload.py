@@ -116,17 +116,12 @@ def _columns(model, springs, q, ends, base):
         s = springs[i]
         for e in np.eye(3):
             link = s.link_a if end == "A" else s.link_b
-            axis = np.linalg.solve(_rotation(model, link), e)  # the body's axis e in the link's frame
+            axis = np.linalg.solve(model.rotation(link), e)  # the body's axis e in the link's frame
             point = np.asarray(s.point_a if end == "A" else s.point_b) + STEP * axis
             moved = list(springs)
             moved[i] = replace(s, **({"point_a": tuple(point)} if end == "A" else {"point_b": tuple(point)}))
             columns.append(((joint_torques(model, moved, q) - base) / STEP).ravel())
     return np.array(columns).T
-
-
-def _rotation(model: RevoluteChain, link) -> np.ndarray:
-    """The rotation from a link's frame to its body's (columns: the link's axes in the body's frame)."""
-    return np.array([model.direction(link, e)[1] for e in np.eye(3)]).T
 
 
 def payload_dial(model: RevoluteChain, springs, q, frame: str, point=(0.0, 0.0, 0.0), *, ends=None) -> PayloadDial:
@@ -195,7 +190,7 @@ def _moves(model, springs, ends, x) -> tuple:
     out = []
     for m, (i, end) in enumerate(ends):
         link = springs[i].link_a if end == "A" else springs[i].link_b
-        per_kg = np.linalg.solve(_rotation(model, link), x[3 * m:3 * m + 3])  # body frame -> link frame
+        per_kg = np.linalg.solve(model.rotation(link), x[3 * m:3 * m + 3])  # body frame -> link frame
         if np.linalg.norm(per_kg) > 1e-12:
             out.append((i, end, link, tuple(float(v) + 0.0 for v in per_kg)))
     return tuple(out)

@@ -189,6 +189,11 @@ class RevoluteChain:
         body, origin = self.locate(name, (0.0, 0.0, 0.0))
         return body, self.locate(name, vector)[1] - origin
 
+    def rotation(self, name) -> np.ndarray:
+        """The rotation (3, 3) from a named frame (a body or a fixed frame) to its body's frame: its
+        columns are the named frame's axes in the body's frame (:meth:`direction` of each)."""
+        return np.array([self.direction(name, e)[1] for e in np.eye(3)]).T
+
     def with_point_mass(self, name, point, mass) -> RevoluteChain:
         """The same chain carrying ``mass`` (kg) more at ``point`` (m, in the named frame): a payload
         added, or with a negative mass one taken off again (down to none). The body's mass, centre of
