@@ -38,6 +38,9 @@ def check_records(records, where):
         if c.get("status") == "rounding" and not (c.get("band") and c["band"].get("basis")
                                                   and c["band"].get("value") is not None):
             problems.append(f"{label}: a rounding claim without its band")
+        if c.get("status") == "bound" and not (c.get("tolerance") is None and str(c.get("note", "")).startswith(
+                ("at least ", "at most ")) and c.get("ours") is not None):
+            problems.append(f"{label}: a bound must say its direction (at least / at most) and carry no tolerance")
         if c.get("status") == "reproduced" and not abs(c["ours"] - c["paper"]) <= c["tolerance"]:
             problems.append(f"{label}: reproduced, but |ours - paper| > tolerance")
         try:
@@ -89,9 +92,15 @@ def test_statuses_and_the_written_file(tmp_path):
     claims.consistency("c", "w", 95.37, 95.366, unit="%", tolerance=0.005, tolerance_basis="half a unit")
     with pytest.raises(AssertionError):
         claims.compare("d", "w", 1.0, 2.0, unit="m", tolerance=0.1, tolerance_basis="b")  # a discrepancy
+    claims.bound("e", "w", 0.0, 25.0, unit="configurations", direction="at least", basis="an enumeration stopped")
+    with pytest.raises(SpringlabError, match="basis"):
+        claims.bound("f", "w", 0.0, 25.0, unit="-", direction="at least", basis="")
     records = json.loads(claims.write(tmp_path).read_text())
-    assert [r["status"] for r in records] == ["rounding", "input", "consistent", "discrepancy"]
+    assert [r["status"] for r in records] == ["rounding", "input", "consistent", "discrepancy", "bound"]
+    assert "lies outside it" in records[-1]["note"] and records[-1]["tolerance"] is None
     assert check_records(records, "t") == []
+    records[-1]["note"] = "25 configurations"  # a bound that does not say which way: the check must catch it
+    assert check_records(records, "t") != []
 
 
 def test_diff_claims_finds_a_changed_verdict_and_nothing_else(tmp_path):

@@ -17,7 +17,11 @@ Statuses:
   equal by construction): shown, never counted as reproduced;
 * ``consistent`` / ``inconsistent``: a number recomputed from the paper's own printed
   numbers (a percentage from printed maxima): a check of the paper against itself,
-  not a reproduction.
+  not a reproduction;
+* ``bound``: ours is only a bound (at least, or at most, the value recorded), because the
+  computation behind it stopped short of the whole answer (an enumeration that leaves some
+  cases out): never counted as reproduced, nor as an exact discrepancy. Its basis says what
+  was left out; its note says whether the paper's value lies inside the bound.
 
 Every claim records ``tolerance_basis``: why its tolerance is what it is.
 """
@@ -30,13 +34,14 @@ import sys
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
-from springlab import tables
+from springlab import _checks, tables
 from springlab.errors import SpringlabError
 from springlab.rounding import half_unit
 
-STATUSES = ("reproduced", "rounding", "discrepancy", "not reproducible", "input", "consistent", "inconsistent")
+STATUSES = ("reproduced", "rounding", "discrepancy", "not reproducible", "input", "consistent", "inconsistent",
+            "bound")
 REPORT_COLUMNS = ("reproduced", "rounding", "discrepancy, cause found", "discrepancy, no cause found",
-                  "not reproducible", "input", "consistent", "inconsistent")
+                  "not reproducible", "input", "consistent", "inconsistent", "bound")
 """The columns of the reproduction report: the statuses, discrepancies split by cause."""
 
 
@@ -271,6 +276,30 @@ class Claims:
         paper = None if paper is None else _finite("paper", paper, quantity)
         claim = Claim(quantity, where, paper, None, unit, None, "not reproducible", note,
                       "none: no value could be computed")
+        self.records.append(claim := replace(claim, cell=_current_cell()))
+        return claim
+
+    def bound(self, quantity: str, where: str, paper: float | None, ours: float, *, unit: str, direction: str,
+              basis: str, note: str = "") -> Claim:
+        """Record a value of which ours is only a bound: ``direction`` 'at least' (the true value is
+        ours or more) or 'at most'. ``basis`` says why it is a bound (what the computation left
+        out); the note says whether the paper's value lies inside it (outside: the paper is wrong
+        whatever the exact value)."""
+        ours = _finite("ours", ours, quantity)
+        paper = None if paper is None else _finite("paper", paper, quantity)
+        direction = _checks.choice("direction", direction, ("at least", "at most"))
+        if not basis:
+            raise SpringlabError(f"claim {quantity!r}: a bound needs its basis, what the computation left out")
+        if paper is None:
+            where_paper = ""
+        else:
+            inside = paper >= ours if direction == "at least" else paper <= ours
+            where_paper = (f"; the paper's {number_text(paper)} lies inside the bound" if inside else
+                           f"; the paper's {number_text(paper)} lies outside it: the paper is off whatever the exact "
+                           "value")
+        claim = Claim(quantity, where, paper, ours, unit, None, "bound",
+                      f"{direction} {number_text(ours)} {unit}".rstrip() + where_paper + (f". {note}" if note else ""),
+                      f"none: a bound, not a value ({basis})")
         self.records.append(claim := replace(claim, cell=_current_cell()))
         return claim
 

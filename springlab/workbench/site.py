@@ -41,7 +41,8 @@ def write_report(figures_dir) -> Path:
              "printed rounding explains; **discrepancy**, its cause found or not; **not reproducible** from "
              "what the paper gives; **input**, a value the notebook fed in (shown, not counted as "
              "reproduced); **consistent** / **inconsistent**, a number recomputed from the paper's own "
-             "printed numbers (a check of the paper against itself).", ""]
+             "printed numbers (a check of the paper against itself); **bound**, ours only a bound (at least or "
+             "at most), the computation behind it having stopped short of the whole answer.", ""]
     counts = []
     for stem, records in claims.items():
         count = Counter(report_column(r) for r in records)
