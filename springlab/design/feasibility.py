@@ -41,7 +41,7 @@ spatial articulated manipulators without auxiliary links. Mechanism and Machine 
 from __future__ import annotations
 
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -727,6 +727,7 @@ class RulesAgainstPhysics:
     admitted_inclusion_minimal: int  # admitted and inclusion-minimal balanceable
     rejected: dict[str, list[str]]  # minimal balanceable but rejected: label -> violations
     same_on_every_arm: bool
+    certificates: dict = field(default_factory=dict)  # per admitted configuration proved unbalanceable: its exact Certificate, or None
 
     @property
     def exact(self) -> bool:
@@ -743,7 +744,9 @@ class RulesAgainstPhysics:
                 "R1-R6 admit": len(self.admitted),
                 "admitted, balanceable, no single spring removable": self.admitted_single_minimal,
                 "admitted, inclusion-minimal": self.admitted_inclusion_minimal,
-                "admitted, not balanceable (proved)": bad, "admitted, undecided": und,
+                "admitted, not balanceable (proved)": bad,
+                "of them, by an exact certificate": sum(c is not None for c in self.certificates.values()),
+                "admitted, undecided": und,
                 "minimal balanceable, rejected by R1-R6": len(self.rejected),
                 "same on every arm": "yes" if self.same_on_every_arm else "no"}
 
@@ -755,7 +758,9 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
     each confirmed by a design, refuted (:func:`tightened_infeasible`, :func:`coupling_refuted`),
     or undecided (:func:`is_balanceable`); the rules' configurations
     (:func:`springlab.design.rules.enumerate_configurations`), each decided likewise with both
-    minimality notions. On every arm the relaxation-minimal lists and their refutations by
+    minimality notions, and each proved unbalanceable given its exact certificate where the
+    linear relaxation refutes it (:func:`springlab.design.certificates.relaxation_certificate`;
+    None for a refutation by the coupling, which has no exact certificate yet). On every arm the relaxation-minimal lists and their refutations by
     :func:`tightened_infeasible` must agree, and every multiset refuted on the first arm must be
     refuted on the others (``same_on_every_arm``).
 
@@ -800,11 +805,14 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
             single += 1
         if any(sorted(cfg) == sorted(m) for m in minimal):
             inclusion += 1
+    from springlab.design.certificates import relaxation_certificate
+
+    certificates = {_label(cfg): relaxation_certificate(first, cfg) for cfg in admitted if status[_label(cfg)] == "no"}
     rejected = {_label(cfg): [str(x) for x in rule_violations(n, cfg)] for cfg in minimal if rule_violations(n, cfg)}
     same = all(sig == signature[0] for sig in signature[1:]) and all(
         tightened_infeasible(c, cfg) or coupling_refuted(c, cfg) for c in chains[1:] for cfg in refuted)
     return RulesAgainstPhysics(n, arms, minimal, refuted, undecided, admitted, status, single, inclusion,
-                               rejected, same)
+                               rejected, same, certificates)
 
 
 def counts_table(results) -> Table:
