@@ -728,6 +728,7 @@ class RulesAgainstPhysics:
     rejected: dict[str, list[str]]  # minimal balanceable but rejected: label -> violations
     same_on_every_arm: bool
     certificates: dict = field(default_factory=dict)  # per admitted configuration proved unbalanceable: its exact Certificate, or None
+    arm: Chain | None = None  # the first arm, on which everything above was decided
 
     @property
     def exact(self) -> bool:
@@ -812,7 +813,7 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
     same = all(sig == signature[0] for sig in signature[1:]) and all(
         tightened_infeasible(c, cfg) or coupling_refuted(c, cfg) for c in chains[1:] for cfg in refuted)
     return RulesAgainstPhysics(n, arms, minimal, refuted, undecided, admitted, status, single, inclusion,
-                               rejected, same, certificates)
+                               rejected, same, certificates, first)
 
 
 def counts_table(results) -> Table:
