@@ -1,5 +1,5 @@
 """Refutations a reader can check: certificates that a spring multiset cannot balance an arm,
-verified in exact rational arithmetic (:mod:`fractions`), so that no refutation rests on
+verified in exact rational arithmetic (Python's ``fractions``), so that no refutation rests on
 floating point.
 
 000 Eqs. (39a-b) are linear in each spring's quantities P = k a b, A = k a, B = k b and k
@@ -81,7 +81,7 @@ class Certificate:
     kind: str
     multipliers: dict
 
-    def coefficients(self, chain: Chain) -> tuple[list, Fraction]:
+    def coefficients(self, chain: Chain) -> tuple:
         """The combination y^T [M S, G], exactly: per quantity (spring index, name, coefficient),
         and gravity's."""
         columns, _, gravity = exact_system(chain, self.slots)
