@@ -56,6 +56,17 @@ def test_the_dial_restores_the_ur5_exactly_at_three_payloads(ur5):
     assert np.all(study.left("ideal")[[0, 2]] > 0.05)
 
 
+def test_the_study_says_where_the_dial_leaves_the_links_and_stretches_the_coils(ur5):
+    design, study = ur5
+    lo, hi = study.holds["ideal"]
+    assert lo <= NOMINAL <= hi < 5.0  # the anchors sit on their boxes' faces: 5 kg takes them off the links
+    assert study.outside[-1] > 0.05 and study.outside[1] > 0  # as ends_outside measures it
+    warnings = study.warnings()
+    assert any("longer slot" in w for w in warnings)
+    assert study.stretch[-1][0] > 0 and study.stretch[-1][1].startswith("S")  # 5 kg stretches a coil past its design
+    assert any("past the longest its coil was wound for" in w for w in warnings)
+
+
 def test_the_realised_springs_return_within_1_percent_for_1_kg(ur5):
     design, study = ur5
     loaded = list(study.loaded)

@@ -86,8 +86,8 @@ class PayloadDial:
 
     def table(self) -> Table:
         """Each move: the spring, its end and link, the move per kilogram (mm/kg, in the link's frame)
-        and its length (mm/kg)."""
-        return Table(["spring", "end", "link", "move per kg (mm/kg, link frame)", "length (mm/kg)"],
+        and its size (mm/kg)."""
+        return Table(["spring", "end", "link", "move per kg (mm/kg, link frame)", "size of the move (mm/kg)"],
                      [(f"S{i + 1}", end, link, "(" + ", ".join(f"{1e3 * v + 0.0:.2f}" for v in per_kg) + ")",
                        f"{1e3 * float(np.linalg.norm(per_kg)):.2f}") for i, end, link, per_kg in self.moves])
 
@@ -239,6 +239,11 @@ class PayloadStudy:
     :ivar outside: per payload, how far (m) the dial takes a moved ideal end outside its body's box
         (:func:`springlab.design.arms.ends_outside`; 0: every end stays where the design may put it)
     :ivar loaded: the loaded joints' indices; ``joints`` all joints' names
+    :ivar holds: per dial ('ideal', 'realised'), the payloads (kg, low, high) over which every end
+        it moves stays in its body's box (the outline and its bracket, where the design may put an
+        end): beyond them the dial needs a longer slot
+    :ivar stretch: per payload, the longest (m) a realised spring, its dial turned, is stretched
+        beyond the longest its coil was wound for (0: within it), and the spring ('' for none)
     """
 
     frame: str
@@ -250,6 +255,35 @@ class PayloadStudy:
     outside: np.ndarray
     loaded: tuple
     joints: tuple
+    holds: dict
+    stretch: tuple
+
+    def warnings(self) -> list[str]:
+        """What the study finds an engineer must know: payloads beyond the dial's slot, coils
+        stretched past their design, a dial that leaves a joint worse than the springs unchanged."""
+        out = []
+        low, high = float(np.min(self.masses)), float(np.max(self.masses))
+        for which, (lo, hi) in self.holds.items():
+            if lo > low + 1e-9 or hi < high - 1e-9:
+                out.append(f"the {which} springs' dial keeps every moved end on its link only from "
+                           f"{round(max(lo, 0.0), 3):g} to {round(hi, 3):g} kg (checked {low:g}-{high:g} kg): beyond, it needs a longer slot than the link and "
+                           "its bracket give; a design made for a payload mid-range (--payload) has stiffer springs "
+                           "and a shorter dial")
+        worst = max(range(len(self.masses)), key=lambda m: self.stretch[m][0])
+        if self.stretch[worst][0] > 0:
+            out.append(f"turned for {self.masses[worst]:g} kg, the built spring {self.stretch[worst][1]} is stretched "
+                       f"{1e3 * self.stretch[worst][0]:.0f} mm past the longest its coil was wound for: wind the coils "
+                       "for the dial's whole stroke")
+        loaded = list(self.loaded)
+        for which in ("ideal", "realised"):
+            turned, unchanged = self.peaks[f"{which}, dial turned"][:, loaded], self.peaks[which][:, loaded]
+            worse = [(float(self.masses[m]), self.joints[loaded[i]]) for m, i in zip(*np.nonzero(
+                turned > unchanged * (1 + 1e-6) + 1e-12), strict=True)]
+            if worse:
+                out.append(f"turning the {which} springs' dial leaves more than leaving it alone at "
+                           + ", ".join(f"{joint} at {m:g} kg" for m, joint in worse[:4])
+                           + (" and elsewhere" if len(worse) > 4 else "") + " (the dial is not exact there)")
+        return out
 
     def table(self) -> Table:
         """Per payload and case: the peak holding torque (N m) of each loaded joint."""
@@ -270,7 +304,10 @@ class PayloadStudy:
         return {"frame": self.frame, "point_m": list(self.point), "nominal_kg": self.nominal,
                 "dial": {"ideal": self.dials["ideal"].as_dict(), "realised": self.dials["realised"].as_dict()},
                 "checked_by": "route 2 (direct geometry) over the design's poses",
+                "dial_holds_kg": {which: list(v) for which, v in self.holds.items()},
+                "warnings": self.warnings(),
                 "checks": [{"payload_kg": float(mass), "dial_end_outside_box_m": float(self.outside[m]),
+                            "realised_stretch_past_coil_m": float(self.stretch[m][0]),
                             "peak_Nm": {case: {self.joints[i]: float(peaks[m, i]) for i in self.loaded}
                                         for case, peaks in self.peaks.items()}}
                            for m, mass in enumerate(self.masses)]}
@@ -302,5 +339,46 @@ def payload_study(design, frame: str, masses, *, nominal: float = 0.0, point=(0.
         peaks[f"{which}, dial turned"] = payload_torques(model, springs, q, frame, masses, nominal=nominal, point=point,
                                                          dial=dial)
     outside = np.array([ends_outside(model, ideal.turned(design.ideal, float(m) - nominal), reach) for m in masses])
+    holds = {which: tuple(nominal + t for t in _travel(model, getattr(design, which), dial, reach))
+             for which, dial in (("ideal", ideal), ("realised", realised))}
+    stretch = tuple(_stretch(design, realised.turned(design.realised, float(m) - nominal)) for m in masses)
     return PayloadStudy(frame, tuple(float(v) for v in point), float(nominal), masses, {"ideal": ideal, "realised": realised},
-                        peaks, outside, tuple(design.structure.loaded), tuple(model.joints))
+                        peaks, outside, tuple(design.structure.loaded), tuple(model.joints), holds, stretch)
+
+
+def _travel(model: RevoluteChain, springs, dial: PayloadDial, reach) -> tuple[float, float]:
+    """The payload changes (kg, low <= 0 <= high when every end starts inside) over which every end
+    the dial moves stays in its body's box: each end moves on a line, so per box face a bound."""
+    from springlab.design.arms import attachment_boxes
+
+    centres, half = attachment_boxes(model, reach)
+    low, high = -np.inf, np.inf
+    for i, end, link, per_kg in dial.moves:
+        s = springs[i]
+        body, p = model.locate(link, s.point_a if end == "A" else s.point_b)
+        v = model.rotation(link) @ np.asarray(per_kg)
+        lo, hi = centres[body] - half[body] - 1e-9, centres[body] + half[body] + 1e-9
+        for a in range(3):
+            if abs(v[a]) < 1e-15:
+                if not lo[a] <= p[a] <= hi[a]:
+                    return 0.0, 0.0
+                continue
+            t1, t2 = sorted(((lo[a] - p[a]) / v[a], (hi[a] - p[a]) / v[a]))
+            low, high = max(low, t1), min(high, t2)
+    return (float(low), float(high)) if low <= high else (0.0, 0.0)
+
+
+def _stretch(design, turned) -> tuple[float, str]:
+    """How far (m) the longest of the turned realised springs is stretched (over the design's poses)
+    beyond the longest length its coil was wound for, and which spring."""
+    from springlab.energy.geometry import spring_lengths
+    from springlab.model.revolute import body_frames
+
+    R, o = body_frames(design.model, design.q)
+    lengths = spring_lengths(design.model, list(turned), R, o)
+    worst = (0.0, "")
+    for n, (length, (_, span)) in enumerate(zip(lengths, design.coils, strict=True), start=1):
+        excess = float(np.max(length)) - float(span[1])
+        if excess > max(worst[0], 1e-9 * span[1]):
+            worst = (excess, f"S{n}")
+    return worst

@@ -241,7 +241,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
 
         nominal = payload or 0.0
         low, high = args.payloads or (0.0, nominal + 1.0)
-        masses = sorted({low, high} | {m for m in (nominal, nominal + 1.0) if low <= m <= high})
+        masses = sorted({low + 0.0, high + 0.0, nominal} | ({nominal + 1.0} if nominal + 1.0 <= high else set()))
         study = payload_study(design, args.tip, masses, nominal=nominal, reach=reach)
         _print_dial(study)
     inputs = {"tip": args.tip, "base": model.bodies[0], "payload_kg": payload,
@@ -265,24 +265,33 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
 
 
 def _print_dial(study) -> None:
-    dial = study.dials["ideal"]
+    dial, built = study.dials["ideal"], study.dials["realised"]
     print(f"\npayload dial ({'exact' if dial.exact else 'not exact'}: {dial.how}); per kg of payload at {study.frame!r}, "
           "move:")
     print(dial.table())
+    print(f"the built springs' own dial ({built.how}; linearised: {100 * built.left:.2g} % of each kilogram's torque "
+          "left):")
+    print(built.table())
     print(f"checked by route 2 at {', '.join(f'{m:g}' for m in study.masses)} kg (design made for {study.nominal:g} kg):")
     print(study.table())
+    for warning in study.warnings():
+        print(f"note: {warning}")
 
 
 def _dial_markdown(study) -> str:
     """The sheet's section on the payload dial."""
     ideal, realised = study.dials["ideal"], study.dials["realised"]
     outside = ", ".join(f"{m:g} kg: {1e3 * d:.0f} mm" for m, d in zip(study.masses, study.outside, strict=True))
+    holds = "; ".join(f"{which}: {round(max(lo, 0.0), 3):g} to {round(hi, 3):g} kg" for which, (lo, hi) in study.holds.items())
+    warnings = "".join(f"- {w}\n" for w in study.warnings())
     return (f"\n## Payload dial\n\nDesigned for {study.nominal:g} kg at the origin of {study.frame!r}. "
             f"{'Exact' if ideal.exact else 'Not exact'}: {ideal.how}. For each kilogram more, move (each end in its "
             f"link's URDF frame; fewer kilograms, the other way):\n\n{ideal.table().markdown()}\n\n"
-            f"The built springs' own moves (the same ends, linearised over their pulleys):\n\n"
-            f"{realised.table().markdown()}\n\nHow far the moved ends leave their links' boxes: {outside}.\n\n"
-            f"Checked by route 2 (peak holding torque over the workspace poses, N m):\n\n{study.table().markdown()}\n")
+            f"The built springs' own moves ({realised.how}; linearised, they leave {100 * realised.left:.2g} % of each "
+            f"kilogram's torque):\n\n{realised.table().markdown()}\n\nHow far the ideal dial takes the moved ends "
+            f"outside their links' boxes: {outside}. The dials keep every moved end on its link over: {holds}.\n\n"
+            f"Checked by route 2 (peak holding torque over the workspace poses, N m):\n\n{study.table().markdown()}\n"
+            + (f"\n{warnings}" if warnings else ""))
 
 
 def _write_general_sheet(args, path: Path, design, study, out: Path) -> None:
@@ -299,12 +308,15 @@ def _write_general_sheet(args, path: Path, design, study, out: Path) -> None:
           f"stresses in MPa. {buildable.SHEET_NOTE}\n\n{design.sheet().markdown()}\n\n"
           "## Balance the built springs leave (route 2)\n\nPer loaded joint, the percentage of its peak gravity "
           "torque removed; each tolerance at its limit on every spring at once.\n\n"
-          f"{design.tolerance_table().markdown()}\n{clearance}" + ("" if study is None else _dial_markdown(study)))
-    try:
-        csv_path.write_text(buildable.table_csv(design.sheet()))
-        md_path.write_text(md)
-    except OSError as err:
-        raise SpringlabError(f"--sheet: {csv_path} cannot be written ({err.strerror})") from None
+          f"{design.tolerance_table().markdown()}\n{clearance}" + ("" if study is None else _dial_markdown(study))
+          + "\n## Notes\n\n" + "".join(f"- {note}\n" for note in design.notes)
+          + "- the coils are sized for the nominal payload's workspace; the clearance and the room along the links "
+            "are for the engineer to check (negative clearance: the spring passes through that link)\n")
+    for target, text in ((csv_path, buildable.table_csv(design.sheet())), (md_path, md)):
+        try:
+            target.write_text(text)
+        except OSError as err:
+            raise SpringlabError(f"--sheet: {target} cannot be written ({err.strerror})") from None
     print(f"spec sheet written to {csv_path} and {md_path}")
 
 
