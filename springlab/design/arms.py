@@ -325,7 +325,8 @@ def clearance(model: RevoluteChain, springs, q) -> Table:
     spring passes through it. Measured as the largest signed distance to the hull's face planes at
     :data:`CLEARANCE_SAMPLES` points along the run, less half their spacing: a lower bound (the
     distance is 1-Lipschitz along the run, and the face planes' distance never exceeds the hull's).
-    Bodies without an outline are not checked (named in the table)."""
+    Bodies without an outline are not checked (named in the table). Springs are numbered S1, S2, ...
+    in the order given, as the sheet and the payload dial number them."""
     from scipy.spatial import ConvexHull, QhullError
 
     from springlab.energy.geometry import spring_lines
@@ -340,7 +341,7 @@ def clearance(model: RevoluteChain, springs, q) -> Table:
             planes[b] = None
     t = np.linspace(0.0, 1.0, CLEARANCE_SAMPLES)
     rows = []
-    for s, (P, B, a, b) in zip(springs, spring_lines(model, springs, q), strict=True):
+    for n, (s, (P, B, a, b)) in enumerate(zip(springs, spring_lines(model, springs, q), strict=True), start=1):
         pts = P[:, None] + t[None, :, None] * (B - P)[:, None]  # (N, K, 3)
         half = 0.5 * np.max(np.linalg.norm(B - P, axis=1)) / (CLEARANCE_SAMPLES - 1)
         best, nearest = np.inf, None
@@ -353,7 +354,7 @@ def clearance(model: RevoluteChain, springs, q) -> Table:
             if value < best:
                 best, nearest = value, model.bodies[c]
         unchecked = [model.bodies[c] for c, eq in planes.items() if eq is None and c not in (a, b)]
-        rows.append((s.label, nearest or "", f"{1e3 * best:.1f}" if nearest else "", "yes" if best < 0 else "no",
+        rows.append((f"S{n} ({s.label})", nearest or "", f"{1e3 * best:.1f}" if nearest else "", "yes" if best < 0 else "no",
                      ", ".join(unchecked)))
     return Table(["spring", "nearest body", "smallest clearance (mm)", "passes through it", "bodies not checked"], rows)
 
@@ -735,22 +736,23 @@ class ArmDesign:
                             unloaded=self.structure.unloaded)
 
     def springs_table(self, which: str = "realised") -> Table:
-        """Each spring as a shop builds it (``which='ideal'``: as designed): its ends (link, point in mm
+        """Each spring (S1, S2, ...) as a shop builds it (``which='ideal'``: as designed): its ends (link, point in mm
         in the link's URDF frame) and rate, and how it is built: the kind, the pulley's radius and the
         cable's lead, the coil's own free length and longest stretched length (mm, inside the hooks),
         its initial tension (N) and wire (mm). A spring no stocked wire realises is named in the notes."""
         mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
         if which == "ideal":
-            return Table(["link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)"],
-                         [(s.link_a, mm(s.point_a), s.link_b, mm(s.point_b), f"{s.k:.4g}") for s in self.ideal])
+            return Table(["spring", "link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)"],
+                         [(f"S{n}", s.link_a, mm(s.point_a), s.link_b, mm(s.point_b), f"{s.k:.4g}")
+                          for n, s in enumerate(self.ideal, start=1)])
         rows = []
-        for r, kind, (coil, _) in zip(self.realised, self.kinds, self.coils, strict=True):
+        for n, (r, kind, (coil, _)) in enumerate(zip(self.realised, self.kinds, self.coils, strict=True), start=1):
             pulley = (f"{1e3 * r.pulley_radius:g}, lead ({', '.join(f'{v + 0.0:.2f}' for v in r.lead)})"
                       if r.pulley_radius > 0 else "")
-            rows.append((r.link_a, mm(r.point_a), r.link_b, mm(r.point_b), f"{r.k:.4g}", kind, pulley,
+            rows.append((f"S{n}", r.link_a, mm(r.point_a), r.link_b, mm(r.point_b), f"{r.k:.4g}", kind, pulley,
                          f"{1e3 * coil.free_length:.1f}", f"{1e3 * coil.max_length:.1f}", f"{coil.initial_tension:.3g}",
                          f"{1e3 * coil.wire:.2g}"))
-        return Table(["link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)", "realised as",
+        return Table(["spring", "link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)", "realised as",
                       "pulley (mm), lead", "coil free length (mm)", "coil longest (mm)", "initial tension (N)",
                       "wire (mm)"], rows)
 
