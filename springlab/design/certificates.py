@@ -20,6 +20,12 @@ checks the signs exactly.
 The multipliers are found by a linear programme in floating point (scipy's HiGHS), then made
 exact: the coefficients the programme leaves at zero are set exactly to zero by projecting y,
 in rational arithmetic (sympy), onto the multipliers that zero them.
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
 """
 
 from __future__ import annotations
