@@ -21,6 +21,7 @@ out (the link then bounds springs by its other shapes, or by the default reach):
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 import xml.etree.ElementTree as ET
@@ -176,30 +177,43 @@ no better than its hull): a larger one is skipped with a note."""
 
 
 def _mesh_points(path: Path, scale, notes: list | None = None) -> np.ndarray:
-    import trimesh
-    from scipy.spatial import ConvexHull, QhullError
-
     size = path.stat().st_size
     if size > MAX_MESH_BYTES:
         raise MeshError(f"{path}: {size / 2**20:.0f} MiB, more than springlab reads ({MAX_MESH_BYTES / 2**20:.0f} "
                         "MiB): give the link a simpler collision mesh", filename=str(path))
+    points, units = _hull_of(str(path), path.stat().st_mtime_ns, size, tuple(float(v) for v in np.ravel(scale)))
+    if units and notes is not None:
+        notes.append(f"mesh {path.name} is in {units}: converted to metres")
+    return points
+
+
+@functools.lru_cache(maxsize=256)
+def _hull_of(path: str, mtime_ns: int, size: int, scale: tuple) -> tuple[np.ndarray, str | None]:
+    """A mesh file's hull points (m, read-only) and the unit it was converted from (None: metres),
+    read once per file version (path, modification time, size) and scale: an arm's meshes are read
+    again each time the arm is (the SO-101's take about a second)."""
+    import trimesh
+    from scipy.spatial import ConvexHull, QhullError
+
     mesh = trimesh.load(path, force="mesh", process=False)
     units = getattr(mesh, "units", None)
     if units and units != "meters":  # a COLLADA file's <unit meter="0.001">: its own unit, as ROS's viewers take it
         mesh.convert_units("meters")
-        if notes is not None:
-            notes.append(f"mesh {path.name} is in {units}: converted to metres")
+    else:
+        units = None
     v = np.asarray(mesh.vertices, dtype=float) * np.asarray(scale, dtype=float)
     if len(v) == 0:
-        raise MeshError(f"{path}: no vertices (an empty or unreadable mesh)", filename=str(path))
+        raise MeshError(f"{path}: no vertices (an empty or unreadable mesh)", filename=path)
     if not np.all(np.isfinite(v)):
-        raise MeshError(f"{path}: vertices that are not finite numbers", filename=str(path))
+        raise MeshError(f"{path}: vertices that are not finite numbers", filename=path)
     if len(v) > 100_000:  # a scan's unmerged vertices: the hull needs each point once
         v = np.unique(v, axis=0)
     try:
-        return v[ConvexHull(v).vertices]
+        out = v[ConvexHull(v).vertices]
     except (QhullError, ValueError):  # flat or degenerate: its points bound it as well
-        return v
+        out = v
+    out.setflags(write=False)
+    return out, units
 
 
 def shape_points(shape: Shape, folder: Path | None = None, package_dirs=(), notes: list | None = None) -> np.ndarray:
