@@ -306,6 +306,11 @@ def _write_general_sheet(args, path: Path, design, study, out: Path) -> None:
     md = (f"# Spring spec sheet: {design.model.name} ({path.name})\n\n{design.method}; checked by route 2 on "
           f"{design.q.shape[0]} workspace poses. Ends in mm in their links' URDF frames; lengths in mm, forces in N, "
           f"stresses in MPa. {buildable.SHEET_NOTE}\n\n{design.sheet().markdown()}\n\n"
+          "A cable spring's coil is mounted on link A; its cable runs from the coil over a pulley at end A (of the "
+          "radius given) to end B. The lead is the unit direction, in link A's frame, along which the cable arrives "
+          "at the pulley from the coil. The cable is cut so that, with the coil's free length and initial tension, "
+          "the force is the rate times the cable's path over the pulley to B (route 2's cable path; the cable offset is L0 - Fi/k). Free "
+          "lengths are measured inside the hooks.\n\n"
           "## Balance the built springs leave (route 2)\n\nPer loaded joint, the percentage of its peak gravity "
           "torque removed; each tolerance at its limit on every spring at once.\n\n"
           f"{design.tolerance_table().markdown()}\n{clearance}" + ("" if study is None else _dial_markdown(study))
