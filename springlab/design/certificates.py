@@ -56,21 +56,18 @@ def exact_system(chain: Chain, slots) -> tuple[list, list, dict]:
     sign, {entry: coefficient}) with the coefficients of 000 Eqs. (23a-d) (P: -1 at (i, j);
     A: -r_v at (i, v); B: r_u at (u, j); k: r_u r_v at (u, v)); ``gravity``: {(1, j): G_1,j}
     (000 Eq. 18). Every float of the arm is read exactly (``Fraction(x)``)."""
+    from springlab.design.solve import linear_columns
+
     _checks.instance("chain", chain, Chain)
     slots = list(as_slots(slots))
-    r = [Fraction(x) for x in chain.r]
-    rr = {t: r[t - 2] for t in range(2, chain.n + 1)}
     columns = []
-    for idx, s in enumerate(slots):
-        inner = range(s.i + 1, s.j)
-        quantities = {"P": ({(s.i, s.j): Fraction(-1)}, s.sa * s.sb),  # 000 Eq. (23a)
-                      "A": ({(s.i, t): -rr[t] for t in inner}, s.sa),  # 000 Eq. (23b)
-                      "B": ({(t, s.j): rr[t] for t in inner}, s.sb),  # 000 Eq. (23d)
-                      "k": ({(t, v): rr[t] * rr[v] for t in inner for v in inner if t < v}, 1)}  # 000 Eq. (23c)
-        for name, (coefficients, sign) in quantities.items():
+    for idx, (s, cols) in enumerate(zip(slots, linear_columns(chain, slots, exact=True), strict=True)):
+        signs = {"P": s.sa * s.sb, "A": s.sa, "B": s.sb, "K": 1}
+        for name, coefficients in cols.items():
             if coefficients:
-                columns.append((idx, name, sign, coefficients))
-    gravity = gravity_entries(r, [Fraction(x) for x in chain.d], [Fraction(x) for x in chain.m], Fraction(chain.g))
+                columns.append((idx, "k" if name == "K" else name, signs[name], coefficients))
+    gravity = gravity_entries([Fraction(x) for x in chain.r], [Fraction(x) for x in chain.d],  # 000 Eq. (18)
+                              [Fraction(x) for x in chain.m], Fraction(chain.g))
     return columns, _entries(chain.n), gravity
 
 

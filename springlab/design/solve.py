@@ -192,18 +192,24 @@ def _residual_entries(chain: Chain, slots) -> list[tuple[int, int]]:
     return sorted(keys)
 
 
-def linear_columns(chain: Chain, slots) -> list[dict[str, dict[tuple[int, int], float]]]:
+def linear_columns(chain: Chain, slots, *, exact: bool = False) -> list[dict[str, dict[tuple[int, int], float]]]:
     """Per spring, the entries of 000 Eqs. (39) that P = k a b, A = k a, B = k b and k
-    carry (000 Eqs. 23a-d, written linearly): {'P': {(i, j): -1}, 'A': ..., 'B': ..., 'K': ...}."""
+    carry (000 Eqs. 23a-d, written linearly): {'P': {(i, j): -1}, 'A': ..., 'B': ..., 'K': ...}.
+    With ``exact`` the coefficients are rationals (``fractions.Fraction``), each link length read
+    exactly as the rational its float is."""
+    from fractions import Fraction
+
     _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     slots = _slots_on(chain, slots)
-    rr = {t: chain.r[t - 2] for t in range(2, chain.n + 1)}
+    rr = {t: Fraction(chain.r[t - 2]) if exact else chain.r[t - 2] for t in range(2, chain.n + 1)}
+    one = Fraction(1) if exact else 1.0
     out = []
     for s in as_slots(slots):
         inner = range(s.i + 1, s.j)
-        out.append({"P": {(s.i, s.j): -1.0}, "A": {(s.i, t): -rr[t] for t in inner},
-                    "B": {(t, s.j): rr[t] for t in inner},
-                    "K": {(t, v): rr[t] * rr[v] for t in inner for v in inner if t < v}})
+        out.append({"P": {(s.i, s.j): -one},  # 000 Eq. (23a)
+                    "A": {(s.i, t): -rr[t] for t in inner},  # 000 Eq. (23b)
+                    "B": {(t, s.j): rr[t] for t in inner},  # 000 Eq. (23d)
+                    "K": {(t, v): rr[t] * rr[v] for t in inner for v in inner if t < v}})  # 000 Eq. (23c)
     return out
 
 
