@@ -39,6 +39,7 @@ from springlab import _checks
 from springlab.energy.geometry import joint_torques
 from springlab.errors import SpringlabError
 from springlab.model.revolute import RevoluteChain, check_point_springs
+from springlab.model.springs import PointSpring
 from springlab.tables import Table
 
 EXACT = 1e-9
@@ -79,9 +80,7 @@ class PayloadDial:
         kg = _checks.finite("kg", kg, unit="kg")
         out = list(springs)
         for i, end, _, per_kg in self.moves:
-            s = out[i]
-            moved = tuple(np.asarray(s.point_a if end == "A" else s.point_b) + kg * np.asarray(per_kg))
-            out[i] = replace(s, **({"point_a": moved} if end == "A" else {"point_b": moved}))
+            out[i] = _moved(out[i], end, kg * np.asarray(per_kg))
         return tuple(out)
 
     def table(self) -> Table:
@@ -97,6 +96,12 @@ class PayloadDial:
                 "left_fraction": self.left, "how": self.how,
                 "moves": [{"spring": i + 1, "end": end, "link": link, "move_m_per_kg": list(map(float, per_kg))}
                           for i, end, link, per_kg in self.moves]}
+
+
+def _moved(spring: PointSpring, end: str, by) -> PointSpring:
+    """The spring with its end 'A' or 'B' moved by ``by`` (m, in that end's link frame)."""
+    name = "point_a" if end == "A" else "point_b"
+    return replace(spring, **{name: tuple(np.asarray(getattr(spring, name)) + by)})
 
 
 def _ground(model: RevoluteChain, q) -> int:
@@ -117,9 +122,8 @@ def _columns(model, springs, q, ends, base):
         for e in np.eye(3):
             link = s.link_a if end == "A" else s.link_b
             axis = np.linalg.solve(model.rotation(link), e)  # the body's axis e in the link's frame
-            point = np.asarray(s.point_a if end == "A" else s.point_b) + STEP * axis
             moved = list(springs)
-            moved[i] = replace(s, **({"point_a": tuple(point)} if end == "A" else {"point_b": tuple(point)}))
+            moved[i] = _moved(s, end, STEP * axis)
             columns.append(((joint_torques(model, moved, q) - base) / STEP).ravel())
     return np.array(columns).T
 
@@ -341,7 +345,10 @@ def payload_study(design, frame: str, masses, *, nominal: float = 0.0, point=(0.
     outside = np.array([ends_outside(model, ideal.turned(design.ideal, float(m) - nominal), reach) for m in masses])
     holds = {which: tuple(nominal + t for t in _travel(model, getattr(design, which), dial, reach))
              for which, dial in (("ideal", ideal), ("realised", realised))}
-    stretch = tuple(_stretch(design, realised.turned(design.realised, float(m) - nominal)) for m in masses)
+    from springlab.model.revolute import body_frames
+
+    frames = body_frames(model, q)
+    stretch = tuple(_stretch(design, realised.turned(design.realised, float(m) - nominal), *frames) for m in masses)
     return PayloadStudy(frame, tuple(float(v) for v in point), float(nominal), masses, {"ideal": ideal, "realised": realised},
                         peaks, outside, tuple(design.structure.loaded), tuple(model.joints), holds, stretch)
 
@@ -368,13 +375,11 @@ def _travel(model: RevoluteChain, springs, dial: PayloadDial, reach) -> tuple[fl
     return (float(low), float(high)) if low <= high else (0.0, 0.0)
 
 
-def _stretch(design, turned) -> tuple[float, str]:
-    """How far (m) the longest of the turned realised springs is stretched (over the design's poses)
-    beyond the longest length its coil was wound for, and which spring."""
+def _stretch(design, turned, R, o) -> tuple[float, str]:
+    """How far (m) the longest of the turned realised springs is stretched (over the design's poses,
+    whose body frames are R, o) beyond the longest length its coil was wound for, and which spring."""
     from springlab.energy.geometry import spring_lengths
-    from springlab.model.revolute import body_frames
 
-    R, o = body_frames(design.model, design.q)
     lengths = spring_lengths(design.model, list(turned), R, o)
     worst = (0.0, "")
     for n, (length, (_, span)) in enumerate(zip(lengths, design.coils, strict=True), start=1):
