@@ -3,29 +3,48 @@ verified in exact rational arithmetic (Python's ``fractions``), so that no refut
 floating point.
 
 000 Eqs. (39a-b) are linear in each spring's quantities P = k a b, A = k a, B = k b and k
-(000 Eqs. 23a-d): one equation per entry (u, v) of the balance matrix, M x + G = 0, G the
-gravity entries (000 Eq. 18). A spring's pattern fixes each quantity's sign, so with
-w = s x (s the signs) every w must be > 0. The **linear relaxation** drops the coupling
-P k = A B (which binds only for springs spanning three or more joints); where it has no
-solution, neither has the multiset.
+(000 Eqs. 23a-d): one equation per entry (u, v) of the balance matrix, M x + G t = 0, G the
+gravity entries (000 Eq. 18) and t = 1 (written as a variable so that every equation is
+homogeneous). A spring's pattern fixes each quantity's sign, so with w = s x (s the signs)
+every w must be > 0, and so must t. A spring spanning three or more joints also couples its
+quantities: P k = A B, which in the signed variables reads w_P w_K = w_A w_B whatever the
+pattern (both sides carry the sign sa sb).
 
-**Relaxation certificate (Stiemke).** Homogenised, the relaxation asks for z = (w, t) > 0 with
-[M S, G] z = 0. By Stiemke's theorem there is none exactly when some multipliers y of the
-equations make every coefficient of y^T [M S, G] >= 0, not all zero: the combination
-y^T (M S w + G t) = 0 then sums non-negative terms, one of them positive. The certificate is
-y (one rational per entry of the balance matrix); :meth:`Certificate.check` recomputes the
-coefficients from the arm's own numbers, each float read exactly as the rational it is, and
-checks the signs exactly.
+A certificate is a polynomial identity. Multiply each equation eq_e by a factor (1, or one of
+the variables w, t) and each coupling q_s = w_P w_K - w_A w_B by a number, and add:
 
-The multipliers are found by a linear programme in floating point (scipy's HiGHS), then made
-exact: the coefficients the programme leaves at zero are set exactly to zero by projecting y,
-in rational arithmetic (sympy), onto the multipliers that zero them.
+    sum lambda_(e,f) f eq_e  +  sum mu_s q_s  =  sum over monomials of c_m m.
+
+At a solution every eq_e and q_s is zero, so the left side is zero; if every coefficient c_m is
+>= 0 and one is > 0, the right side is > 0 at every point with all variables > 0. No solution
+exists. Two kinds:
+
+* **relaxation** (degree 1, Stiemke's theorem): factors 1 only, no coupling. It proves that even
+  the linear relaxation (the coupling dropped) has no solution of the stated signs; by Stiemke's
+  theorem such multipliers exist exactly when that relaxation is infeasible.
+* **coupling (degree 2)**: factors w, t and the couplings: a Positivstellensatz certificate of
+  degree 2, found by one linear programme over the multipliers. It proves what the relaxation
+  cannot, e.g. that the equations force a spring's b above one length and its a b / a below it.
+
+The multipliers are found by linear programmes in floating point (scipy's HiGHS), then made
+exact: the coefficients the programme leaves at zero are set exactly to zero by projecting the
+multipliers, in rational arithmetic, onto those that zero them; :meth:`Certificate.check`
+recomputes every coefficient from the arm's own numbers, each float read exactly as the rational
+it is.
+
+A certificate also says which springs could break it (:meth:`Certificate.breakers`): adding a
+spring adds its variables to the equations, and the certificate survives unless some new
+coefficient is negative. A balanceable superset must therefore contain a spring that breaks it,
+which keeps a search that branches only on those springs complete.
 
 References
 ----------
 Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
 spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
 105497. doi:10.1016/j.mechmachtheory.2023.105497
+
+Stiemke, E. (1915). Über positive Lösungen homogener linearer Gleichungen. Mathematische
+Annalen 76, 340-342.
 """
 
 from __future__ import annotations
@@ -43,6 +62,12 @@ from springlab.model.chain import Chain
 ZERO = 1e-9
 """A coefficient of the programme's combination at most this (relative to the largest) is taken to
 be exactly zero, and made so by the exact projection."""
+
+GRAVITY = "t"
+"""The variable that multiplies the gravity entries (t = 1 at a solution; any t > 0 by homogeneity)."""
+
+KINDS = ("relaxation", "coupling (degree 2)")
+"""The certificate kinds, weakest first."""
 
 
 def _entries(n: int) -> list[tuple[int, int]]:
@@ -71,97 +96,354 @@ def exact_system(chain: Chain, slots) -> tuple[list, list, dict]:
     return columns, _entries(chain.n), gravity
 
 
-@dataclass(frozen=True)
-class Certificate:
-    """A proof that a multiset cannot balance the arm: multipliers of 000 Eqs. (39), one per entry.
+class SignedSystem:
+    """One multiset's 000 Eqs. (39) as homogeneous equations in the signed variables, exact and in floats.
 
     :ivar slots: the multiset
-    :ivar kind: 'relaxation (Stiemke)'
-    :ivar multipliers: {entry (u, v): y} as exact rationals (entries left out are 0)
+    :ivar variables: (spring index, 'P' 'A' 'B' or 'k') per quantity that enters an equation, then
+        :data:`GRAVITY`
+    :ivar entries: the entries (u, v), u < v, one equation each
+    :ivar rows: per entry, {variable: exact coefficient} (000 Eqs. 23a-d times the quantity's sign;
+        G_1,j of 000 Eq. 18 for t)
+    :ivar couplings: per spring spanning three or more joints, (its index, its variables P, k, A, B)
+    :ivar E: the coefficients as floats, (len(entries), len(variables))
+    """
+
+    def __init__(self, chain: Chain, slots):
+        self.slots = tuple(as_slots(slots))
+        columns, self.entries, gravity = exact_system(chain, self.slots)
+        self.variables = [(idx, name) for idx, name, _, _ in columns] + [GRAVITY]
+        self.rows = {e: {} for e in self.entries}
+        for idx, name, sign, coefficients in columns:
+            for key, c in coefficients.items():
+                self.rows[key][(idx, name)] = sign * c
+        for key, g in gravity.items():
+            if g:
+                self.rows[key][GRAVITY] = g
+        self._finish()
+
+    def _finish(self):
+        self.index = {v: c for c, v in enumerate(self.variables)}
+        self.couplings = [(idx, ((idx, "P"), (idx, "k"), (idx, "A"), (idx, "B")))
+                          for idx, s in enumerate(self.slots) if s.j - s.i >= 3]
+        self.E = np.zeros((len(self.entries), len(self.variables)))
+        for r, e in enumerate(self.entries):
+            for v, c in self.rows[e].items():
+                self.E[r, self.index[v]] = float(c)
+        self.of_spring: dict[int, list[int]] = {}  # spring index -> its variables' columns
+        for c, v in enumerate(self.variables):
+            if v != GRAVITY:
+                self.of_spring.setdefault(v[0], []).append(c)
+
+    def multiset(self, picks) -> SignedSystem:
+        """The system of the multiset whose springs are ``self.slots[k]`` for k in ``picks`` (repeats
+        allowed: copies), taken from this one's exact coefficients without recomputing them."""
+        out = object.__new__(SignedSystem)
+        picks = [int(k) for k in picks]
+        out.slots = tuple(self.slots[k] for k in picks)
+        out.entries = self.entries
+        names = {k: [self.variables[c][1] for c in self.of_spring.get(k, [])] for k in set(picks)}
+        out.variables = [(i, name) for i, k in enumerate(picks) for name in names[k]] + [GRAVITY]
+        out.rows = {}
+        for e, row in self.rows.items():
+            new = {(i, name): row[(k, name)] for i, k in enumerate(picks) for name in names[k] if (k, name) in row}
+            if GRAVITY in row:
+                new[GRAVITY] = row[GRAVITY]
+            out.rows[e] = new
+        out._finish()
+        return out
+
+
+def _monomial(a, b=None) -> tuple:
+    """A monomial as the sorted tuple of its variables (degree 1 or 2)."""
+    if b is None:
+        return (a,)
+    return tuple(sorted((a, b), key=repr))
+
+
+@dataclass(frozen=True)
+class Certificate:
+    """A proof that a multiset cannot balance the arm: multipliers of 000 Eqs. (39) and of the
+    couplings P k = A B whose combination is a polynomial with every coefficient >= 0, one > 0.
+
+    :ivar slots: the multiset
+    :ivar equations: {(entry (u, v), factor): lambda}: the equation of that entry times the factor
+        (None for 1, else a variable: (spring index, 'P' 'A' 'B' or 'k') or :data:`GRAVITY`)
+    :ivar couplings: {spring index: mu}: that spring's w_P w_K - w_A w_B
+    Every multiplier is an exact rational; one left out is 0.
     """
 
     slots: tuple
-    kind: str
-    multipliers: dict
+    equations: dict
+    couplings: dict
 
-    def coefficients(self, chain: Chain) -> tuple:
-        """The combination y^T [M S, G], exactly: per quantity (spring index, name, coefficient),
-        and gravity's."""
-        columns, _, gravity = exact_system(chain, self.slots)
-        y = self.multipliers
-        per = [(idx, name, sign * sum(y.get(key, 0) * c for key, c in coefficients.items()))
-               for idx, name, sign, coefficients in columns]
-        return per, sum(y.get(key, 0) * g for key, g in gravity.items())
+    @property
+    def kind(self) -> str:
+        """'relaxation' (the equations alone, factors 1) or 'coupling (degree 2)'."""
+        if not self.couplings and all(f is None for _, f in self.equations):
+            return KINDS[0]
+        return KINDS[1]
+
+    def polynomial(self, chain: Chain) -> dict:
+        """The combination, exactly: {monomial: coefficient} (monomials as sorted tuples of variables)."""
+        system = SignedSystem(chain, self.slots)
+        out: dict = {}
+        for (entry, factor), lam in self.equations.items():
+            for v, c in system.rows.get(entry, {}).items():
+                key = _monomial(v, factor) if factor is not None else _monomial(v)
+                out[key] = out.get(key, 0) + lam * c
+        for idx, mu in self.couplings.items():
+            P, K, A, B = (idx, "P"), (idx, "k"), (idx, "A"), (idx, "B")
+            out[_monomial(P, K)] = out.get(_monomial(P, K), 0) + mu
+            out[_monomial(A, B)] = out.get(_monomial(A, B), 0) - mu
+        return out
 
     def check(self, chain: Chain) -> bool:
-        """True when the certificate proves it, in exact arithmetic: every coefficient of the
-        combination >= 0 and one of them > 0."""
-        if not all(isinstance(v, Fraction | int) for v in self.multipliers.values()):
+        """True when the certificate proves it, in exact arithmetic: every multiplier a rational,
+        every factor a variable of the multiset, every coupling one that binds (a spring spanning
+        three or more joints), every coefficient of the combination >= 0 and one of them > 0."""
+        values = list(self.equations.values()) + list(self.couplings.values())
+        if not values or not all(isinstance(v, Fraction | int) and not isinstance(v, bool) for v in values):
             return False
-        per, g = self.coefficients(chain)
-        values = [c for _, _, c in per] + [g]
-        return all(v >= 0 for v in values) and any(v > 0 for v in values)
+        system = SignedSystem(chain, self.slots)
+        if any(e not in system.rows or (f is not None and f not in system.index) for e, f in self.equations):
+            return False
+        if not set(self.couplings) <= {idx for idx, _ in system.couplings}:
+            return False
+        coefficients = list(self.polynomial(chain).values())
+        return all(c >= 0 for c in coefficients) and any(c > 0 for c in coefficients)
+
+    def breakers(self, candidates: SignedSystem) -> list[int]:
+        """Indices of the springs of ``candidates`` whose addition could break the certificate: some
+        monomial of a factor and one of the added spring's variables (or the variable alone) would
+        get a negative coefficient. Added springs that break nothing leave it a proof for the larger
+        multiset (their own couplings unused), so a balanceable superset must contain one that breaks
+        it. Each coefficient is summed in floats and decided there when it is clear of zero by far
+        more than the sum's round-off (1e-12 of the sum of its terms' sizes); otherwise exactly."""
+        _checks.instance("candidates", candidates, SignedSystem, "SignedSystem(chain, springs)")
+        row = {e: r for r, e in enumerate(candidates.entries)}
+        by_factor: dict = {}
+        for (entry, factor), lam in self.equations.items():
+            by_factor.setdefault(factor, []).append((entry, lam))
+        negative = np.zeros(len(candidates.variables), dtype=bool)
+        E = candidates.E
+        for terms in by_factor.values():
+            rows = np.array([row[e] for e, _ in terms])
+            lam = np.array([float(x) for _, x in terms])
+            total = lam @ E[rows]
+            size = np.abs(lam) @ np.abs(E[rows])
+            negative |= total < -1e-12 * size
+            for c in np.flatnonzero((np.abs(total) <= 1e-12 * size) & (size > 0)):
+                v = candidates.variables[c]
+                negative[c] |= sum(x * candidates.rows[e].get(v, 0) for e, x in terms) < 0
+        return [k for k, cols in sorted(candidates.of_spring.items()) if negative[cols].any()]
 
     def describe(self, chain: Chain) -> str:
-        """The refutation in words: the combination of the equations and the signs that make it impossible."""
-        per, g = self.coefficients(chain)
-        used = ", ".join(f"{float(v):+.4g} x ({u},{w})" for (u, w), v in sorted(self.multipliers.items()) if v)
-        positive = [f"{name} of {self.slots[idx]}" for idx, name, c in per if c > 0]
-        return (f"{self.kind}: the equations of entries {used} add up to a sum of the springs' quantities, each "
-                f"times a coefficient >= 0 in its sign, plus gravity times {float(g):.4g} >= 0; "
-                + (f"{', '.join(positive)} and gravity" if g > 0 and positive else
-                   ", ".join(positive) if positive else "gravity")
-                + " enter with a positive coefficient, so the sum cannot be zero with every quantity of its sign")
+        """The refutation in words: which equations are combined, with which factors, and why the
+        sum cannot vanish."""
+        poly = self.polynomial(chain)
+        positive = sorted((_name(self.slots, m) for m, c in poly.items() if c > 0))
+        used = sorted({f"({u},{w})" for ((u, w), _), lam in self.equations.items() if lam})
+        if self.kind == KINDS[0]:
+            how = (f"{self.kind}: the equations of entries {', '.join(used)} (Eqs. 39), each times a rational "
+                   "multiplier, add up to")
+        else:
+            factors = sorted({_name(self.slots, (f,)) for (_, f), lam in self.equations.items() if lam and f is not None})
+            coupled = ", ".join(f"P k - A B of {self.slots[i]}" for i in sorted(self.couplings))
+            how = (f"{self.kind}: the equations of entries {', '.join(used)} (Eqs. 39), each times one of "
+                   f"{', '.join(factors)} and a rational multiplier, with {coupled or 'no coupling'} (times its own), "
+                   "add up to")
+        return (f"{how} a polynomial whose {len(poly)} coefficients are all >= 0, {len(positive)} of them > 0 "
+                f"(on {', '.join(positive[:4])}{', ...' if len(positive) > 4 else ''}); with every quantity of its "
+                "sign the sum would be > 0, but the equations make it 0")
 
 
-def relaxation_certificate(chain: Chain, slots) -> Certificate | None:
+def _name(slots, monomial) -> str:
+    """A monomial in words: 'B of S(1,4)(+,+) * t'."""
+    return " * ".join("t" if v == GRAVITY else f"{v[1]} of {slots[v[0]]}" for v in monomial)
+
+
+# --- finding certificates: a linear programme in floats, then made exact --------------------------
+
+def relaxation_certificate(chain: Chain, slots, *, system: SignedSystem | None = None) -> Certificate | None:
     """The Stiemke certificate that the linear relaxation of 000 Eqs. (39) has no solution with
     every quantity of its sign (module docstring), checked exactly; None when the relaxation has
     a solution (or no exact certificate could be made)."""
     from scipy.optimize import linprog
 
-    slots = tuple(as_slots(slots))
-    columns, entries, gravity = exact_system(chain, slots)
-    row = {key: i for i, key in enumerate(entries)}
-    # the combination's coefficients as rows of C (one per quantity, then gravity), C y
-    C = np.zeros((len(columns) + 1, len(entries)))
-    for q, (_, _, sign, coefficients) in enumerate(columns):
-        for key, c in coefficients.items():
-            C[q, row[key]] = sign * float(c)
-    for key, g in gravity.items():
-        C[-1, row[key]] = float(g)
-    scale = np.maximum(np.abs(C).max(axis=1, keepdims=True), 1e-300)
-    Cn = C / scale
-    # find y with Cn y >= 0 and sum(Cn y) = 1 (free y in a box: the programme stays bounded)
-    res = linprog(np.zeros(len(entries)), A_ub=-Cn, b_ub=np.zeros(len(Cn)), A_eq=Cn.sum(axis=0, keepdims=True),
-                  b_eq=[1.0], bounds=[(-1e6, 1e6)] * len(entries), method="highs")
+    system = system or SignedSystem(chain, slots)
+    if not system.slots:
+        return None
+    E, _ = _scaled_columns(system.E)
+    rows = np.maximum(np.abs(E).max(axis=1), 1e-300)
+    Er = E / rows[:, None]
+    # y with Er^T y >= 0 and sum = 1 (a box keeps it bounded): every coefficient of y^T E >= 0
+    res = linprog(np.zeros(len(Er)), A_ub=-Er.T, b_ub=np.zeros(Er.shape[1]), A_eq=Er.sum(axis=1)[None, :],
+                  b_eq=[1.0], bounds=[(-1e6, 1e6)] * len(Er), method="highs")
     if res.status != 0:
         return None
-    y = res.x
-    values = Cn @ y
-    zero = np.flatnonzero(np.abs(values) <= ZERO * max(1.0, float(np.max(np.abs(values)))))
-    exact = _project(y, [_exact_row(columns, gravity, entries, q) for q in zero])
-    cert = Certificate(slots, "relaxation (Stiemke)", {key: v for key, v in zip(entries, exact, strict=True) if v})
-    return cert if cert.check(chain) else None
+    y = res.x / rows
+    return _exact(system, {(e, None): float(v) for e, v in zip(system.entries, y, strict=True) if v}, {})
 
 
-def _exact_row(columns, gravity, entries, q) -> list[Fraction]:
-    """Row q of the combination's matrix (a quantity's coefficients, or gravity's) in exact rationals."""
-    if q < len(columns):
-        _, _, sign, coefficients = columns[q]
-        return [sign * coefficients.get(key, Fraction(0)) for key in entries]
-    return [gravity.get(key, Fraction(0)) for key in entries]
+def relaxation_certificate_from(system: SignedSystem, y) -> Certificate | None:
+    """An exact relaxation certificate of ``system`` from float multipliers ``y`` (one per entry, in
+    order, as a linear programme's dual values give them), or None when they do not make one."""
+    _checks.instance("system", system, SignedSystem, "SignedSystem(chain, springs)")
+    return _exact(system, {(e, None): float(v) for e, v in zip(system.entries, y, strict=True) if v}, {})
 
 
-def _project(y, rows) -> list[Fraction]:
-    """y (floats, read exactly) projected in rational arithmetic onto {y: row . y = 0 for every row}."""
-    import sympy
+def coupling_certificate(chain: Chain, slots, *, system: SignedSystem | None = None) -> Certificate | None:
+    """A degree-2 certificate (module docstring) that 000 Eqs. (39) with P k = A B have no solution
+    with every quantity of its sign, checked exactly, or None when the linear programme finds none.
 
-    y0 = sympy.Matrix([sympy.Rational(Fraction(float(v)).numerator, Fraction(float(v)).denominator) for v in y])
-    if rows:
-        R = sympy.Matrix([[sympy.Rational(c.numerator, c.denominator) for c in r] for r in rows])
-        _, pivots = R.T.rref()  # independent rows
-        R = R[list(pivots), :]
-        if R.rows:
-            y0 = y0 - R.T * (R * R.T).LUsolve(R * y0)
-    return [Fraction(int(v.p), int(v.q)) for v in y0]
+    The programme has one multiplier per (equation, factor) and per coupling, one row per
+    monomial (coefficient >= 0) and one normalising the sum of the coefficients to 1; it minimises
+    the sum of |multipliers| so that the certificate uses few of them (and few springs can break it).
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse import hstack as sparse_hstack
+
+    from springlab.design.highs import INF, solve
+
+    system = system or SignedSystem(chain, slots)
+    if not system.slots or not system.couplings:
+        return None  # no coupling binds: where the relaxation has a solution no certificate exists
+    E, scale = _scaled_columns(system.E)
+    ne, m = E.shape
+    e_nz, k_nz = np.nonzero(E)
+    f = np.repeat(np.arange(m), len(e_nz))  # every factor times every term of every equation
+    e_all, k_all = np.tile(e_nz, m), np.tile(k_nz, m)
+    pair = np.minimum(f, k_all) * m + np.maximum(f, k_all)
+    cols = e_all * m + f
+    vals = np.tile(E[e_nz, k_nz], m)
+    couple_pairs, couple_cols, couple_vals = [], [], []
+    for q, (_, (P, K, A, B)) in enumerate(system.couplings):
+        ip, ik, ia, ib = (system.index[v] for v in (P, K, A, B))
+        couple_pairs += [min(ip, ik) * m + max(ip, ik), min(ia, ib) * m + max(ia, ib)]
+        couple_cols += [ne * m + q] * 2
+        couple_vals += [scale[ip] * scale[ik], -scale[ia] * scale[ib]]
+    monomials, rows = np.unique(np.r_[pair, couple_pairs], return_inverse=True)
+    nv = ne * m + len(system.couplings)
+    C = coo_matrix((np.r_[vals, couple_vals], (rows, np.r_[cols, couple_cols])), shape=(len(monomials), nv)).tocsr()
+    C2 = sparse_hstack([C, -C]).tocsr()  # multipliers = plus - minus, both >= 0: minimise their sum
+    A = sparse_hstack([C2.T, C2.sum(axis=0).T]).T  # C2 x >= 0, sum(C2 x) = 1
+    low = np.r_[np.zeros(len(monomials)), 1.0]
+    up = np.r_[np.full(len(monomials), INF), 1.0]
+    out = solve(np.ones(2 * nv), A, low, up, np.zeros(2 * nv), np.full(2 * nv, INF))
+    if out is None:
+        return None
+    res_x = out[0]
+    x = res_x[:nv] - res_x[nv:]
+    x[np.abs(x) <= 1e-12 * np.abs(x).max()] = 0.0
+    equations = {}
+    for e in range(ne):
+        for f in range(m):
+            v = x[e * m + f]
+            if v:  # the programme's factor is w_f / scale_f (E_scaled = E * scale): lambda = v / scale_f
+                equations[(system.entries[e], system.variables[f])] = float(v / scale[f])
+    couplings = {idx: float(x[ne * m + q]) for q, (idx, _) in enumerate(system.couplings) if x[ne * m + q]}
+    return _exact(system, equations, couplings)
+
+
+def _scaled_columns(E: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """E with each column divided by its largest |entry|, and the divisors' inverses: E_scaled = E * scale."""
+    scale = 1.0 / np.maximum(np.abs(E).max(axis=0), 1e-300)
+    return E * scale, scale
+
+
+def _exact(system: SignedSystem, equations: dict, couplings: dict) -> Certificate | None:
+    """An exact certificate near the float multipliers: the coefficients the floats leave within
+    :data:`ZERO` of zero (relative to the largest, or to the sum of their terms' sizes) are made
+    exactly zero. The multipliers the floats use are replaced by the point of the exact null space
+    of those coefficients (a basis by exact row reduction) nearest to them (least squares in floats:
+    any rational point of the null space zeroes them exactly). None when the result does not check."""
+    keys = list(equations) + [("coupling", idx) for idx in couplings]
+    values = np.array([equations[k] for k in equations] + [couplings[idx] for idx in couplings], dtype=float)
+    if not keys:
+        return None
+    columns: list[dict] = []  # each multiplier's exact contribution to each monomial
+    for key in keys:
+        if key[0] == "coupling":
+            idx = key[1]
+            columns.append({_monomial((idx, "P"), (idx, "k")): Fraction(1), _monomial((idx, "A"), (idx, "B")): Fraction(-1)})
+        else:
+            entry, factor = key
+            columns.append({(_monomial(v, factor) if factor is not None else (v,)): c
+                            for v, c in system.rows[entry].items()})
+    monomials = list({m for col in columns for m in col})
+    at = {m: r for r, m in enumerate(monomials)}
+    M = np.zeros((len(monomials), len(keys)))
+    for j, col in enumerate(columns):
+        for m, c in col.items():
+            M[at[m], j] = float(c)
+    total, size = M @ values, np.abs(M) @ np.abs(values)
+    zero = np.flatnonzero(np.abs(total) <= ZERO * np.maximum(np.abs(total).max(), size))
+    Z = [[columns[j].get(monomials[r], Fraction(0)) for j in range(len(keys))] for r in zero]
+    basis = _null_space(Z, len(keys))
+    if not basis:
+        return None
+    N = np.array([[float(x) for x in b] for b in basis]).T
+    alpha = np.linalg.lstsq(N, values, rcond=None)[0]
+    exact = [sum((Fraction(float(a)) * b[j] for a, b in zip(alpha, basis, strict=True) if a), Fraction(0))
+             for j in range(len(keys))]
+    n_eq = len(equations)
+    cert = Certificate(system.slots,
+                       {k: x for k, x in zip(keys[:n_eq], exact[:n_eq], strict=True) if x},
+                       {k[1]: x for k, x in zip(keys[n_eq:], exact[n_eq:], strict=True) if x})
+    return cert if cert.equations and _checks_on(system, cert) else None
+
+
+def _checks_on(system: SignedSystem, cert: Certificate) -> bool:
+    """:meth:`Certificate.check`'s sign test on a system already built (the arm is the system's)."""
+    poly: dict = {}
+    for (entry, factor), lam in cert.equations.items():
+        for v, c in system.rows[entry].items():
+            key = _monomial(v, factor) if factor is not None else (v,)
+            poly[key] = poly.get(key, 0) + lam * c
+    for idx, mu in cert.couplings.items():
+        for key, s in ((_monomial((idx, "P"), (idx, "k")), 1), (_monomial((idx, "A"), (idx, "B")), -1)):
+            poly[key] = poly.get(key, 0) + s * mu
+    return all(c >= 0 for c in poly.values()) and any(c > 0 for c in poly.values())
+
+
+# --- exact linear algebra over the rationals (small systems: a certificate uses few multipliers) ---
+
+def _rref(rows: list[list[Fraction]]) -> tuple[list[list[Fraction]], list[int]]:
+    """Reduced row echelon form of ``rows`` (exact): (the non-zero rows, their pivot columns)."""
+    A = [list(r) for r in rows]
+    pivots: list[int] = []
+    r = 0
+    width = len(A[0]) if A else 0
+    for c in range(width):
+        p = next((i for i in range(r, len(A)) if A[i][c] != 0), None)
+        if p is None:
+            continue
+        A[r], A[p] = A[p], A[r]
+        inv = 1 / A[r][c]
+        A[r] = [x * inv for x in A[r]]
+        for i in range(len(A)):
+            if i != r and A[i][c] != 0:
+                f = A[i][c]
+                A[i] = [a - f * b for a, b in zip(A[i], A[r], strict=True)]
+        pivots.append(c)
+        r += 1
+        if r == len(A):
+            break
+    return A[:r], pivots
+
+
+def _null_space(Z: list[list[Fraction]], width: int) -> list[list[Fraction]]:
+    """A basis of {v: Z v = 0} (exact), one vector per free column of Z's row echelon form."""
+    if not Z:
+        return [[Fraction(int(i == j)) for i in range(width)] for j in range(width)]
+    R, pivots = _rref(Z)
+    free = [c for c in range(width) if c not in pivots]
+    basis = []
+    for f in free:
+        v = [Fraction(0)] * width
+        v[f] = Fraction(1)
+        for row, p in zip(R, pivots, strict=True):
+            v[p] = -row[f]
+        basis.append(v)
+    return basis

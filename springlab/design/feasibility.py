@@ -1,35 +1,28 @@
-"""Which spring multisets balance an arm: paper 000's rules R1-R6 tested against 000 Eqs. (39).
+"""Which spring multisets balance an arm: paper 000's rules R1-R6 tested against 000 Eqs. (39),
+with every verdict proved.
 
-A configuration is a **multiset** of springs over the paper's sign alphabet
-(:func:`alphabet`): ground springs S(1,j) (+,+), S(1,2) also (-,-); every other
-pair (+,+), (-,-) or (+,-); two springs on one pair in different patterns, and on
-a pair spanning three or more joints (j - i >= 3) the same pattern twice.
+A configuration is a **multiset** of springs over a sign alphabet (:func:`alphabet`). The paper's
+(``signs="paper"``): ground springs S(1,j) (+,+), S(1,2) also (-,-); every other pair (+,+),
+(-,-) or (+,-). Every pattern on every pair (``signs="all"``). Two springs may join one pair in
+different patterns, and a pair spanning three or more joints (j - i >= 3) in the same pattern twice.
 
-It is **balanceable** when 000 Eqs. (39) have a solution with every k > 0 and every
-a, b of its pattern's sign. 000 Eqs. (39) are linear in P = k a b, A = k a, B = k b
-and k of each spring (000 Eqs. 23a-d) except for P k = A B, which binds only for
-springs spanning three or more joints. So:
+A multiset is **balanceable** when 000 Eqs. (39) have a solution with every k > 0 and every a, b of
+its pattern's sign. :func:`decide` settles it either way:
 
-* the **linear relaxation** (drop P k = A B, keep the signs strict) is necessary:
-  where it has no solution the multiset is not balanceable (a proof);
-* a multiset the relaxation admits is confirmed by a design found by least squares
-  (:func:`springlab.design.solve.find_design`, signs only) and checked entry by entry.
+* **yes**: a design (k, a, b per spring), found by least squares from the linear relaxation's
+  vertices (:func:`confirm`), checked entry by entry (route 1) and by the total energy over random
+  poses (route 2, :func:`balances_by_geometry`);
+* **no**: an exact certificate (:mod:`springlab.design.certificates`): the linear relaxation's
+  (Stiemke), or, where only the coupling P k = A B forbids it, a degree-2 one. Each is checked in
+  rational arithmetic;
+* **undecided** when neither is found (none is, on the arms and alphabets of the paper-000 chapter).
 
-**Minimal** has two meanings, both counted (:func:`rules_against_physics`):
-
-* *inclusion-minimal*: balanceable, and no proper sub-multiset is;
-* *no single spring removable*: balanceable, and removing any one spring leaves a
-  multiset that is not (the paper's enumeration of Table 1 keeps configurations in
-  this sense, with "balanceable" replaced by "admitted by R1-R6").
-
-The inclusion-minimal multisets of the relaxation are enumerated exactly, fewest
-springs first, by a mixed-integer programme (scipy's HiGHS): a binary z per spring
-of the alphabet, each of the spring's linear quantities carrying its sign by at
-least ``eps`` when z = 1 and zero when z = 0, minimise sum z, and after each find
-forbid every superset of it (sum of its z <= size - 1). When the programme becomes
-infeasible there is no further minimal multiset. If every one found is confirmed
-by a design, the relaxation's minimal multisets are exactly the true ones (a true
-balanceable multiset contains a relaxation-minimal one, which is then balanceable).
+**Minimal**: a balanceable multiset none of whose proper sub-multisets is balanceable
+(inclusion-minimal). :func:`minimal_balanceable` enumerates them all, fewest springs first, by
+branching on certificates: a multiset proved unbalanceable is extended only by the springs that
+could break its certificate (:meth:`springlab.design.certificates.Certificate.breakers`), which
+every balanceable superset must contain. The enumeration is complete when no multiset it meets is
+undecided.
 
 References
 ----------
@@ -40,14 +33,14 @@ spatial articulated manipulators without auxiliary links. Mechanism and Machine 
 
 from __future__ import annotations
 
-import sys
+import time
+from collections import Counter
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from springlab import _checks
 from springlab.design.rules import SpringSlot, as_slots, rule_violations
-from springlab.design.solve import term_signs
 from springlab.errors import SearchExhaustedError, SolverError, SpringlabError
 from springlab.model.chain import Chain
 from springlab.tables import Table
@@ -65,21 +58,33 @@ EPS; every multiset the programme returns is re-checked by a plain linear progra
 (:func:`relaxation_feasible`) before it is counted."""
 
 
-def alphabet(n: int) -> list[SpringSlot]:
+SIGNS = ("paper", "all")
+"""The sign alphabets: the paper's (Eq. 41 and Fig. 10) and every pattern on every pair."""
+
+
+def alphabet(n: int, signs: str = "paper") -> list[SpringSlot]:
     """The springs a multiset may contain on an n-link arm, one entry per copy.
 
-    Ground springs S(1,j) (+,+) and S(1,2) (-,-) (000 Eq. 41 and the note below
-    it); non-ground springs (+,+), (-,-), (+,-) (Fig. 10); a spring spanning three
-    or more joints appears twice (its k enters entries of its own, so a second copy
-    of one pattern is not the same as a stiffer first one).
+    ``signs="paper"``: ground springs S(1,j) (+,+) and S(1,2) (-,-) (000 Eq. 41 and the note below
+    it); non-ground springs (+,+), (-,-), (+,-) (Fig. 10). ``signs="all"``: all four patterns on
+    every pair. A spring spanning three or more joints appears twice in each pattern (its k enters
+    entries of its own, so a second copy is not the same as a stiffer first one).
     """
     n = _checks.links(n, "n")
-    out = [SpringSlot(1, 2, "(+,+)"), SpringSlot(1, 2, "(-,-)")]
-    for j in range(3, n + 1):
-        out += [SpringSlot(1, j)] * (2 if j - 1 >= 3 else 1)
-    for i in range(2, n):
+    if signs not in SIGNS:
+        raise SpringlabError(f"signs must be one of {SIGNS}, got {signs!r}")
+    from springlab.design.rules import PATTERNS
+
+    out = []
+    for i in range(1, n):
         for j in range(i + 1, n + 1):
-            for p in ("(+,+)", "(-,-)", "(+,-)"):
+            if signs == "all":
+                patterns = PATTERNS
+            elif i == 1:
+                patterns = ("(+,+)", "(-,-)") if j == 2 else ("(+,+)",)
+            else:
+                patterns = ("(+,+)", "(-,-)", "(+,-)")
+            for p in patterns:
                 out += [SpringSlot(i, j, p)] * (2 if j - i >= 3 else 1)
     return out
 
@@ -131,201 +136,12 @@ def _programme(chain: Chain, items) -> _Programme:
     return _Programme(list(items), np.array(owner), np.array(signs, dtype=float), A_eq, b_eq)
 
 
-def relaxation_feasible(chain: Chain, slots) -> bool:
-    """True when the linear relaxation of 000 Eqs. (39) has a solution in which every
-    spring's quantities carry their signs by at least :data:`EPS` (a necessary
-    condition for balance; False is a proof that the multiset cannot balance)."""
-    _checks.instance("chain", chain, Chain)
-    slots = as_slots(slots)
-    slots = list(slots)
-    return bool(slots) and _phase_one(_programme(chain, slots))[0] <= 1e-9
-
-
 def _long_columns(prog: _Programme, slots) -> list[list[int]]:
     """Per spring spanning three or more joints: its columns (P, A, B, k) in the programme."""
     where: dict[int, list[int]] = {}
     for col, own in enumerate(prog.owner):
         where.setdefault(int(own), []).append(col)
     return [where[idx] for idx, s in enumerate(slots) if s.j - s.i >= 3]
-
-
-def _fixed_ratio(x0: np.ndarray, N: np.ndarray, i: int, j: int) -> float | None:
-    """c when x_i = c x_j at every point x0 + N z of the equations' solution set, else None."""
-    vi, vj = np.r_[x0[i], N[i]], np.r_[x0[j], N[j]]
-    if np.abs(vj).max() < 1e-12:
-        return None
-    c = float(vi @ vj / (vj @ vj))
-    return c if np.abs(vi - c * vj).max() <= 1e-9 * max(1.0, np.abs(vi).max()) else None
-
-
-def tightened_infeasible(chain: Chain, slots) -> bool:
-    """True when 000 Eqs. (39) with P k = A B provably have no solution with the stated signs.
-
-    Exact consequences of the coupling are added to the linear equations until none is new:
-    where the equations force B = c k for a spring (its b fixed at c), P k = A B gives P = c A;
-    likewise A = c k gives P = c B, P = c A gives B = c k, P = c B gives A = c k. Then the
-    linear programme with strict signs decides: infeasible is a proof (the added rows hold at
-    every solution). False proves nothing.
-    """
-    _checks.instance("chain", chain, Chain)
-    slots = as_slots(slots)
-    from scipy.linalg import null_space
-
-    slots = list(slots)
-    prog = _programme(chain, slots)
-    longs = _long_columns(prog, slots)
-    A, rhs = prog.A_eq.copy(), prog.b_eq.copy()
-    m = A.shape[1]
-    for _ in range(4 * len(longs) + 1):
-        x0 = np.linalg.lstsq(A, rhs, rcond=None)[0]
-        if np.abs(A @ x0 - rhs).max() > 1e-9:
-            return True  # the equations alone are inconsistent
-        N = null_space(A)
-        N = N if N.size else np.zeros((m, 1))
-        new = None
-        for P, Aq, Bq, K in longs:
-            for (u, v), (p, q) in (((Bq, K), (P, Aq)), ((Aq, K), (P, Bq)), ((P, Aq), (Bq, K)), ((P, Bq), (Aq, K))):
-                c = _fixed_ratio(x0, N, u, v)
-                if c is None:
-                    continue
-                row = np.zeros(m)
-                row[p], row[q] = 1.0, -c  # x_p = c x_q, from P k = A B
-                if abs(row @ x0) > 1e-9 and np.abs(row @ N).max() < 1e-9:
-                    return True  # contradicts the equations
-                if np.abs(row @ N).max() > 1e-9:
-                    new = row
-                    break
-            if new is not None:
-                break
-        if new is None:
-            break
-        A, rhs = np.vstack([A, new]), np.append(rhs, 0.0)
-    return _phase_one(_Programme(prog.items, prog.owner, prog.signs, A, rhs))[0] > 1e-9
-
-
-class _RatioProgramme:
-    """The phase-one programme of a multiset with, per spring spanning three or more joints,
-    bounds on its two ratios a = A/k = P/B and b = B/k = P/A (in the programme's units),
-    written linearly: for b in [l, h], l k <= |B| <= h k and l |A| <= |P| <= h |A| (each
-    quantity carries its sign, so |X| is linear). Every design with the multiset's signs and
-    ratios within the bounds satisfies these rows, so an infeasible programme is a proof that
-    no design has its ratios there. One HiGHS model; a change of bounds changes coefficients
-    and re-solves from the last basis."""
-
-    def __init__(self, chain: Chain, slots):
-        import highspy
-
-        prog = _programme(chain, slots)
-        self.highs = _new_highs()
-        self.highs.passModel(_phase_one_lp(prog))
-        self.widest = (EPS / BOUND, BOUND / EPS)  # |A| / k and the rest: quantities in [EPS, BOUND]
-        sign = prog.signs
-        row = prog.A_eq.shape[0]
-        self.cells: list[list[tuple[int, int, bool, float]]] = []  # per ratio: (row, column, lower?, sign)
-        for P, A, B, K in _long_columns(prog, slots):
-            for pairs in (((A, K), (P, B)), ((B, K), (P, A))):  # a = |A|/k = |P|/|B|, b = |B|/k = |P|/|A|
-                cells = []
-                for num, den in pairs:
-                    for lower, bound in ((True, self.widest[0]), (False, self.widest[1])):
-                        # lower: |num| - l |den| >= 0; upper: h |den| - |num| >= 0
-                        flip = 1.0 if lower else -1.0
-                        self.highs.addRow(0.0, highspy.kHighsInf, 2, np.array([num, den], dtype=np.int32),
-                                          np.array([flip * sign[num], -flip * bound * sign[den]]))
-                        cells.append((row, den, lower, float(sign[den])))
-                        row += 1
-                self.cells.append(cells)
-        self.box = [self.widest] * len(self.cells)
-
-    def feasible(self, box) -> bool:
-        """True when some point of the relaxation has every ratio within ``box``: [(low, high)] per ratio."""
-        import highspy
-
-        for t, bounds in enumerate(box):
-            if bounds != self.box[t]:
-                for row, den, lower, sign in self.cells[t]:
-                    self.highs.changeCoeff(row, den, -bounds[0] * sign if lower else bounds[1] * sign)
-                self.box[t] = bounds
-        for _ in range(2):
-            self.highs.run()
-            status = self.highs.getModelStatus()
-            if status == highspy.HighsModelStatus.kInfeasible:
-                return False
-            if status == highspy.HighsModelStatus.kOptimal:
-                return float(self.highs.getInfo().objective_function_value) <= 1e-9
-            self.highs.clearSolver()  # numerical trouble from the warm basis: once more from scratch
-        return True  # undecided by the solver: claim nothing
-
-    def lowest(self, box, t: int, precision: float) -> float:
-        """A lower bound on ratio t: the largest c (to ``precision`` in log) for which no point of
-        the relaxation has the ratio in [low, c]."""
-        low, high = box[t]
-        trial = list(box)
-        trial[t] = (low, low)
-        if self.feasible(trial):
-            return low
-        while np.log(high / low) > precision:  # [box low, low] infeasible, [box low, high] feasible
-            mid = float(np.sqrt(low * high))
-            trial[t] = (box[t][0], mid)
-            low, high = (low, mid) if self.feasible(trial) else (mid, high)
-        return low
-
-    def highest(self, box, t: int, precision: float) -> float:
-        """An upper bound on ratio t: the smallest c for which no point has the ratio in [c, high]."""
-        low, high = box[t]
-        trial = list(box)
-        trial[t] = (high, high)
-        if self.feasible(trial):
-            return high
-        while np.log(high / low) > precision:  # [low, box high] feasible, [high, box high] infeasible
-            mid = float(np.sqrt(low * high))
-            trial[t] = (mid, box[t][1])
-            low, high = (mid, high) if self.feasible(trial) else (low, mid)
-        return high
-
-
-RATIO_PRECISION = 1e-3
-"""Bisection precision of :func:`coupling_refuted`'s ratio bounds, in log (0.1 %): the bounds
-are proved whatever it is; a finer one only refutes multisets whose infeasibility gap is
-narrower."""
-
-
-def coupling_refuted(chain: Chain, slots, *, passes: int = 10) -> bool:
-    """True when 000 Eqs. (39) with P k = A B provably have no solution with the stated signs,
-    by bounds on the ratios of the springs spanning three or more joints.
-
-    P k = A B says P / A = B / k (= b) and P / B = A / k (= a). Each ratio starts within what
-    the quantities' boxes allow and is tightened in turn: its lower bound rises to the largest c
-    for which the linear programme with the ratio in [low, c] has no solution (bisection in log,
-    :data:`RATIO_PRECISION`), its upper bound likewise; a ratio whose bounds cross is a proof.
-    Passes repeat while some bound moves by more than ten times the precision (at most
-    ``passes``). False proves nothing.
-
-    Example (n = 5, a random arm): S(1,2) S(1,4) S(1,5) S(2,4)(-,-) and two springs on (2,5).
-    Entry (2,4) with (2,3) needs b of S(1,4) above r_4; entries (1,3) and (1,4) give
-    b = P / A = (G_1,4 - r_4 A_S(1,5)) / (G_1,3 / r_3 - A_S(1,5)), below r_4 whenever
-    G_1,4 r_3 < G_1,3 r_4 (every arm with d_4 < r_4).
-    """
-    _checks.instance("chain", chain, Chain)
-    slots = list(as_slots(slots))
-    passes = _checks.count("passes", passes, least=1)
-    if not any(s.j - s.i >= 3 for s in slots):
-        return False  # no coupling binds: the relaxation decides
-    ratios = _RatioProgramme(chain, slots)
-    box = list(ratios.box)
-    if not ratios.feasible(box):
-        return True
-    for _ in range(passes):
-        moved = False
-        for t in range(len(box)):
-            low = ratios.lowest(box, t, RATIO_PRECISION)
-            high = ratios.highest(box, t, RATIO_PRECISION)
-            if low >= high:
-                return True
-            moved |= np.log(box[t][1] / box[t][0]) - np.log(high / low) > 10 * RATIO_PRECISION
-            box[t] = (low, high)
-        if not moved:
-            return False
-    return False
 
 
 _HIGHS = None
@@ -351,34 +167,11 @@ def _phase_one_lp(prog: _Programme):
     return lp
 
 
-_BANNER_SHOWN = False
-
-
 def _new_highs():
-    """A silent HiGHS model. The first one of a process is made with the C library's standard
-    output sent to /dev/null: HiGHS prints its banner there when the first model is made, before
-    any option can turn output off (in a notebook it landed in the cell's output)."""
-    import os
+    """A silent HiGHS model (:func:`springlab.design.highs.new_model`)."""
+    from springlab.design.highs import new_model
 
-    import highspy
-
-    global _BANNER_SHOWN
-    if _BANNER_SHOWN:
-        h = highspy.Highs()
-    else:
-        sys.stdout.flush()
-        saved, null = os.dup(1), os.open(os.devnull, os.O_WRONLY)
-        try:
-            os.dup2(null, 1)
-            h = highspy.Highs()
-        finally:
-            os.dup2(saved, 1)
-            os.close(saved)
-            os.close(null)
-        _BANNER_SHOWN = True
-    h.setOptionValue("output_flag", False)
-    h.setOptionValue("threads", 1)  # thousands of tiny programmes: no thread pool (n = 5's search 2.23 -> 2.03 s an arm)
-    return h
+    return new_model()
 
 
 def _solved(h):
@@ -426,93 +219,311 @@ class _WarmPhaseOne:
         return _solved(self.highs)
 
 
-class _WarmCounts:
-    """:func:`_phase_one` of a multiset over the kinds of ``full`` (one copy of each kind's columns),
-    kept in one HiGHS model: c copies of a kind are one copy with its quantities' sign box scaled
-    by c ([c EPS, c BOUND]: the copies enter the equations only through their sum), an absent kind
-    is fixed at 0, and each call changes the column bounds and solves again from the last basis
-    (the n = 5 search on one arm: 4.5 s instead of 5.7 s building and solving each multiset's own
-    programme)."""
+class _Relaxation:
+    """The linear relaxation of 000 Eqs. (39) for multisets over ``kinds``, in one HiGHS model.
 
-    def __init__(self, full: _Programme):
+    Homogeneous (gravity times t): every present quantity, signed, and t lie in [1, inf), which for
+    a homogeneous system is the same as > 0 (scale any strictly positive solution up); an absent
+    kind's quantities are fixed at 0. The phase-one programme (least total violation of the
+    equations) is 0 exactly when the relaxation has a solution of the stated signs; otherwise its
+    dual values are Stiemke multipliers (:mod:`springlab.design.certificates`). The copies of a kind
+    need no columns of their own: a sum of positive quantities is any positive quantity. Each call
+    changes column bounds and solves again from the last basis.
+    """
+
+    def __init__(self, chain: Chain, kinds):
+        import highspy
+
+        from springlab.design.certificates import GRAVITY, SignedSystem
+
+        self.system = SignedSystem(chain, kinds)
+        E = self.system.E
+        self.col_scale = 1.0 / np.maximum(np.abs(E).max(axis=0), 1e-300)
+        Es = E * self.col_scale
+        self.row_scale = 1.0 / np.maximum(np.abs(Es).max(axis=1), 1e-300)
+        Es = Es * self.row_scale[:, None]
+        self.Es = Es
+        rows, m = Es.shape
+        self.owner = np.array([-1 if v == GRAVITY else v[0] for v in self.system.variables])
+        lp = highspy.HighsLp()
+        lp.num_col_, lp.num_row_ = m + 2 * rows, rows
+        lp.col_cost_ = np.concatenate([np.zeros(m), np.ones(2 * rows)])
+        lp.col_lower_ = np.concatenate([np.ones(m), np.zeros(2 * rows)])
+        lp.col_upper_ = np.full(m + 2 * rows, highspy.kHighsInf)
+        lp.row_lower_ = lp.row_upper_ = np.zeros(rows)
+        dense = np.hstack([Es, np.eye(rows), -np.eye(rows)])
+        present = dense.T != 0
+        lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
+        lp.a_matrix_.start_ = np.concatenate([[0], np.cumsum(present.sum(axis=1))]).astype(np.int32)
+        lp.a_matrix_.index_ = np.nonzero(present)[1].astype(np.int32)
+        lp.a_matrix_.value_ = dense.T[present]
         self.highs = _new_highs()
-        self.highs.passModel(_phase_one_lp(full))
-        self.owner = full.owner
-        self.lower = np.where(full.signs > 0, EPS, -BOUND)
-        self.upper = np.where(full.signs > 0, BOUND, -EPS)
-        self.columns = np.arange(len(full.owner), dtype=np.int32)
+        self.highs.passModel(lp)
+        self.columns = np.arange(m, dtype=np.int32)
+        self.m = m
+        self.inf = highspy.kHighsInf
 
-    def __call__(self, counts: np.ndarray):
-        c = np.asarray(counts, dtype=float)[self.owner]
-        self.highs.changeColsBounds(len(self.columns), self.columns, self.lower * c, self.upper * c)
+    def pruning(self, counts) -> np.ndarray | None:
+        """Stiemke multipliers for an infeasible relaxation chosen to leave few springs that could break
+        them: minimise the negative parts of the absent kinds' coefficients (plus a little of |y|),
+        with the present ones >= 0 summing to 1. One entry per equation, unscaled; None if none found."""
+        from springlab.design.highs import INF, solve
+
+        rows, m = self.Es.shape
+        present = np.ones(m, dtype=bool)
+        kinds = self.owner >= 0
+        present[kinds] = np.asarray(counts)[self.owner[kinds]] > 0
+        P, Q = self.Es[:, present].T, self.Es[:, ~present].T
+        na = Q.shape[0]
+        # variables y+ (rows), y- (rows), s (one per absent column); rows: P y >= 0, Q y + s >= 0, sum P y = 1
+        A = np.block([[P, -P, np.zeros((P.shape[0], na))], [Q, -Q, np.eye(na)],
+                      [P.sum(axis=0)[None, :], -P.sum(axis=0)[None, :], np.zeros((1, na))]])
+        low = np.r_[np.zeros(P.shape[0] + na), 1.0]
+        up = np.r_[np.full(P.shape[0] + na, INF), 1.0]
+        cost = np.r_[np.full(2 * rows, 1e-3), np.ones(na)]
+        out = solve(cost, A, low, up, np.zeros(2 * rows + na), np.full(2 * rows + na, INF))
+        if out is None:
+            return None
+        x = out[0]
+        return (x[:rows] - x[rows:2 * rows]) * self.row_scale
+
+    def __call__(self, counts) -> tuple[bool, np.ndarray]:
+        """(feasible, y): y the equations' multipliers (one per entry, unscaled), meaningful when not
+        feasible."""
+        present = np.ones(self.m, dtype=bool)
+        kinds = self.owner >= 0
+        present[kinds] = np.asarray(counts)[self.owner[kinds]] > 0
+        self.highs.changeColsBounds(self.m, self.columns, np.where(present, 1.0, 0.0),
+                                    np.where(present, self.inf, 0.0))
         self.highs.run()
-        return _solved(self.highs), np.array(self.highs.getSolution().row_dual)
+        value = _solved(self.highs)
+        y = -np.array(self.highs.getSolution().row_dual) * self.row_scale  # reduced costs >= 0 at z = 1
+        return value <= 1e-9, y
 
 
-def minimal_relaxed_multisets(chain: Chain, *, max_nodes: int = 200_000) -> list[tuple[SpringSlot, ...]]:
-    """Every inclusion-minimal multiset over :func:`alphabet` whose linear relaxation of
-    000 Eqs. (39) is feasible, fewest springs first, then in label order.
+def relaxation_feasible(chain: Chain, slots) -> bool:
+    """True when the linear relaxation of 000 Eqs. (39) (P k = A B dropped) has a solution with
+    every spring's quantities strictly of their signs; False is proved by the exact certificate
+    :func:`springlab.design.certificates.relaxation_certificate`."""
+    _checks.instance("chain", chain, Chain)
+    from springlab.design.certificates import relaxation_certificate
 
-    Branch and prune on certificates: a multiset C whose relaxation is infeasible has
-    a phase-one dual y with value f > 0, and any feasible T containing C must add a
-    spring with a quantity of sign s and column c such that s y.c > 0 (since
-    0 = f_T >= f - sum over the added quantities of max(s y.c, 0) * BOUND). Branching
-    only on those springs, from the empty multiset, level by level, reaches every
-    minimal feasible multiset; a node containing a feasible multiset already found is
-    not minimal and is dropped.
+    slots = list(as_slots(slots))
+    return bool(slots) and relaxation_certificate(chain, slots) is None
 
-    :raises SearchExhaustedError: after ``max_nodes`` programmes (the search says so rather
-        than returning a partial list)
+
+ROUTE_TWO_POSES = 64
+"""Random poses on which a found design's total energy must be constant (route 2)."""
+ROUTE_TWO_TOLERANCE = 1e-9
+"""Largest variation of a found design's total energy over those poses, relative to gravity's (the
+designs satisfy Eqs. 39 to 1e-9 of the largest G_1,j; the energies' round-off is near 1e-15)."""
+
+
+def balances_by_geometry(chain: Chain, springs, *, poses: int = ROUTE_TWO_POSES, seed=0) -> float:
+    """Route 2 on a found design: the variation of the total energy over ``poses`` random poses
+    (every link in any direction), relative to the gravity energy's (dimensionless)."""
+    from springlab.energy.geometry import gravity_energy, total_energy
+    from springlab.model.chain import random_directions
+
+    X = random_directions(chain.n, poses, np.random.default_rng(seed))
+    return float(np.ptp(total_energy(chain, springs, X)) / np.ptp(gravity_energy(chain, X)))
+
+
+@dataclass(frozen=True)
+class Decision:
+    """Whether a multiset balances an arm, with the evidence.
+
+    :ivar verdict: 'yes', 'no' or 'undecided'
+    :ivar springs: for 'yes', the design (checked by routes 1 and 2)
+    :ivar certificate: for 'no', the exact :class:`~springlab.design.certificates.Certificate`
+    """
+
+    verdict: str
+    springs: tuple | None = None
+    certificate: object | None = None
+
+    @property
+    def evidence(self) -> str:
+        """'design', the certificate's kind, or 'none'."""
+        if self.springs is not None:
+            return "design"
+        return self.certificate.kind if self.certificate is not None else "none"
+
+
+def _one_signed(chain: Chain, slots):
+    """An exact relaxation certificate from signs alone, or None: an entry whose terms (gravity's
+    included) all have one sign cannot sum to zero (the entry's equation, times -1 or 1)."""
+    from fractions import Fraction
+
+    from springlab.design.certificates import Certificate, SignedSystem
+
+    system = SignedSystem(chain, slots)
+    for entry in system.entries:
+        signs = {c > 0 for c in system.rows[entry].values()}
+        if len(signs) == 1:
+            return Certificate(system.slots, {(entry, None): Fraction(1 if True in signs else -1)}, {})
+    return None
+
+
+def decide(chain: Chain, slots, *, seed=0) -> Decision:
+    """Decide whether the multiset balances the arm (module docstring), cheapest evidence first:
+    signs alone, the linear relaxation's certificate, the design search from the relaxation's
+    vertices, the degree-2 certificate, the design search with each long spring's a fixed."""
+    _checks.instance("chain", chain, Chain)
+    slots = list(as_slots(slots))
+    from springlab.design.certificates import coupling_certificate, relaxation_certificate
+
+    cert = _one_signed(chain, slots) or relaxation_certificate(chain, slots)
+    if cert is not None:
+        return Decision("no", certificate=cert)
+    return _after_relaxation(chain, slots, coupling_certificate, seed=seed)
+
+
+def _after_relaxation(chain: Chain, slots, coupling_certificate, *, seed=0, system=None) -> Decision:
+    """:func:`decide` once the relaxation is feasible: the degree-2 certificate (one small linear
+    programme, infeasible at once for a multiset that balances) before the design searches."""
+    cert = coupling_certificate(chain, slots, system=system)
+    if cert is not None:
+        return Decision("no", certificate=cert)
+    for found in _searches(chain, slots, seed=seed):
+        if found is not None and balances_by_geometry(chain, found) <= ROUTE_TWO_TOLERANCE:
+            return Decision("yes", springs=found)
+    return Decision("undecided")
+
+
+def is_balanceable(chain: Chain, slots) -> str:
+    """:func:`decide`'s verdict: 'yes', 'no' or 'undecided'."""
+    return decide(chain, slots).verdict
+
+
+@dataclass
+class MinimalSearch:
+    """Every inclusion-minimal balanceable multiset over an alphabet, with the proofs.
+
+    :ivar minimal: (multiset, design) per minimal balanceable multiset, fewest springs first
+    :ivar refuted: per multiset the search proved unbalanceable (label), its certificate
+    :ivar undecided: multisets neither confirmed nor refuted (the search is then not complete)
+    :ivar nodes: multisets decided
+    :ivar seconds: wall time
+    """
+
+    n: int
+    signs: str
+    arm: Chain
+    minimal: list = field(default_factory=list)
+    refuted: dict = field(default_factory=dict)
+    undecided: list = field(default_factory=list)
+    nodes: int = 0
+    seconds: float = 0.0
+
+    @property
+    def complete(self) -> bool:
+        """True when every multiset the search met was decided: the list is then every
+        inclusion-minimal balanceable multiset."""
+        return not self.undecided
+
+    @property
+    def multisets(self) -> list[tuple[SpringSlot, ...]]:
+        return [cfg for cfg, _ in self.minimal]
+
+    def sizes(self) -> dict[int, int]:
+        """{number of springs: how many minimal multisets have it}."""
+        return dict(sorted(Counter(len(cfg) for cfg, _ in self.minimal).items()))
+
+    def kinds(self) -> dict[str, int]:
+        """{certificate kind: how many of the refutations use it}."""
+        return dict(sorted(Counter(c.kind for c in self.refuted.values()).items()))
+
+
+def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 200_000,
+                        progress: bool = False) -> MinimalSearch:
+    """Every inclusion-minimal balanceable multiset over :func:`alphabet` (``signs``), each with a
+    design, and an exact certificate for every multiset the search refutes.
+
+    Level by level from the empty multiset: a multiset containing a minimal one already found is
+    skipped (it is not minimal); any other is decided (:func:`decide`, with the relaxation solved
+    in one warm-started model). A balanceable one is minimal (its proper sub-multisets were all
+    met earlier or contain none that balances). A refuted one is extended by each spring that could
+    break its certificate (:meth:`~springlab.design.certificates.Certificate.breakers`): a
+    balanceable superset must contain one, so every minimal multiset is reached, and the search
+    is complete when no multiset it meets is undecided.
+
+    :raises SearchExhaustedError: after ``max_nodes`` multisets (rather than a partial list)
     """
     _checks.instance("chain", chain, Chain)
     max_nodes = _checks.count("max_nodes", max_nodes, least=1)
-    items = alphabet(chain.n)
+    from fractions import Fraction
+
+    from tqdm import tqdm
+
+    from springlab.design.certificates import (
+        Certificate,
+        coupling_certificate,
+        relaxation_certificate_from,
+    )
+
+    start = time.perf_counter()
+    items = alphabet(chain.n, signs)
     kinds = sorted(set(items))
     most = np.array([items.count(k) for k in kinds])
-    full = _programme(chain, kinds)
-    keys, pos, neg = term_signs(chain, kinds)  # per kind and entry: a positive (pos) / negative (neg) term there
-    from springlab.energy.quadratic import gravity_entries
-
-    G = gravity_entries(chain.r, chain.d, chain.m, chain.g)  # 000 Eq. (18): G_1,n = 0 when d_n = 0
-    gravity = np.array([key[0] == 1 and G.get(key, 0.0) > 0 for key in keys])
+    relaxation = _Relaxation(chain, kinds)
+    universe = relaxation.system
+    terms = {e: {} for e in universe.entries}  # entry -> kind -> set of the signs of its terms there
+    for e, row in universe.rows.items():
+        for v, c in row.items():
+            terms[e].setdefault(-1 if v == "t" else v[0], set()).add(c > 0)
+    out = MinimalSearch(chain.n, signs, chain)
     level: set[tuple[int, ...]] = {tuple([0] * len(kinds))}
     found: list[np.ndarray] = []
-    nodes = 0
-    warm = _WarmCounts(full)
+    bar = tqdm(disable=not progress, desc=f"n = {chain.n}, {signs} signs: minimal multisets", mininterval=2.0)
     while level:
-        nxt: set[tuple[int, ...]] = set()
+        children: set[tuple[int, ...]] = set()
         F = np.array(found) if found else np.zeros((0, len(kinds)), dtype=int)
         for counts in sorted(level):
             c = np.array(counts)
             if len(F) and np.any(np.all(F <= c, axis=1)):
-                continue  # contains a feasible multiset: not minimal
-            nodes += 1
-            if nodes > max_nodes:
-                raise SearchExhaustedError(f"the search visited max_nodes = {max_nodes} multisets without finishing; "
-                                     "raise max_nodes")
-            present = c > 0
-            has_pos = gravity | pos[present].any(axis=0)
-            has_neg = neg[present].any(axis=0)
-            one_signed = np.flatnonzero(has_pos != has_neg)
-            if len(one_signed):  # an entry of one sign only: some spring must bring the other
-                e = one_signed[0]
-                wanted = np.flatnonzero(neg[:, e] if has_pos[e] else pos[:, e])
-            else:
-                value, y = warm(c)
-                if value <= 1e-9:
+                continue
+            out.nodes += 1
+            bar.update()
+            if out.nodes > max_nodes:
+                raise SearchExhaustedError(f"the search decided max_nodes = {max_nodes} multisets without finishing; "
+                                           "raise max_nodes")
+            slots = [kinds[k] for k in np.flatnonzero(c) for _ in range(c[k])]
+            label = _label(slots)
+            cert = None
+            for e in universe.entries:  # signs alone: an entry whose terms all have one sign
+                signs_here = set().union(*(terms[e].get(k, set()) for k in [-1, *np.flatnonzero(c)]))
+                if len(signs_here) == 1:
+                    cert = Certificate(tuple(slots), {(e, None): Fraction(1 if True in signs_here else -1)}, {})
+                    break
+            system = universe.multiset([k for k in np.flatnonzero(c) for _ in range(c[k])])
+            if cert is None:
+                feasible, y = relaxation(c)
+                if not feasible:
+                    y2 = relaxation.pruning(c)
+                    cert = (relaxation_certificate_from(system, y2) if y2 is not None else None) or relaxation_certificate_from(system, y)
+            if cert is None:
+                decision = _after_relaxation(chain, slots, coupling_certificate, system=system)
+                if decision.verdict == "yes":
+                    out.minimal.append((tuple(slots), decision.springs))
                     found.append(c)
                     F = np.array(found)
                     continue
-                gain = y @ full.A_eq * full.signs  # s y.c per quantity of every kind of spring
-                wanted = np.flatnonzero(np.bincount(full.owner, weights=gain > 1e-12, minlength=len(kinds)))
-            for idx in wanted:
-                if c[idx] < most[idx]:
+                if decision.verdict == "undecided":
+                    out.undecided.append(tuple(slots))
+                    continue
+                cert = decision.certificate
+            out.refuted[label] = cert
+            for k in cert.breakers(universe):
+                if c[k] < most[k]:
                     child = list(counts)
-                    child[idx] += 1
-                    nxt.add(tuple(child))
-        level = nxt
-    out = [tuple(kinds[idx] for idx in np.flatnonzero(c) for _ in range(c[idx])) for c in found]
-    return sorted(out, key=lambda cfg: (len(cfg), _label(cfg)))
+                    child[k] += 1
+                    children.add(tuple(child))
+        level = children
+    bar.close()
+    out.minimal.sort(key=lambda x: (len(x[0]), _label(x[0])))
+    out.seconds = time.perf_counter() - start
+    return out
 
 
 def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
@@ -539,6 +550,13 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
     return None
 
 
+QUICK_STARTS = 6
+"""Vertices of the linear programme from which :func:`confirm` polishes quickly (SLSQP, then Newton
+steps) before the thorough polish (bounded least squares) from the first ``starts`` of them: on the
+n = 5 enumeration the quick polish finds 294 of the 309 minimal designs, the thorough one costs
+about 60 ms a call."""
+
+
 def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
     """:func:`confirm`'s two searches as a generator: yields the springs found, or None, after
     the vertex starts and again after the fixed-a starts (a caller may try a proof between them)."""
@@ -546,6 +564,7 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
         return  # no spring balances an arm with G_1,j > 0
     from scipy.optimize import least_squares, linprog, minimize
 
+    from springlab.design.highs import solve as solve_lp
     from springlab.energy.quadratic import balance_residual, gravity_entries
     from springlab.model.springs import Spring
 
@@ -614,7 +633,16 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
             v = v + step
         return v if np.all((v >= lo) & (v <= hi)) else v0
 
-    def polish(v0):
+    def newton_free(v0):  # minimum-norm Newton steps with every unknown free: a design needs only the signs
+        v = v0.copy()
+        for _ in range(12):
+            F = residual(v)
+            if np.abs(F).max() <= 1e-15:
+                break
+            v = v + np.linalg.lstsq(residual_jacobian(v), -F, rcond=None)[0]
+        return v if np.all(v * prog.signs > 0) else v0
+
+    def polish(v0, thorough=True):
         v0 = np.clip(v0, lo, hi)
         if len(P):  # SLSQP on the coupling within the equations: fast when it converges
             v0 = minimize(coupling_squared, v0, jac=coupling_gradient, method="SLSQP", bounds=list(zip(lo, hi, strict=True)),
@@ -624,8 +652,12 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
         found = springs_of(v0)
         if found is None:
             found = springs_of(newton(v0))
+        if found is None:
+            found = springs_of(newton_free(v0))
         if found is not None:
             return found
+        if not thorough:
+            return None
         sol = least_squares(residual, np.clip(v0, lo, hi), jac=residual_jacobian, bounds=(lo, hi), xtol=1e-15,
                             ftol=1e-15, gtol=1e-15, max_nfev=500)
         return springs_of(sol.x)
@@ -649,11 +681,18 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
         ok = np.abs(balance_residual(chain, out)).max() <= 1e-9 * scale
         return tuple(out) if ok else None
 
-    for _ in range(starts):
-        lp = linprog(rng.normal(size=m), A_eq=prog.A_eq, b_eq=prog.b_eq, bounds=list(zip(lo, hi, strict=True)), method="highs")
-        if lp.status != 0:
+    vertices = []
+    for _ in range(QUICK_STARTS):  # quick polishes from several vertices, then the thorough one from the first
+        lp = solve_lp(rng.normal(size=m), prog.A_eq, prog.b_eq, prog.b_eq, lo, hi)
+        if lp is None:
             return
-        found = polish(lp.x)
+        vertices.append(lp[0])
+        found = polish(lp[0], thorough=False)
+        if found is not None:
+            yield found
+            return
+    for v in vertices[:starts]:
+        found = polish(v)
         if found is not None:
             yield found
             return
@@ -678,24 +717,6 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
     yield None
 
 
-def is_balanceable(chain: Chain, slots) -> str:
-    """'yes' (a design was found and checked), 'no' (proved: the linear relaxation, the
-    relaxation tightened by the coupling's exact consequences, or the bounds on the
-    coupled ratios (:func:`coupling_refuted`) leave no solution) or 'undecided' (neither).
-    The cheap searches for a design run first, the ratio bounds next, the costly search last."""
-    _checks.instance("chain", chain, Chain)
-    slots = as_slots(slots)
-    slots = list(slots)
-    if not relaxation_feasible(chain, slots) or tightened_infeasible(chain, slots):
-        return "no"
-    searches = _searches(chain, slots)
-    if next(searches, None) is not None:  # the vertex starts: most balanceable multisets end here
-        return "yes"
-    if coupling_refuted(chain, slots):
-        return "no"
-    return "yes" if any(found is not None for found in searches) else "undecided"
-
-
 def random_arm(n: int, rng) -> Chain:
     """A generic n-link arm: lengths 0.15-0.45 m, centres of mass 0.2-0.8 of the length,
     masses 0.5-5 kg, g = 9.81 m/s^2."""
@@ -712,61 +733,81 @@ def _label(cfg) -> str:
     return " ".join(str(s) for s in sorted(cfg))
 
 
+def _first_rule(violations) -> str:
+    """The rule a rejected multiset breaks first, in the paper's order (criteria before rules)."""
+    return str(violations[0]).split(":")[0] if violations else ""
+
+
 @dataclass
 class RulesAgainstPhysics:
-    """Per n: the rules' configurations and the balanceable multisets, compared (first arm)."""
+    """Per n: the rules' configurations against the inclusion-minimal balanceable multisets (first arm)."""
 
     n: int
     arms: int
-    minimal: list[tuple[SpringSlot, ...]]  # relaxation-minimal and balanceable: inclusion-minimal
-    refuted: list[tuple[SpringSlot, ...]]  # relaxation-minimal, proved unbalanceable by the coupling
-    undecided: list[tuple[SpringSlot, ...]]  # relaxation-minimal, neither proved nor confirmed
+    search: MinimalSearch  # the complete enumeration on the first arm
     admitted: list[tuple[SpringSlot, ...]]  # R1-R6's configurations with necessary springs
-    admitted_status: dict[str, str]  # per admitted configuration: 'yes', 'no', 'undecided'
+    decisions: dict[str, Decision]  # per admitted configuration
     admitted_single_minimal: int  # admitted, balanceable, no single spring removable
     admitted_inclusion_minimal: int  # admitted and inclusion-minimal balanceable
     rejected: dict[str, list[str]]  # minimal balanceable but rejected: label -> violations
     same_on_every_arm: bool
-    certificates: dict = field(default_factory=dict)  # per admitted configuration proved unbalanceable: its exact Certificate, or None
-    arm: Chain | None = None  # the first arm, on which everything above was decided
+    full: MinimalSearch | None = None  # the enumeration over every sign pattern (where run)
+
+    @property
+    def arm(self) -> Chain:
+        """The first arm, on which everything above was decided."""
+        return self.search.arm
+
+    @property
+    def minimal(self) -> list[tuple[SpringSlot, ...]]:
+        return self.search.multisets
 
     @property
     def exact(self) -> bool:
-        """True when the minimal list is complete: nothing refuted or undecided, so every
-        balanceable multiset contains one of ``minimal``."""
-        return not self.refuted and not self.undecided
+        """True when the minimal list is complete (nothing undecided)."""
+        return self.search.complete and all(d.verdict != "undecided" for d in self.decisions.values())
+
+    @property
+    def admitted_status(self) -> dict[str, str]:
+        return {label: d.verdict for label, d in self.decisions.items()}
+
+    @property
+    def certificates(self) -> dict:
+        """Per admitted configuration proved unbalanceable: its exact certificate."""
+        return {label: d.certificate for label, d in self.decisions.items() if d.verdict == "no"}
+
+    def rejected_by_rule(self) -> dict[str, int]:
+        """{rule: how many minimal balanceable multisets it rejects first}."""
+        return dict(sorted(Counter(_first_rule(v) for v in self.rejected.values()).items()))
 
     def row(self) -> dict[str, int | str]:
-        bad = sum(1 for v in self.admitted_status.values() if v == "no")
-        und = sum(1 for v in self.admitted_status.values() if v == "undecided")
-        count = str(len(self.minimal)) if self.exact else f">= {len(self.minimal)}"
-        return {"n": self.n, "minimal balanceable (inclusion)": count,
-                "relaxation-minimal: refuted / undecided": f"{len(self.refuted)} / {len(self.undecided)}",
+        no = [d for d in self.decisions.values() if d.verdict == "no"]
+        und = sum(d.verdict == "undecided" for d in self.decisions.values())
+        count = str(len(self.minimal)) if self.search.complete else f">= {len(self.minimal)}"
+        return {"n": self.n, "alphabet": "paper's",
+                "minimal balanceable": count,
+                "sizes": ", ".join(f"{k}: {v}" for k, v in self.search.sizes().items()),
                 "R1-R6 admit": len(self.admitted),
-                "admitted, balanceable, no single spring removable": self.admitted_single_minimal,
                 "admitted, inclusion-minimal": self.admitted_inclusion_minimal,
-                "admitted, not balanceable (proved)": bad,
-                "of them, by an exact certificate": sum(c is not None for c in self.certificates.values()),
-                "admitted, undecided": und,
-                "minimal balanceable, rejected by R1-R6": len(self.rejected),
+                "admitted, balanceable, no single spring removable": self.admitted_single_minimal,
+                "admitted, not balanceable": len(no),
+                "of them, by kind": ", ".join(f"{k}: {v}" for k, v in sorted(Counter(d.certificate.kind for d in no).items()))
+                or "-",
+                "minimal, rejected by R1-R6": len(self.rejected),
+                "undecided": len(self.search.undecided) + und,
                 "same on every arm": "yes" if self.same_on_every_arm else "no"}
 
 
-def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: bool = False) -> RulesAgainstPhysics:
+def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: bool = False,
+                          full_signs: bool = False) -> RulesAgainstPhysics:
     """Test R1-R6 both ways on ``arms`` random n-link arms (:func:`random_arm`).
 
-    On the first arm: the relaxation-minimal multisets (:func:`minimal_relaxed_multisets`),
-    each confirmed by a design, refuted (:func:`tightened_infeasible`, :func:`coupling_refuted`),
-    or undecided (:func:`is_balanceable`); the rules' configurations
-    (:func:`springlab.design.rules.enumerate_configurations`), each decided likewise with both
-    minimality notions, and each proved unbalanceable given its exact certificate where the
-    linear relaxation refutes it (:func:`springlab.design.certificates.relaxation_certificate`;
-    None for a refutation by the coupling, which has no exact certificate yet). On every arm the relaxation-minimal lists and their refutations by
-    :func:`tightened_infeasible` must agree, and every multiset refuted on the first arm must be
-    refuted on the others (``same_on_every_arm``).
-
-    A balanceable multiset that contains a refuted one is not relaxation-minimal and is not
-    enumerated: with refutations the minimal count is a lower bound (the result's ``exact``).
+    On every arm the inclusion-minimal balanceable multisets over the paper's alphabet are
+    enumerated (:func:`minimal_balanceable`); ``same_on_every_arm`` says the lists agree. On the
+    first arm each of the rules' configurations (:func:`springlab.design.rules.enumerate_configurations`)
+    is decided (:func:`decide`: a design or an exact certificate), with both minimality notions,
+    and the minimal multisets the rules reject are listed with the rules they break. With
+    ``full_signs`` the first arm is also enumerated over every sign pattern (``full``).
     """
     n = _checks.links(n, "n")
     arms = _checks.count("arms", arms, least=1)
@@ -777,46 +818,46 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
 
     rng = np.random.default_rng(seed)
     chains = [random_arm(n, rng) for _ in range(arms)]
-    signature = []
-    for c in chains:
-        relaxed = minimal_relaxed_multisets(c)
-        signature.append(sorted((_label(cfg), tightened_infeasible(c, cfg)) for cfg in relaxed))
-        if len(signature) == 1:
-            first_relaxed = relaxed
-    first = chains[0]
-    decided: dict[tuple[SpringSlot, ...], str] = {}  # one decision per multiset: sub-multisets recur
+    searches = [minimal_balanceable(c, progress=progress) for c in chains]
+    first, search = chains[0], searches[0]
+    minimal = {_label(cfg) for cfg in search.multisets}
+    decided: dict[str, Decision] = {}  # one decision per multiset: sub-multisets recur
 
-    def decide(cfg) -> str:
-        key = tuple(sorted(cfg))
+    def decide_once(cfg) -> Decision:
+        key = _label(cfg)
         if key not in decided:
-            decided[key] = is_balanceable(first, cfg)
+            decided[key] = Decision("yes") if key in minimal else decide(first, cfg)
         return decided[key]
 
-    minimal, refuted, undecided = [], [], []
-    for cfg in tqdm(first_relaxed, disable=not progress, desc=f"n = {n}, minimal multisets", mininterval=2.0):
-        {"yes": minimal, "no": refuted, "undecided": undecided}[decide(cfg)].append(cfg)
     admitted = enumerate_configurations(n)
-    status, single, inclusion = {}, 0, 0
+    decisions, single, inclusion = {}, 0, 0
     for cfg in tqdm(admitted, disable=not progress, desc=f"n = {n}, R1-R6 configurations", mininterval=2.0):
-        st = decide(cfg)
-        status[_label(cfg)] = st
-        if st != "yes":
+        d = decide_once(cfg)
+        if d.verdict == "yes" and d.springs is None:  # minimal: its design is the search's
+            d = Decision("yes", springs=dict((_label(c), s) for c, s in search.minimal)[_label(cfg)])
+        decisions[_label(cfg)] = d
+        if d.verdict != "yes":
             continue
-        if all(decide(cfg[:k] + cfg[k + 1:]) == "no" for k in range(len(cfg))):
+        if all(decide_once(cfg[:k] + cfg[k + 1:]).verdict == "no" for k in range(len(cfg))):
             single += 1
-        if any(sorted(cfg) == sorted(m) for m in minimal):
-            inclusion += 1
-    from springlab.design.certificates import relaxation_certificate
-
-    certificates = {_label(cfg): relaxation_certificate(first, cfg) for cfg in admitted if status[_label(cfg)] == "no"}
-    rejected = {_label(cfg): [str(x) for x in rule_violations(n, cfg)] for cfg in minimal if rule_violations(n, cfg)}
-    same = all(sig == signature[0] for sig in signature[1:]) and all(
-        tightened_infeasible(c, cfg) or coupling_refuted(c, cfg) for c in chains[1:] for cfg in refuted)
-    return RulesAgainstPhysics(n, arms, minimal, refuted, undecided, admitted, status, single, inclusion,
-                               rejected, same, certificates, first)
+        inclusion += _label(cfg) in minimal
+    rejected = {_label(cfg): [str(x) for x in rule_violations(n, cfg)] for cfg in search.multisets
+                if rule_violations(n, cfg)}
+    same = all(sorted(map(_label, s.multisets)) == sorted(minimal) for s in searches[1:])
+    full = minimal_balanceable(first, signs="all", progress=progress) if full_signs else None
+    return RulesAgainstPhysics(n, arms, search, admitted, decisions, single, inclusion, rejected, same, full)
 
 
 def counts_table(results) -> Table:
-    """The per-n rows of :meth:`RulesAgainstPhysics.row` as one table."""
-    rows = [r.row() for r in results]
+    """The per-n rows of :meth:`RulesAgainstPhysics.row` as one table, with a row per enumeration
+    over every sign pattern where one was run."""
+    rows = []
+    for r in results:
+        rows.append(r.row())
+        if r.full is not None:
+            s = r.full
+            rows.append({key: "" for key in rows[-1]} | {
+                "n": r.n, "alphabet": "every pattern",
+                "minimal balanceable": str(len(s.minimal)) if s.complete else f">= {len(s.minimal)}",
+                "sizes": ", ".join(f"{k}: {v}" for k, v in s.sizes().items()), "undecided": len(s.undecided)})
     return Table(list(rows[0]), rows)
