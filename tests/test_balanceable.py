@@ -12,8 +12,28 @@ from springlab.papers import juang2023 as paper
 
 def test_n4_rules_are_exactly_the_minimal_balanceable_multisets():
     arm = bal.random_arm(4, 3)
-    minimal = bal.minimal_relaxed_multisets(arm)
-    assert sorted(map(bal._label, minimal)) == sorted(map(bal._label, enumerate_configurations(4)))
+    search = bal.minimal_balanceable(arm)
+    assert search.complete and search.nodes > len(search.minimal)
+    assert sorted(map(bal._label, search.multisets)) == sorted(map(bal._label, enumerate_configurations(4)))
+    for cfg, springs in search.minimal:  # each with its design, balanced by direct geometry
+        assert [(s.i, s.j, s.pattern) for s in springs] == [(s.i, s.j, s.pattern) for s in cfg]
+        assert bal.balances_by_geometry(arm, springs) <= bal.ROUTE_TWO_TOLERANCE
+    assert all(cert.check(arm) for cert in search.refuted.values())  # every refutation, exactly
+
+
+def test_the_full_sign_alphabet_needs_fewer_springs():
+    # every pattern on every pair: n = 4 balances with three springs (the paper's alphabet needs four)
+    arm = bal.random_arm(4, 3)
+    full = bal.minimal_balanceable(arm, signs="all")
+    assert full.complete and min(full.sizes()) == 3 and min(bal.minimal_balanceable(arm).sizes()) == 4
+    for _, springs in full.minimal[:5]:
+        assert bal.balances_by_geometry(arm, springs) <= bal.ROUTE_TWO_TOLERANCE
+    assert len(bal.alphabet(4, "all")) == 4 * 6 + 4  # four patterns on six pairs, S(1,4) twice
+
+
+def test_a_search_that_cannot_finish_says_so():
+    with pytest.raises(bal.SearchExhaustedError, match="max_nodes = 5"):
+        bal.minimal_balanceable(bal.random_arm(4, 3), max_nodes=5)
 
 
 def test_a_confirmed_design_balances_by_direct_geometry():
@@ -45,9 +65,11 @@ def test_the_coupling_refutes_what_the_relaxation_allows():
     arm = bal.random_arm(5, 1)
     config = [slot(s) for s in "S(1,2) S(1,4) S(1,5) S(2,5)(+,+) S(2,5)(+,-) S(3,4)(+,+)".split()]
     assert bal.relaxation_feasible(arm, config)
-    assert bal.tightened_infeasible(arm, config)
-    assert bal.is_balanceable(arm, config) == "no"
-    assert not bal.tightened_infeasible(paper.example_arm(), paper.EXAMPLE_CONFIGURATION)  # it balances
+    decision = bal.decide(arm, config)
+    assert decision.verdict == "no" and decision.evidence == "coupling (degree 2)"
+    assert decision.certificate.check(arm) and 1 in decision.certificate.couplings  # S(1,4)'s coupling is used
+    example = bal.decide(paper.example_arm(), paper.EXAMPLE_CONFIGURATION)  # it balances
+    assert example.verdict == "yes" and example.evidence == "design"
 
 
 def test_the_warm_started_phase_one_gives_the_fresh_solves_value():
@@ -76,21 +98,16 @@ FORMERLY_UNDECIDED = ["S(1,2)(+,+) S(1,4) S(1,5) S(2,4)(-,-) S(2,5)(+,+) S(2,5)(
 
 
 @pytest.mark.parametrize("config", FORMERLY_UNDECIDED)
-def test_the_ratio_bounds_refute_what_the_tightening_cannot(config):
-    # entry (2,4) with (2,3) needs b_S(1,4) above r_4; entries (1,3), (1,4) keep P/A = b below it
-    from springlab.design.feasibility import RATIO_PRECISION, _RatioProgramme
-
+def test_the_degree_2_certificate_refutes_what_the_relaxation_cannot(config):
+    # entry (2,4) with (2,3) needs b_S(1,4) above r_4; entries (1,3), (1,4) keep P/A = b below it:
+    # multiplied by A, B and k of S(1,4) and added to its coupling, the equations give a sum > 0
     config = [slot(s) for s in config.split()]
     for seed in range(3):
         arm = bal.random_arm(5, seed)
-        assert bal.relaxation_feasible(arm, config) and not bal.tightened_infeasible(arm, config)
-        assert bal.coupling_refuted(arm, config)
-        ratios = _RatioProgramme(arm, config)
-        box = list(ratios.box)  # ratio 1 is b of S(1,4), in the mean link length
-        r4 = arm.r[2] / np.mean(arm.r)
-        assert ratios.lowest(box, 1, RATIO_PRECISION) >= r4 * (1 - 2 * RATIO_PRECISION)
-        assert ratios.highest(box, 1, RATIO_PRECISION) < r4
-    assert bal.is_balanceable(bal.random_arm(5, 0), config) == "no"
+        assert bal.relaxation_feasible(arm, config)
+        cert = bal.decide(arm, config).certificate
+        assert cert is not None and cert.kind == "coupling (degree 2)" and cert.check(arm)
+        assert set(cert.couplings) == {1}  # S(1,4)'s P k = A B
 
 
 BALANCEABLE_N5 = ["S(1,3) S(1,5) S(2,4)(+,+) S(2,4)(-,-) S(2,5)(-,-)",
@@ -100,37 +117,45 @@ BALANCEABLE_N5 = ["S(1,3) S(1,5) S(2,4)(+,+) S(2,4)(-,-) S(2,5)(-,-)",
 
 
 @pytest.mark.parametrize("config", BALANCEABLE_N5)
-def test_the_ratio_bounds_never_refute_a_balanceable_multiset(config):
+def test_a_balanceable_multiset_gets_a_design_and_no_certificate(config):
+    from springlab.design.certificates import coupling_certificate, relaxation_certificate
+
     arm = bal.random_arm(5, 0)
     config = [slot(s) for s in config.split()]
-    assert bal.confirm(arm, config) is not None  # a design, checked entry by entry
-    assert not bal.coupling_refuted(arm, config)
+    decision = bal.decide(arm, config)
+    assert decision.verdict == "yes" and bal.balances_by_geometry(arm, decision.springs) <= bal.ROUTE_TWO_TOLERANCE
+    assert relaxation_certificate(arm, config) is None and coupling_certificate(arm, config) is None
 
 
-def test_the_ratio_bounds_never_refute_the_papers_example():
-    assert not bal.coupling_refuted(paper.example_arm(), paper.EXAMPLE_CONFIGURATION)
+def test_no_certificate_for_the_papers_example():
+    from springlab.design.certificates import coupling_certificate
+
+    assert coupling_certificate(paper.example_arm(), paper.EXAMPLE_CONFIGURATION) is None
 
 
-def test_counts_in_one_warm_model_give_the_multisets_own_phase_one():
-    from springlab.design.feasibility import _phase_one, _programme, _WarmCounts
+def test_the_warm_relaxation_agrees_with_the_exact_certificates():
+    """The enumeration's warm-started relaxation says infeasible exactly where an exact relaxation
+    certificate exists, on random multisets and on balanceable ones with a spring added."""
+    from springlab.design.certificates import relaxation_certificate
+    from springlab.design.feasibility import _Relaxation
 
     arm = bal.random_arm(5, 2)
     kinds = sorted(set(bal.alphabet(5)))
-    warm = _WarmCounts(_programme(arm, kinds))
+    warm = _Relaxation(arm, kinds)
     rng = np.random.default_rng(0)
-    values = []
+    verdicts = []
     balanced = [np.array([[slot(x) for x in c.split()].count(k) for k in kinds]) for c in BALANCEABLE_N5]
-    for t in range(30):  # random multisets, and balanceable ones with a random spring added
+    for t in range(30):
         counts = rng.integers(0, 3, len(kinds)) * (rng.random(len(kinds)) < 0.25)
         if t % 3 == 0:
             counts = balanced[t % len(balanced)] + (np.arange(len(kinds)) == rng.integers(len(kinds)))
         if not counts.any():
             continue
         cfg = [k for k, c in zip(kinds, counts, strict=True) for _ in range(c)]
-        fresh = _phase_one(_programme(arm, cfg))[0]
-        values.append(fresh)
-        assert abs(warm(counts)[0] - fresh) <= 1e-9 * max(1.0, fresh)
-    assert max(values) > 1e-3 and min(values) <= 1e-9  # both feasible and infeasible multisets met
+        feasible = warm(counts)[0]
+        verdicts.append(feasible)
+        assert feasible == (relaxation_certificate(arm, cfg) is None)
+    assert any(verdicts) and not all(verdicts)  # both met
 
 
 def test_highs_prints_no_banner():
@@ -139,8 +164,8 @@ def test_highs_prints_no_banner():
     import subprocess
     import sys
 
-    quiet = subprocess.run([sys.executable, "-c", "from springlab.design import feasibility as f; f._new_highs(); "
-                            "f._new_highs(); print('done')"], capture_output=True, text=True, check=True)
+    quiet = subprocess.run([sys.executable, "-c", "from springlab.design import highs; highs.new_model(); "
+                            "highs.new_model(); print('done')"], capture_output=True, text=True, check=True)
     assert quiet.stdout == "done\n"
     loud = subprocess.run([sys.executable, "-c", "import highspy; highspy.Highs()"], capture_output=True, text=True, check=True)
     assert "HiGHS" in loud.stdout

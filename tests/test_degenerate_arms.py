@@ -109,10 +109,12 @@ def test_the_core_keeps_the_gravity_entries():
     assert balanced_core(other) is other
 
 
-def test_the_relaxation_search_does_not_ask_for_a_spring_on_an_idle_end_link():
-    from springlab.design.feasibility import minimal_relaxed_multisets
+def test_the_minimal_search_does_not_ask_for_a_spring_on_an_idle_end_link():
+    from springlab.design.feasibility import minimal_balanceable
 
     chain = ARMS["d = 0 on the end link"].chain()
-    found = [" ".join(map(str, cfg)) for cfg in minimal_relaxed_multisets(chain)]
+    search = minimal_balanceable(chain)
+    assert search.complete
+    found = [" ".join(map(str, cfg)) for cfg in search.multisets]
     assert "S(1,3)(+,+) S(2,3)(+,+)" in found  # G_1,4 = 0 needs no S(1,4)
     assert not any("S(1,4)" in cfg for cfg in found[:2])

@@ -266,10 +266,11 @@ CASES = {
                                    SpringlabError, "8 springs on 10 links is 1.99e\\+12 candidate configurations"),
     "screen count zero": (lambda: ground.relaxation_screen(ARM, 0), SpringlabError, "count must be"),
     "fewer springs count float": (lambda: ground.fewer_springs(ARM, 2.5), SpringlabError, "count must be"),
-    "minimal multisets max nodes": (lambda: feasibility.minimal_relaxed_multisets(ARM, max_nodes=0), SpringlabError,
+    "minimal multisets max nodes": (lambda: feasibility.minimal_balanceable(ARM, max_nodes=0), SpringlabError,
                                     "max_nodes"),
-    "minimal multisets exhausted": (lambda: feasibility.minimal_relaxed_multisets(ARM, max_nodes=3),
+    "minimal multisets exhausted": (lambda: feasibility.minimal_balanceable(ARM, max_nodes=3),
                                     SearchExhaustedError, "max_nodes = 3"),
+    "alphabet signs": (lambda: feasibility.alphabet(4, "some"), SpringlabError, "signs must be one of"),
     # --- simulation settings ---
     "settings step zero": (lambda: SimSettings(step=0.0), SpringlabError, "step"),
     "settings damping negative": (lambda: SimSettings(damping=-1.0), SpringlabError, "damping"),

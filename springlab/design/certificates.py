@@ -86,7 +86,7 @@ def exact_system(chain: Chain, slots) -> tuple[list, list, dict]:
     _checks.instance("chain", chain, Chain)
     slots = list(as_slots(slots))
     columns = []
-    for idx, (s, cols) in enumerate(zip(slots, linear_columns(chain, slots, exact=True), strict=True)):
+    for idx, (s, cols) in enumerate(zip(slots, linear_columns(chain, slots, exact=True) if slots else [], strict=True)):
         signs = {"P": s.sa * s.sb, "A": s.sa, "B": s.sb, "K": 1}
         for name, coefficients in cols.items():
             if coefficients:

@@ -562,7 +562,7 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
     the vertex starts and again after the fixed-a starts (a caller may try a proof between them)."""
     if not slots:
         return  # no spring balances an arm with G_1,j > 0
-    from scipy.optimize import least_squares, linprog, minimize
+    from scipy.optimize import least_squares, minimize
 
     from springlab.design.highs import solve as solve_lp
     from springlab.energy.quadratic import balance_residual, gravity_entries
@@ -681,7 +681,20 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
         ok = np.abs(balance_residual(chain, out)).max() <= 1e-9 * scale
         return tuple(out) if ok else None
 
-    vertices = []
+    # the first start is central: every quantity as far from zero as the equations allow (max t with
+    # |x_j| >= t, |x_j| <= BOUND), so its springs are well scaled; then vertices of random objectives
+    def centre(p: _Programme):  # max t with |x_j| >= t: every quantity as far from zero as p allows
+        out = solve_lp(np.r_[np.zeros(m), -1.0], np.block([[p.A_eq, np.zeros((len(p.A_eq), 1))],
+                                                           [np.diag(prog.signs), -np.ones((m, 1))]]),
+                       np.r_[p.b_eq, np.zeros(m)], np.r_[p.b_eq, np.full(m, np.inf)], np.r_[lo, 0.0], np.r_[hi, BOUND])
+        return None if out is None else out[0][:m]
+
+    vertices = [centre(prog)]
+    if vertices[0] is None:
+        return
+    found = polish(vertices[0], thorough=False)
+    if found is not None:
+        yield found
     for _ in range(QUICK_STARTS):  # quick polishes from several vertices, then the thorough one from the first
         lp = solve_lp(rng.normal(size=m), prog.A_eq, prog.b_eq, prog.b_eq, lo, hi)
         if lp is None:
@@ -690,12 +703,10 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
         found = polish(lp[0], thorough=False)
         if found is not None:
             yield found
-            return
     for v in vertices[:starts]:
         found = polish(v)
         if found is not None:
             yield found
-            return
     yield None
     if not longs:
         return
@@ -703,17 +714,14 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
     cells = [(base_rows + 2 * q + t, y) for q, (Pc, Ac, Bc, Kc) in enumerate(longs) for t, y in enumerate((Kc, Bc))]
     warm = _WarmPhaseOne(with_a(np.zeros(len(longs))), cells)  # rows A - a k = 0, P - a B = 0 per long spring
     signs_a = np.repeat(np.array(long_signs, dtype=float), 2)
-    for _ in range(2 * starts):
-        res = minimize(lambda la: warm(-signs_a * np.exp(np.repeat(la, 2))), rng.uniform(-3.0, 1.0, len(longs)),
+    for t in range(2 * starts):
+        res = minimize(lambda la: warm(-signs_a * np.exp(np.repeat(la, 2))),
+                       np.zeros(len(longs)) if t == 0 else rng.uniform(-3.0, 1.0, len(longs)),
                        method="Nelder-Mead", options={"xatol": 1e-10, "fatol": 1e-14, "maxiter": 400})
-        fixed = with_a(res.x)
-        rows = fixed.A_eq.shape[0]
-        lp = linprog(np.r_[np.zeros(m), np.ones(2 * rows)], A_eq=np.hstack([fixed.A_eq, np.eye(rows), -np.eye(rows)]),
-                     b_eq=fixed.b_eq, bounds=list(zip(lo, hi, strict=True)) + [(0, None)] * (2 * rows), method="highs")
-        found = polish(lp.x[:m])
+        x = centre(with_a(res.x))  # with the a's fixed the couplings are linear: the centre is a design
+        found = polish(x) if x is not None else None
         if found is not None:
             yield found
-            return
     yield None
 
 
