@@ -380,8 +380,8 @@ def decide(chain: Chain, slots, *, seed=0) -> Decision:
 
 
 def _after_relaxation(chain: Chain, slots, coupling_certificate, *, seed=0, system=None) -> Decision:
-    """:func:`decide` once the relaxation is feasible: the degree-2 certificate (one small linear
-    programme, infeasible at once for a multiset that balances) before the design searches."""
+    """:func:`decide` once the relaxation is feasible: the degree-2 certificate (one linear programme,
+    infeasible at once for a multiset that balances), then the design search (:func:`confirm`'s)."""
     cert = coupling_certificate(chain, slots, system=system)
     if cert is not None:
         return Decision("no", certificate=cert)
@@ -436,7 +436,7 @@ class MinimalSearch:
 
 
 def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 200_000,
-                        progress: bool = False) -> MinimalSearch:
+                        fewest: bool = False, progress: bool = False) -> MinimalSearch:
     """Every inclusion-minimal balanceable multiset over :func:`alphabet` (``signs``), each with a
     design, and an exact certificate for every multiset the search refutes.
 
@@ -447,6 +447,10 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
     break its certificate (:meth:`~springlab.design.certificates.Certificate.breakers`): a
     balanceable superset must contain one, so every minimal multiset is reached, and the search
     is complete when no multiset it meets is undecided.
+
+    With ``fewest`` the search stops after the first level (number of springs) at which a multiset
+    balances: it returns every minimal multiset of that size, and its refutations prove that no
+    multiset with fewer springs balances.
 
     :raises SearchExhaustedError: after ``max_nodes`` multisets (rather than a partial list)
     """
@@ -491,11 +495,16 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
             slots = [kinds[k] for k in np.flatnonzero(c) for _ in range(c[k])]
             label = _label(slots)
             cert = None
-            for e in universe.entries:  # signs alone: an entry whose terms all have one sign
+            one_signed = None  # signs alone: an entry whose terms all have one sign; of those, the one
+            for e in universe.entries:  # the fewest kinds can fix (the fewest children)
                 signs_here = set().union(*(terms[e].get(k, set()) for k in [-1, *np.flatnonzero(c)]))
                 if len(signs_here) == 1:
-                    cert = Certificate(tuple(slots), {(e, None): Fraction(1 if True in signs_here else -1)}, {})
-                    break
+                    other = not next(iter(signs_here))  # the sign a fixer must bring
+                    fixers = sum(1 for k, sg in terms[e].items() if k >= 0 and other in sg and c[k] < most[k])
+                    if one_signed is None or fixers < one_signed[0]:
+                        one_signed = (fixers, e, next(iter(signs_here)))
+            if one_signed is not None:
+                cert = Certificate(tuple(slots), {(one_signed[1], None): Fraction(1 if one_signed[2] else -1)}, {})
             system = universe.multiset([k for k in np.flatnonzero(c) for _ in range(c[k])])
             if cert is None:
                 feasible, y = relaxation(c)
@@ -519,7 +528,7 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
                     child = list(counts)
                     child[k] += 1
                     children.add(tuple(child))
-        level = children
+        level = children if not (fewest and found) else set()
     bar.close()
     out.minimal.sort(key=lambda x: (len(x[0]), _label(x[0])))
     out.seconds = time.perf_counter() - start
@@ -534,10 +543,14 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
     meet it). Two searches, each polished by bounded least squares (scipy) on the
     equations and the couplings together:
 
-    1. from vertices of the linear programme (random objectives);
+    1. quick polishes (SLSQP on the couplings within the equations, then Newton steps) from the
+       linear programme's centre (every quantity as far from zero as the equations allow, so the
+       springs come out well scaled) and from :data:`QUICK_STARTS` vertices (random objectives);
     2. with each long spring's a fixed (A = a k and P = a B are then linear), Nelder-Mead
-       on the a's minimises the programme's least violation; a zero there can sit on a
-       thin set (an end forced onto a joint, a = -r_i), which the first search misses.
+       on the a's minimises the programme's least violation, and the centre of the programme
+       with those a's is a design; a zero there can sit on a thin set (an end forced onto a
+       joint, a = -r_i), which the first search misses;
+    3. the thorough polish (bounded least squares) from the first ``starts`` starts of 1.
 
     The springs are rebuilt (k = K, a = A / K, b = B / K; a shorter spring's k from its P)
     and their balance residual (000 Eqs. 39, route 1) checked to 1e-9 of the largest G_1,j.
@@ -550,16 +563,17 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
     return None
 
 
+SLSQP_ITERATIONS = 100
+"""Most SLSQP iterations of one quick polish."""
 QUICK_STARTS = 6
 """Vertices of the linear programme from which :func:`confirm` polishes quickly (SLSQP, then Newton
-steps) before the thorough polish (bounded least squares) from the first ``starts`` of them: on the
-n = 5 enumeration the quick polish finds 294 of the 309 minimal designs, the thorough one costs
-about 60 ms a call."""
+steps); the thorough polish (bounded least squares, about 0.1 s a call) comes last."""
 
 
 def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
-    """:func:`confirm`'s two searches as a generator: yields the springs found, or None, after
-    the vertex starts and again after the fixed-a starts (a caller may try a proof between them)."""
+    """:func:`confirm`'s searches as a generator: yields each design found, and None after the
+    central start, after the vertex starts and at the end (checkpoints: a caller may try a proof
+    between them, or reject a design and ask for the next)."""
     if not slots:
         return  # no spring balances an arm with G_1,j > 0
     from scipy.optimize import least_squares, minimize
@@ -647,7 +661,7 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
         if len(P):  # SLSQP on the coupling within the equations: fast when it converges
             v0 = minimize(coupling_squared, v0, jac=coupling_gradient, method="SLSQP", bounds=list(zip(lo, hi, strict=True)),
                           constraints=[{"type": "eq", "fun": lambda x: prog.A_eq @ x - prog.b_eq,
-                                        "jac": lambda x: prog.A_eq}], options={"maxiter": 300, "ftol": 1e-30},
+                                        "jac": lambda x: prog.A_eq}], options={"maxiter": SLSQP_ITERATIONS, "ftol": 1e-30},
                           callback=solved).x
         found = springs_of(v0)
         if found is None:
@@ -692,9 +706,7 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
     vertices = [centre(prog)]
     if vertices[0] is None:
         return
-    found = polish(vertices[0], thorough=False)
-    if found is not None:
-        yield found
+    yield polish(vertices[0], thorough=False)  # None too: the caller may try a proof before the rest
     for _ in range(QUICK_STARTS):  # quick polishes from several vertices, then the thorough one from the first
         lp = solve_lp(rng.normal(size=m), prog.A_eq, prog.b_eq, prog.b_eq, lo, hi)
         if lp is None:
@@ -703,23 +715,22 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
         found = polish(lp[0], thorough=False)
         if found is not None:
             yield found
-    for v in vertices[:starts]:
-        found = polish(v)
-        if found is not None:
-            yield found
     yield None
-    if not longs:
-        return
-    base_rows = prog.A_eq.shape[0]
-    cells = [(base_rows + 2 * q + t, y) for q, (Pc, Ac, Bc, Kc) in enumerate(longs) for t, y in enumerate((Kc, Bc))]
-    warm = _WarmPhaseOne(with_a(np.zeros(len(longs))), cells)  # rows A - a k = 0, P - a B = 0 per long spring
-    signs_a = np.repeat(np.array(long_signs, dtype=float), 2)
-    for t in range(2 * starts):
-        res = minimize(lambda la: warm(-signs_a * np.exp(np.repeat(la, 2))),
-                       np.zeros(len(longs)) if t == 0 else rng.uniform(-3.0, 1.0, len(longs)),
-                       method="Nelder-Mead", options={"xatol": 1e-10, "fatol": 1e-14, "maxiter": 400})
-        x = centre(with_a(res.x))  # with the a's fixed the couplings are linear: the centre is a design
-        found = polish(x) if x is not None else None
+    if longs:  # each long spring's a fixed: the couplings are linear, and the centre is a design
+        base_rows = prog.A_eq.shape[0]
+        cells = [(base_rows + 2 * q + t, y) for q, (Pc, Ac, Bc, Kc) in enumerate(longs) for t, y in enumerate((Kc, Bc))]
+        warm = _WarmPhaseOne(with_a(np.zeros(len(longs))), cells)  # rows A - a k = 0, P - a B = 0 per long spring
+        signs_a = np.repeat(np.array(long_signs, dtype=float), 2)
+        for t in range(2 * starts):
+            res = minimize(lambda la: warm(-signs_a * np.exp(np.repeat(la, 2))),
+                           np.zeros(len(longs)) if t == 0 else rng.uniform(-3.0, 1.0, len(longs)),
+                           method="Nelder-Mead", options={"xatol": 1e-10, "fatol": 1e-14, "maxiter": 400})
+            x = centre(with_a(res.x))
+            found = polish(x) if x is not None else None
+            if found is not None:
+                yield found
+    for v in vertices[:starts]:  # the thorough polish last: bounded least squares, about 0.1 s a call
+        found = polish(v)
         if found is not None:
             yield found
     yield None
@@ -758,6 +769,7 @@ class RulesAgainstPhysics:
     admitted_single_minimal: int  # admitted, balanceable, no single spring removable
     admitted_inclusion_minimal: int  # admitted and inclusion-minimal balanceable
     rejected: dict[str, list[str]]  # minimal balanceable but rejected: label -> violations
+    unlisted: dict[str, list[str]]  # minimal balanceable, admissible, not listed: label -> springs the rules call unnecessary
     same_on_every_arm: bool
     full: MinimalSearch | None = None  # the enumeration over every sign pattern (where run)
 
@@ -802,6 +814,7 @@ class RulesAgainstPhysics:
                 "of them, by kind": ", ".join(f"{k}: {v}" for k, v in sorted(Counter(d.certificate.kind for d in no).items()))
                 or "-",
                 "minimal, rejected by R1-R6": len(self.rejected),
+                "minimal, admissible, not listed": len(self.unlisted),
                 "undecided": len(self.search.undecided) + und,
                 "same on every arm": "yes" if self.same_on_every_arm else "no"}
 
@@ -813,8 +826,10 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
     On every arm the inclusion-minimal balanceable multisets over the paper's alphabet are
     enumerated (:func:`minimal_balanceable`); ``same_on_every_arm`` says the lists agree. On the
     first arm each of the rules' configurations (:func:`springlab.design.rules.enumerate_configurations`)
-    is decided (:func:`decide`: a design or an exact certificate), with both minimality notions,
-    and the minimal multisets the rules reject are listed with the rules they break. With
+    is decided (:func:`decide`: a design or an exact certificate), with both minimality notions;
+    the minimal multisets the rules reject are listed with the rules they break, and those the
+    rules admit but do not list (they call a spring unnecessary that physics needs) with the
+    springs the rules would drop. With
     ``full_signs`` the first arm is also enumerated over every sign pattern (``full``).
     """
     n = _checks.links(n, "n")
@@ -851,9 +866,12 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
         inclusion += _label(cfg) in minimal
     rejected = {_label(cfg): [str(x) for x in rule_violations(n, cfg)] for cfg in search.multisets
                 if rule_violations(n, cfg)}
+    listed = {_label(cfg) for cfg in admitted}
+    unlisted = {_label(cfg): [str(cfg[k]) for k in range(len(cfg)) if not rule_violations(n, cfg[:k] + cfg[k + 1:])]
+                for cfg in search.multisets if _label(cfg) not in rejected and _label(cfg) not in listed}
     same = all(sorted(map(_label, s.multisets)) == sorted(minimal) for s in searches[1:])
     full = minimal_balanceable(first, signs="all", progress=progress) if full_signs else None
-    return RulesAgainstPhysics(n, arms, search, admitted, decisions, single, inclusion, rejected, same, full)
+    return RulesAgainstPhysics(n, arms, search, admitted, decisions, single, inclusion, rejected, unlisted, same, full)
 
 
 def counts_table(results) -> Table:
