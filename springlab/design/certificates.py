@@ -57,6 +57,7 @@ import numpy as np
 from springlab import _checks
 from springlab.design.rules import as_slots
 from springlab.energy.quadratic import gravity_entries
+from springlab.errors import SpringlabError
 from springlab.model.chain import Chain
 
 ZERO = 1e-9
@@ -293,13 +294,17 @@ def relaxation_certificate_from(system: SignedSystem, y) -> Certificate | None:
     return _exact(system, {(e, None): float(v) for e, v in zip(system.entries, y, strict=True) if v}, {})
 
 
-def coupling_certificate(chain: Chain, slots, *, system: SignedSystem | None = None) -> Certificate | None:
+def coupling_certificate(chain: Chain, slots, *, system: SignedSystem | None = None,
+                         factors: str = "all") -> Certificate | None:
     """A degree-2 certificate (module docstring) that 000 Eqs. (39) with P k = A B have no solution
     with every quantity of its sign, checked exactly, or None when the linear programme finds none.
 
     The programme has one multiplier per (equation, factor) and per coupling, one row per
     monomial (coefficient >= 0) and one normalising the sum of the coefficients to 1; it minimises
     the sum of |multipliers| so that the certificate uses few of them (and few springs can break it).
+    ``factors="coupled"`` offers as factors only the coupled springs' variables and t (a programme a
+    third the size, which finds every certificate of the paper-000 enumerations); ``"all"`` every
+    variable.
     """
     from scipy.sparse import coo_matrix
     from scipy.sparse import hstack as sparse_hstack
@@ -311,20 +316,27 @@ def coupling_certificate(chain: Chain, slots, *, system: SignedSystem | None = N
         return None  # no coupling binds: where the relaxation has a solution no certificate exists
     E, scale = _scaled_columns(system.E)
     ne, m = E.shape
+    if factors == "coupled":
+        F = np.array(sorted({system.index[v] for _, vs in system.couplings for v in vs} | {m - 1}))
+    elif factors == "all":
+        F = np.arange(m)
+    else:
+        raise SpringlabError(f"factors must be 'coupled' or 'all', got {factors!r}")
+    nf = len(F)
     e_nz, k_nz = np.nonzero(E)
-    f = np.repeat(np.arange(m), len(e_nz))  # every factor times every term of every equation
-    e_all, k_all = np.tile(e_nz, m), np.tile(k_nz, m)
+    f = np.repeat(F, len(e_nz))  # every factor times every term of every equation
+    e_all, k_all = np.tile(e_nz, nf), np.tile(k_nz, nf)
     pair = np.minimum(f, k_all) * m + np.maximum(f, k_all)
-    cols = e_all * m + f
-    vals = np.tile(E[e_nz, k_nz], m)
+    cols = e_all * nf + np.repeat(np.arange(nf), len(e_nz))
+    vals = np.tile(E[e_nz, k_nz], nf)
     couple_pairs, couple_cols, couple_vals = [], [], []
     for q, (_, (P, K, A, B)) in enumerate(system.couplings):
         ip, ik, ia, ib = (system.index[v] for v in (P, K, A, B))
         couple_pairs += [min(ip, ik) * m + max(ip, ik), min(ia, ib) * m + max(ia, ib)]
-        couple_cols += [ne * m + q] * 2
+        couple_cols += [ne * nf + q] * 2
         couple_vals += [scale[ip] * scale[ik], -scale[ia] * scale[ib]]
     monomials, rows = np.unique(np.r_[pair, couple_pairs], return_inverse=True)
-    nv = ne * m + len(system.couplings)
+    nv = ne * nf + len(system.couplings)
     C = coo_matrix((np.r_[vals, couple_vals], (rows, np.r_[cols, couple_cols])), shape=(len(monomials), nv)).tocsr()
     C2 = sparse_hstack([C, -C]).tocsr()  # multipliers = plus - minus, both >= 0: minimise their sum
     A = sparse_hstack([C2.T, C2.sum(axis=0).T]).T  # C2 x >= 0, sum(C2 x) = 1
@@ -338,11 +350,11 @@ def coupling_certificate(chain: Chain, slots, *, system: SignedSystem | None = N
     x[np.abs(x) <= 1e-12 * np.abs(x).max()] = 0.0
     equations = {}
     for e in range(ne):
-        for f in range(m):
-            v = x[e * m + f]
+        for j, col in enumerate(F):
+            v = x[e * nf + j]
             if v:  # the programme's factor is w_f / scale_f (E_scaled = E * scale): lambda = v / scale_f
-                equations[(system.entries[e], system.variables[f])] = float(v / scale[f])
-    couplings = {idx: float(x[ne * m + q]) for q, (idx, _) in enumerate(system.couplings) if x[ne * m + q]}
+                equations[(system.entries[e], system.variables[col])] = float(v / scale[col])
+    couplings = {idx: float(x[ne * nf + q]) for q, (idx, _) in enumerate(system.couplings) if x[ne * nf + q]}
     return _exact(system, equations, couplings)
 
 

@@ -380,14 +380,19 @@ def decide(chain: Chain, slots, *, seed=0) -> Decision:
 
 
 def _after_relaxation(chain: Chain, slots, coupling_certificate, *, seed=0, system=None) -> Decision:
-    """:func:`decide` once the relaxation is feasible: the degree-2 certificate (one linear programme,
-    infeasible at once for a multiset that balances), then the design search (:func:`confirm`'s)."""
-    cert = coupling_certificate(chain, slots, system=system)
+    """:func:`decide` once the relaxation is feasible: the degree-2 certificate with the coupled
+    springs' variables as factors (one linear programme, infeasible at once for a multiset that
+    balances), the design search (:func:`confirm`'s), and last the degree-2 certificate with every
+    variable as a factor."""
+    cert = coupling_certificate(chain, slots, system=system, factors="coupled")
     if cert is not None:
         return Decision("no", certificate=cert)
     for found in _searches(chain, slots, seed=seed):
         if found is not None and balances_by_geometry(chain, found) <= ROUTE_TWO_TOLERANCE:
             return Decision("yes", springs=found)
+    cert = coupling_certificate(chain, slots, system=system, factors="all")
+    if cert is not None:
+        return Decision("no", certificate=cert)
     return Decision("undecided")
 
 
@@ -796,6 +801,21 @@ class RulesAgainstPhysics:
         """Per admitted configuration proved unbalanceable: its exact certificate."""
         return {label: d.certificate for label, d in self.decisions.items() if d.verdict == "no"}
 
+    def example(self, kind: str) -> tuple[str, object]:
+        """A refutation of the given certificate kind to work through: (multiset label, certificate),
+        an admitted configuration's where one has that kind, else the first of the search's."""
+        for pool in (self.certificates, self.search.refuted):
+            for label, cert in pool.items():
+                if cert.kind == kind and len(cert.slots) > 1:
+                    return label, cert
+        raise SpringlabError(f"no refutation of kind {kind!r} at n = {self.n}")
+
+    def unlisted_explained(self) -> int:
+        """How many of the admissible-but-unlisted minimal multisets contain an admitted
+        configuration that cannot balance (the rules call the extra spring unnecessary)."""
+        bad = [Counter(label.split()) for label, d in self.decisions.items() if d.verdict == "no"]
+        return sum(any(all(Counter(label.split())[k] >= v for k, v in b.items()) for b in bad) for label in self.unlisted)
+
     def rejected_by_rule(self) -> dict[str, int]:
         """{rule: how many minimal balanceable multisets it rejects first}."""
         return dict(sorted(Counter(_first_rule(v) for v in self.rejected.values()).items()))
@@ -861,9 +881,11 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
         decisions[_label(cfg)] = d
         if d.verdict != "yes":
             continue
-        if all(decide_once(cfg[:k] + cfg[k + 1:]).verdict == "no" for k in range(len(cfg))):
+        if _label(cfg) in minimal:  # inclusion-minimal (the search is complete), so no spring is removable
+            inclusion += 1
             single += 1
-        inclusion += _label(cfg) in minimal
+        elif all(decide_once(cfg[:k] + cfg[k + 1:]).verdict == "no" for k in range(len(cfg))):
+            single += 1
     rejected = {_label(cfg): [str(x) for x in rule_violations(n, cfg)] for cfg in search.multisets
                 if rule_violations(n, cfg)}
     listed = {_label(cfg) for cfg in admitted}
@@ -872,6 +894,45 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
     same = all(sorted(map(_label, s.multisets)) == sorted(minimal) for s in searches[1:])
     full = minimal_balanceable(first, signs="all", progress=progress) if full_signs else None
     return RulesAgainstPhysics(n, arms, search, admitted, decisions, single, inclusion, rejected, unlisted, same, full)
+
+
+@dataclass
+class Fewest:
+    """The fewest springs that balance an n-link arm on a sign alphabet, proved."""
+
+    n: int
+    search: MinimalSearch  # the search stopped at the smallest size (every multiset below it refuted)
+    rules_fewest: int  # the fewest springs of a configuration R1-R6 admit
+    route_two: float  # the first design's total-energy variation over random poses, relative
+
+    @property
+    def springs(self) -> int:
+        return min(self.search.sizes())
+
+    def row(self) -> dict:
+        cfg, _ = self.search.minimal[0]
+        return {"n": self.n, "fewest springs": self.springs, "R1-R6's fewest": self.rules_fewest,
+                "minimal multisets of that size": len(self.search.minimal),
+                "multisets refuted on the way": len(self.search.refuted),
+                "by kind": ", ".join(f"{k}: {v}" for k, v in self.search.kinds().items()),
+                "a design": _label(cfg), "its energy variation (route 2)": f"{self.route_two:.1e}",
+                "time (s)": f"{self.search.seconds:.1f}"}
+
+
+def fewest_springs(n: int, *, seed: int = 0, signs: str = "paper") -> Fewest:
+    """The fewest springs that balance a random n-link arm (:func:`random_arm`), with every minimal
+    multiset of that size and a design for each, and the proof that fewer cannot: the search
+    (:func:`minimal_balanceable` with ``fewest``) refutes, each by an exact certificate, every
+    multiset it meets below that size, and a balanceable multiset would contain one it meets."""
+    from springlab.design.rules import best_first_configurations
+
+    n = _checks.links(n, "n")
+    arm = random_arm(n, np.random.default_rng(_checks.count("seed", seed)))
+    search = minimal_balanceable(arm, signs=signs, fewest=True)
+    if not search.complete or not search.minimal:
+        raise SearchExhaustedError(f"n = {n}: {len(search.undecided)} multisets undecided; the fewest springs are not proved")
+    rules = next(best_first_configurations(n))[0]
+    return Fewest(n, search, rules, balances_by_geometry(arm, search.minimal[0][1]))
 
 
 def counts_table(results) -> Table:
