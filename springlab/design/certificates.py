@@ -171,6 +171,7 @@ class Certificate:
     :ivar equations: {(entry (u, v), factor): lambda}: the equation of that entry times the factor
         (None for 1, else a variable: (spring index, 'P' 'A' 'B' or 'k') or :data:`GRAVITY`)
     :ivar couplings: {spring index: mu}: that spring's w_P w_K - w_A w_B
+
     Every multiplier is an exact rational; one left out is 0.
     """
 
