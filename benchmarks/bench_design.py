@@ -42,6 +42,17 @@ def main() -> None:
         print(f"  n = {n}, {signs} signs: {len(search.minimal):4d} minimal multisets, {search.nodes:5d} decided, "
               f"{len(search.undecided)} undecided, in {search.seconds:6.2f} s (target n = 5 paper: 15 s); "
               f"R1-R6 admit {len(rules):4d} in {time.perf_counter() - t0:5.2f} s")
+    print("  n = 5 on three more arms (the list must be the same):")
+    for seed in (1, 2, 3):
+        search = feasibility.minimal_balanceable(feasibility.random_arm(5, seed))
+        print(f"    arm {seed}: {len(search.minimal)} minimal, sizes {search.sizes()}, {search.nodes} decided, "
+              f"{len(search.undecided)} undecided, {search.seconds:.2f} s")
+    print("the fewest springs, proved (the search stops at the smallest size that balances):")
+    for n in (2, 3, 4, 5, 6):
+        fewest = feasibility.fewest_springs(n)
+        print(f"  n = {n}: {fewest.springs} springs (R1-R6's fewest {fewest.rules_fewest}), "
+              f"{len(fewest.search.minimal)} minimal of that size, {len(fewest.search.refuted)} refuted on the way, "
+              f"{fewest.search.seconds:.1f} s")
     print("all configurations with necessary springs (rules R1-R6):")
     for n in (3, 4, 5, 6):
         t0 = time.perf_counter()

@@ -247,12 +247,12 @@ class Certificate:
         positive = sorted((_name(self.slots, m) for m, c in poly.items() if c > 0))
         used = sorted({f"({u},{w})" for ((u, w), _), lam in self.equations.items() if lam})
         if self.kind == KINDS[0]:
-            how = (f"{self.kind}: the equations of entries {', '.join(used)} (Eqs. 39), each times a rational "
+            how = (f"{self.kind}: the equations of entries {', '.join(used)} (000 Eqs. 39), each times a rational "
                    "multiplier, add up to")
         else:
             factors = sorted({_name(self.slots, (f,)) for (_, f), lam in self.equations.items() if lam and f is not None})
             coupled = ", ".join(f"P k - A B of {self.slots[i]}" for i in sorted(self.couplings))
-            how = (f"{self.kind}: the equations of entries {', '.join(used)} (Eqs. 39), each times one of "
+            how = (f"{self.kind}: the equations of entries {', '.join(used)} (000 Eqs. 39), each times one of "
                    f"{', '.join(factors)} and a rational multiplier, with {coupled or 'no coupling'} (times its own), "
                    "add up to")
         return (f"{how} a polynomial whose {len(poly)} coefficients are all >= 0, {len(positive)} of them > 0 "

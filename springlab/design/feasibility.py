@@ -59,7 +59,7 @@ EPS; every multiset the programme returns is re-checked by a plain linear progra
 
 
 SIGNS = ("paper", "all")
-"""The sign alphabets: the paper's (Eq. 41 and Fig. 10) and every pattern on every pair."""
+"""The sign alphabets: the paper's (000 Eq. 41 and Fig. 10) and every pattern on every pair."""
 
 
 def alphabet(n: int, signs: str = "paper") -> list[SpringSlot]:
@@ -316,12 +316,14 @@ ROUTE_TWO_POSES = 64
 """Random poses on which a found design's total energy must be constant (route 2)."""
 ROUTE_TWO_TOLERANCE = 1e-9
 """Largest variation of a found design's total energy over those poses, relative to gravity's (the
-designs satisfy Eqs. 39 to 1e-9 of the largest G_1,j; the energies' round-off is near 1e-15)."""
+designs satisfy 000 Eqs. 39 to 1e-9 of the largest G_1,j; the energies' round-off is near 1e-15)."""
 
 
 def balances_by_geometry(chain: Chain, springs, *, poses: int = ROUTE_TWO_POSES, seed=0) -> float:
     """Route 2 on a found design: the variation of the total energy over ``poses`` random poses
     (every link in any direction), relative to the gravity energy's (dimensionless)."""
+    _checks.instance("chain", chain, Chain)
+    poses = _checks.count("poses", poses, least=2)
     from springlab.energy.geometry import gravity_energy, total_energy
     from springlab.model.chain import random_directions
 
