@@ -866,6 +866,7 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
     searches = [minimal_balanceable(c, progress=progress) for c in chains]
     first, search = chains[0], searches[0]
     minimal = {_label(cfg) for cfg in search.multisets}
+    designs = {_label(cfg): springs for cfg, springs in search.minimal}
     decided: dict[str, Decision] = {}  # one decision per multiset: sub-multisets recur
 
     def decide_once(cfg) -> Decision:
@@ -879,7 +880,7 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
     for cfg in tqdm(admitted, disable=not progress, desc=f"n = {n}, R1-R6 configurations", mininterval=2.0):
         d = decide_once(cfg)
         if d.verdict == "yes" and d.springs is None:  # minimal: its design is the search's
-            d = Decision("yes", springs=dict((_label(c), s) for c, s in search.minimal)[_label(cfg)])
+            d = Decision("yes", springs=designs[_label(cfg)])
         decisions[_label(cfg)] = d
         if d.verdict != "yes":
             continue
