@@ -169,3 +169,19 @@ def test_highs_prints_no_banner():
     assert quiet.stdout == "done\n"
     loud = subprocess.run([sys.executable, "-c", "import highspy; highspy.Highs()"], capture_output=True, text=True, check=True)
     assert "HiGHS" in loud.stdout
+
+
+def test_the_fewest_springs_are_proved():
+    f = bal.fewest_springs(4, seed=1)
+    assert f.springs == 4 == f.rules_fewest == len(f.configuration) and f.search.complete and not f.search.minimal
+    assert f.route_two <= bal.ROUTE_TWO_TOLERANCE and f.search.refuted
+    assert all(c.check(f.search.arm) for c in f.search.refuted.values())  # every multiset of <= 3 springs met
+    assert max(len(c.slots) for c in f.search.refuted.values()) == 3
+
+
+def test_a_size_limit_keeps_the_search_complete_below_it():
+    arm = bal.random_arm(4, 3)
+    full = bal.minimal_balanceable(arm, signs="all")
+    limited = bal.minimal_balanceable(arm, signs="all", most_springs=4)
+    assert sorted(map(bal._label, limited.multisets)) == sorted(bal._label(c) for c in full.multisets if len(c) <= 4)
+    assert limited.complete and limited.nodes < full.nodes

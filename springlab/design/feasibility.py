@@ -443,7 +443,7 @@ class MinimalSearch:
 
 
 def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 200_000,
-                        fewest: bool = False, progress: bool = False) -> MinimalSearch:
+                        fewest: bool = False, most_springs: int | None = None, progress: bool = False) -> MinimalSearch:
     """Every inclusion-minimal balanceable multiset over :func:`alphabet` (``signs``), each with a
     design, and an exact certificate for every multiset the search refutes.
 
@@ -459,10 +459,18 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
     balances: it returns every minimal multiset of that size, and its refutations prove that no
     multiset with fewer springs balances.
 
+    With ``most_springs`` the search is complete for multisets of at most that many springs: a
+    refuted multiset is not extended when it would need more. Each entry whose terms all have one
+    sign needs one of the springs that bring the other sign; entries whose sets of such springs are
+    pairwise disjoint need one spring each, so their number (a greedy packing) bounds the springs
+    still to add from below.
+
     :raises SearchExhaustedError: after ``max_nodes`` multisets (rather than a partial list)
     """
     _checks.instance("chain", chain, Chain)
     max_nodes = _checks.count("max_nodes", max_nodes, least=1)
+    if most_springs is not None:
+        most_springs = _checks.count("most_springs", most_springs, least=0)
     from fractions import Fraction
 
     from tqdm import tqdm
@@ -502,21 +510,30 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
             slots = [kinds[k] for k in np.flatnonzero(c) for _ in range(c[k])]
             label = _label(slots)
             cert = None
-            one_signed = None  # signs alone: an entry whose terms all have one sign; of those, the one
-            for e in universe.entries:  # the fewest kinds can fix (the fewest children)
+            one_signed = []  # signs alone: entries whose terms all have one sign, with the kinds that fix each
+            for e in universe.entries:
                 signs_here = set().union(*(terms[e].get(k, set()) for k in [-1, *np.flatnonzero(c)]))
                 if len(signs_here) == 1:
-                    other = not next(iter(signs_here))  # the sign a fixer must bring
-                    fixers = sum(1 for k, sg in terms[e].items() if k >= 0 and other in sg and c[k] < most[k])
-                    if one_signed is None or fixers < one_signed[0]:
-                        one_signed = (fixers, e, next(iter(signs_here)))
-            if one_signed is not None:
-                cert = Certificate(tuple(slots), {(one_signed[1], None): Fraction(1 if one_signed[2] else -1)}, {})
+                    sign = next(iter(signs_here))  # a fixer brings the other sign
+                    fixers = frozenset(k for k, sg in terms[e].items() if k >= 0 and (not sign) in sg and c[k] < most[k])
+                    one_signed.append((len(fixers), e, sign, fixers))
+            still = 1  # springs still to add, at least (a packing of one-signed entries with disjoint fixers)
+            if one_signed:
+                one_signed.sort(key=lambda x: (x[0], x[1]))
+                used: set = set()
+                still = 0
+                for _, _, _, fixers in one_signed:
+                    if not fixers & used:
+                        used |= fixers
+                        still += 1
+                _, e, sign, _ = one_signed[0]  # branch on the entry the fewest kinds can fix
+                cert = Certificate(tuple(slots), {(e, None): Fraction(1 if sign else -1)}, {})
             system = universe.multiset([k for k in np.flatnonzero(c) for _ in range(c[k])])
             if cert is None:
                 feasible, y = relaxation(c)
+                last = most_springs is not None and len(slots) + 1 > most_springs  # no children: any certificate
                 if not feasible:
-                    y2 = relaxation.pruning(c)
+                    y2 = None if last else relaxation.pruning(c)
                     cert = (relaxation_certificate_from(system, y2) if y2 is not None else None) or relaxation_certificate_from(system, y)
             if cert is None:
                 decision = _after_relaxation(chain, slots, coupling_certificate, system=system)
@@ -530,6 +547,8 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
                     continue
                 cert = decision.certificate
             out.refuted[label] = cert
+            if most_springs is not None and len(slots) + still > most_springs:
+                continue  # every balanceable superset has more than most_springs springs
             for k in cert.breakers(universe):
                 if c[k] < most[k]:
                     child = list(counts)
@@ -901,41 +920,73 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
 
 @dataclass
 class Fewest:
-    """The fewest springs that balance an n-link arm on a sign alphabet, proved."""
+    """The fewest springs that balance an n-link arm on a sign alphabet, proved.
+
+    :ivar springs: the fewest
+    :ivar configuration: a multiset of that many springs that balances, and ``design`` its springs
+    :ivar search: the search complete up to one spring fewer (:func:`minimal_balanceable` with
+        ``most_springs``): it refutes, each by an exact certificate, every multiset it meets
+    :ivar rules_fewest: the fewest springs of a configuration R1-R6 admit
+    :ivar route_two: the design's total-energy variation over random poses, relative to gravity's
+    :ivar seconds: wall time of the whole
+    """
 
     n: int
-    search: MinimalSearch  # the search stopped at the smallest size (every multiset below it refuted)
-    rules_fewest: int  # the fewest springs of a configuration R1-R6 admit
-    route_two: float  # the first design's total-energy variation over random poses, relative
-
-    @property
-    def springs(self) -> int:
-        return min(self.search.sizes())
+    springs: int
+    configuration: tuple
+    design: tuple
+    search: MinimalSearch
+    rules_fewest: int
+    route_two: float
+    seconds: float
 
     def row(self) -> dict:
-        cfg, _ = self.search.minimal[0]
         return {"n": self.n, "fewest springs": self.springs, "R1-R6's fewest": self.rules_fewest,
-                "minimal multisets of that size": len(self.search.minimal),
-                "multisets refuted on the way": len(self.search.refuted),
+                "a design": _label(self.configuration), "its energy variation (route 2)": f"{self.route_two:.1e}",
+                "fewer springs: multisets refuted": len(self.search.refuted),
                 "by kind": ", ".join(f"{k}: {v}" for k, v in self.search.kinds().items()),
-                "a design": _label(cfg), "its energy variation (route 2)": f"{self.route_two:.1e}",
-                "time (s)": f"{self.search.seconds:.1f}"}
+                "time (s)": f"{self.seconds:.1f}"}
 
 
-def fewest_springs(n: int, *, seed: int = 0, signs: str = "paper") -> Fewest:
-    """The fewest springs that balance a random n-link arm (:func:`random_arm`), with every minimal
-    multiset of that size and a design for each, and the proof that fewer cannot: the search
-    (:func:`minimal_balanceable` with ``fewest``) refutes, each by an exact certificate, every
-    multiset it meets below that size, and a balanceable multiset would contain one it meets."""
+RULES_TRIED = 500
+"""Most of the rules' configurations, fewest springs first, :func:`fewest_springs` decides for a
+first design (an upper bound on the fewest springs)."""
+
+
+def fewest_springs(n: int, *, seed: int = 0, signs: str = "paper", max_nodes: int = 2_000_000) -> Fewest:
+    """The fewest springs that balance a random n-link arm (:func:`random_arm`), with a design and the
+    proof that fewer cannot.
+
+    A first design comes from the rules' configurations, fewest springs first (the first that
+    balances, of at most :data:`RULES_TRIED`); then :func:`minimal_balanceable` searches every
+    multiset of fewer springs (``most_springs``), refuting each it meets by an exact certificate: a
+    balanceable multiset of fewer springs would contain a minimal one, which the search would find.
+    If it finds one, the smallest it finds is the fewest.
+    """
     from springlab.design.rules import best_first_configurations
 
     n = _checks.links(n, "n")
+    start = time.perf_counter()
     arm = random_arm(n, np.random.default_rng(_checks.count("seed", seed)))
-    search = minimal_balanceable(arm, signs=signs, fewest=True)
-    if not search.complete or not search.minimal:
+    rules_fewest, upper = None, None
+    for tried, (count, _, cfg) in enumerate(best_first_configurations(n)):
+        rules_fewest = count if rules_fewest is None else rules_fewest
+        if tried >= RULES_TRIED:
+            break
+        d = decide(arm, cfg)
+        if d.verdict == "yes":
+            upper = (tuple(cfg), d.springs)
+            break
+    limit = len(upper[0]) - 1 if upper else None
+    search = minimal_balanceable(arm, signs=signs, max_nodes=max_nodes, fewest=True, most_springs=limit)
+    if not search.complete:
         raise SearchExhaustedError(f"n = {n}: {len(search.undecided)} multisets undecided; the fewest springs are not proved")
-    rules = next(best_first_configurations(n))[0]
-    return Fewest(n, search, rules, balances_by_geometry(arm, search.minimal[0][1]))
+    if search.minimal:
+        upper = search.minimal[0]
+    if upper is None:
+        raise SearchExhaustedError(f"n = {n}: no balanceable multiset found")
+    return Fewest(n, len(upper[0]), upper[0], upper[1], search, rules_fewest, balances_by_geometry(arm, upper[1]),
+                  time.perf_counter() - start)
 
 
 def counts_table(results) -> Table:
