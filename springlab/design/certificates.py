@@ -24,7 +24,7 @@ exists. Two kinds:
   theorem such multipliers exist exactly when that relaxation is infeasible.
 * **coupling (degree 2)**: factors w, t and the couplings: a Positivstellensatz certificate of
   degree 2, found by one linear programme over the multipliers. It proves what the relaxation
-  cannot, e.g. that the equations force a spring's b above one length and its a b / a below it.
+  cannot, e.g. that the equations force a spring's b = B/k to one length and its b = P/A below it.
 
 The multipliers are found by linear programmes in floating point (scipy's HiGHS), then made
 exact: the coefficients the programme leaves at zero are set exactly to zero by projecting the
@@ -246,18 +246,27 @@ class Certificate:
         poly = self.polynomial(chain)
         positive = sorted((_name(self.slots, m) for m, c in poly.items() if c > 0))
         used = sorted({f"({u},{w})" for ((u, w), _), lam in self.equations.items() if lam})
-        if self.kind == KINDS[0]:
-            how = (f"{self.kind}: the equations of entries {', '.join(used)} (000 Eqs. 39), each times a rational "
-                   "multiplier, add up to")
-        else:
-            factors = sorted({_name(self.slots, (f,)) for (_, f), lam in self.equations.items() if lam and f is not None})
+        head = f"{self.kind}: the equations of entries {', '.join(used)} (000 Eqs. 39), each times a rational multiplier"
+        if self.kind == KINDS[1]:
+            per_spring: dict = {}
+            for (_, f), lam in self.equations.items():
+                if lam and f is not None and f != GRAVITY:
+                    per_spring.setdefault(f[0], set()).add(f[1])
+            names = [f"{_and(sorted(q, key='PABk'.index))} of {self.slots[i]}" for i, q in sorted(per_spring.items())]
+            if any(f == GRAVITY for (_, f), lam in self.equations.items() if lam):
+                names.append("t (the number that multiplies gravity)")
             coupled = ", ".join(f"P k - A B of {self.slots[i]}" for i in sorted(self.couplings))
-            how = (f"{self.kind}: the equations of entries {', '.join(used)} (000 Eqs. 39), each times one of "
-                   f"{', '.join(factors)} and a rational multiplier, with {coupled or 'no coupling'} (times its own), "
-                   "add up to")
-        return (f"{how} a polynomial whose {len(poly)} coefficients are all >= 0, {len(positive)} of them > 0 "
-                f"(on {', '.join(positive[:4])}{', ...' if len(positive) > 4 else ''}); with every quantity of its "
-                "sign the sum would be > 0, but the equations make it 0")
+            head += f" and by one of {', '.join(names)}, plus {coupled or 'no coupling'} times a multiplier of its own"
+        shown = ", ".join(positive[:4]) + (", ..." if len(positive) > 4 else "")
+        return (f"{head}, add up to a polynomial in the quantities' magnitudes with {len(positive)} positive "
+                f"coefficient{'s' if len(positive) > 1 else ''} (on {shown}) and every other one 0 ({len(poly)} in all): "
+                "with every quantity of its pattern's sign the sum would be > 0, but the equations make it 0")
+
+
+def _and(words) -> str:
+    """'A', 'A and B', 'A, B and k'."""
+    words = list(words)
+    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " and " + words[-1]
 
 
 def _name(slots, monomial) -> str:

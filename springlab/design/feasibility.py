@@ -46,16 +46,14 @@ from springlab.model.chain import Chain
 from springlab.tables import Table
 
 EPS = 1e-3
-"""Smallest |quantity| of a present spring in the programme, in units of the largest
-G_1,j (and the mean link length): a design needing a quantity smaller than a
-thousandth of gravity's scale is not counted. (The solver's feasibility tolerance is
-about 1e-7; a margin far above it keeps 'present' from meaning 'zero within tolerance'.)"""
+"""Smallest |quantity| the design search (:func:`confirm`) gives a present spring, in units of the
+largest G_1,j (and the mean link length): its starts stay a thousandth of gravity's scale away from
+zero (the solver's feasibility tolerance is about 1e-7). It bounds the search only: a verdict rests on
+a design found or on an exact certificate, which knows no such bound."""
 
 BOUND = 50.0
-"""Largest |quantity| in the same units. With the solver's integrality tolerance (1e-6)
-an absent spring can leak up to BOUND * 1e-6 = 5e-5 into the equations, far below
-EPS; every multiset the programme returns is re-checked by a plain linear programme
-(:func:`relaxation_feasible`) before it is counted."""
+"""Largest |quantity| the design search gives a spring, in the same units (a box that keeps its
+linear programmes bounded)."""
 
 
 SIGNS = ("paper", "all")
@@ -449,8 +447,9 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
 
     Level by level from the empty multiset: a multiset containing a minimal one already found is
     skipped (it is not minimal); any other is decided (:func:`decide`, with the relaxation solved
-    in one warm-started model). A balanceable one is minimal (its proper sub-multisets were all
-    met earlier or contain none that balances). A refuted one is extended by each spring that could
+    in one warm-started model). A balanceable one is minimal: a balanceable proper sub-multiset
+    would contain a minimal one, found at a lower level, and supersets of those are skipped. A
+    refuted one is extended by each spring that could
     break its certificate (:meth:`~springlab.design.certificates.Certificate.breakers`): a
     balanceable superset must contain one, so every minimal multiset is reached, and the search
     is complete when no multiset it meets is undecided.
@@ -842,22 +841,25 @@ class RulesAgainstPhysics:
         return dict(sorted(Counter(_first_rule(v) for v in self.rejected.values()).items()))
 
     def row(self) -> dict[str, int | str]:
+        """The counts for this n, on the paper's alphabet (exact where nothing is undecided)."""
         no = [d for d in self.decisions.values() if d.verdict == "no"]
         und = sum(d.verdict == "undecided" for d in self.decisions.values())
         count = str(len(self.minimal)) if self.search.complete else f">= {len(self.minimal)}"
-        return {"n": self.n, "alphabet": "paper's",
+        by_rule = self.rejected_by_rule()
+        twice = by_rule.pop("duplicate", 0)
+        kinds = ", ".join(f"{k}" for k in sorted(Counter(d.certificate.kind for d in no)))
+        return {"n": self.n,
                 "minimal balanceable": count,
-                "sizes": ", ".join(f"{k}: {v}" for k, v in self.search.sizes().items()),
-                "R1-R6 admit": len(self.admitted),
-                "admitted, inclusion-minimal": self.admitted_inclusion_minimal,
-                "admitted, balanceable, no single spring removable": self.admitted_single_minimal,
-                "admitted, not balanceable": len(no),
-                "of them, by kind": ", ".join(f"{k}: {v}" for k, v in sorted(Counter(d.certificate.kind for d in no).items()))
-                or "-",
-                "minimal, rejected by R1-R6": len(self.rejected),
-                "minimal, admissible, not listed": len(self.unlisted),
+                "their sizes (springs: how many)": ", ".join(f"{k}: {v}" for k, v in self.search.sizes().items()),
+                "R1-R6's configurations": len(self.admitted),
+                "of them minimal balanceable": self.admitted_inclusion_minimal,
+                "of them balanceable, no spring removable": self.admitted_single_minimal,
+                "of them unbalanceable": f"{len(no)} ({kinds})" if no else "0",
+                "minimal, a rule rejects them": ", ".join(f"{k}: {v}" for k, v in by_rule.items()) or "0",
+                "minimal, one spring twice (never listed)": twice,
+                "minimal, admitted, not listed": len(self.unlisted),
                 "undecided": len(self.search.undecided) + und,
-                "same on every arm": "yes" if self.same_on_every_arm else "no"}
+                "arms that agree": self.arms if self.same_on_every_arm else "no"}
 
 
 def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: bool = False,
@@ -926,7 +928,8 @@ class Fewest:
     :ivar configuration: a multiset of that many springs that balances, and ``design`` its springs
     :ivar search: the search complete up to one spring fewer (:func:`minimal_balanceable` with
         ``most_springs``): it refutes, each by an exact certificate, every multiset it meets
-    :ivar rules_fewest: the fewest springs of a configuration R1-R6 admit
+    :ivar rules_fewest: the fewest springs of a configuration R1-R6 admit that balances (None when none
+        of the first :data:`RULES_TRIED` does)
     :ivar route_two: the design's total-energy variation over random poses, relative to gravity's
     :ivar seconds: wall time of the whole
     """
@@ -941,11 +944,12 @@ class Fewest:
     seconds: float
 
     def row(self) -> dict:
-        return {"n": self.n, "fewest springs": self.springs, "R1-R6's fewest": self.rules_fewest,
-                "a design": _label(self.configuration), "its energy variation (route 2)": f"{self.route_two:.1e}",
+        return {"n": self.n, "fewest springs": self.springs,
+                "R1-R6's fewest that balance": "none tried" if self.rules_fewest is None else self.rules_fewest,
+                "a design": _label(self.configuration),
+                "its energy variation (route 2)": f"{self.route_two:.1e}",
                 "fewer springs: multisets refuted": len(self.search.refuted),
-                "by kind": ", ".join(f"{k}: {v}" for k, v in self.search.kinds().items()),
-                "time (s)": f"{self.seconds:.1f}"}
+                "by kind": ", ".join(f"{k}: {v}" for k, v in self.search.kinds().items())}
 
 
 RULES_TRIED = 500
@@ -970,12 +974,11 @@ def fewest_springs(n: int, *, seed: int = 0, signs: str = "paper", max_nodes: in
     arm = random_arm(n, np.random.default_rng(_checks.count("seed", seed)))
     rules_fewest, upper = None, None
     for tried, (count, _, cfg) in enumerate(best_first_configurations(n)):
-        rules_fewest = count if rules_fewest is None else rules_fewest
         if tried >= RULES_TRIED:
             break
         d = decide(arm, cfg)
         if d.verdict == "yes":
-            upper = (tuple(cfg), d.springs)
+            rules_fewest, upper = count, (tuple(cfg), d.springs)
             break
     limit = len(upper[0]) - 1 if upper else None
     search = minimal_balanceable(arm, signs=signs, max_nodes=max_nodes, fewest=True, most_springs=limit)
@@ -990,15 +993,22 @@ def fewest_springs(n: int, *, seed: int = 0, signs: str = "paper", max_nodes: in
 
 
 def counts_table(results) -> Table:
-    """The per-n rows of :meth:`RulesAgainstPhysics.row` as one table, with a row per enumeration
-    over every sign pattern where one was run."""
+    """The per-n rows of :meth:`RulesAgainstPhysics.row` as one table (the paper's alphabet)."""
+    rows = [r.row() for r in results]
+    return Table(list(rows[0]), rows)
+
+
+def signs_table(results) -> Table:
+    """Per n where it was run, the minimal balanceable multisets over every sign pattern beside the
+    paper's alphabet: how many, their sizes, the fewest springs."""
     rows = []
     for r in results:
-        rows.append(r.row())
-        if r.full is not None:
-            s = r.full
-            rows.append({key: "" for key in rows[-1]} | {
-                "n": r.n, "alphabet": "every pattern",
-                "minimal balanceable": str(len(s.minimal)) if s.complete else f">= {len(s.minimal)}",
-                "sizes": ", ".join(f"{k}: {v}" for k, v in s.sizes().items()), "undecided": len(s.undecided)})
+        if r.full is None:
+            continue
+        s = r.full
+        rows.append({"n": r.n, "paper's alphabet": len(r.minimal),
+                     "every pattern": str(len(s.minimal)) if s.complete else f">= {len(s.minimal)}",
+                     "their sizes (springs: how many)": ", ".join(f"{k}: {v}" for k, v in s.sizes().items()),
+                     "fewest springs (paper's, every pattern)": f"{min(r.search.sizes())}, {min(s.sizes())}",
+                     "undecided": len(s.undecided)})
     return Table(list(rows[0]), rows)
