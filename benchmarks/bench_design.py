@@ -50,7 +50,7 @@ def main() -> None:
     print("the fewest springs, proved (a design, and every multiset of fewer springs refuted):")
     for n in (2, 3, 4, 5, 6, 7):
         fewest = feasibility.fewest_springs(n)
-        print(f"  n = {n}: {fewest.springs} springs (R1-R6's fewest {fewest.rules_fewest}), "
+        print(f"  n = {n}: {fewest.springs} spring{'s' if fewest.springs > 1 else ''} (R1-R6's fewest {fewest.rules_fewest}), "
               f"{len(fewest.search.refuted)} multisets of fewer springs refuted ({fewest.search.kinds()}), "
               f"route 2 {fewest.route_two:.1e}, {fewest.seconds:.1f} s")
     print("all configurations with necessary springs (rules R1-R6):")
