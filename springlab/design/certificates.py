@@ -188,17 +188,7 @@ class Certificate:
 
     def polynomial(self, chain: Chain) -> dict:
         """The combination, exactly: {monomial: coefficient} (monomials as sorted tuples of variables)."""
-        system = SignedSystem(chain, self.slots)
-        out: dict = {}
-        for (entry, factor), lam in self.equations.items():
-            for v, c in system.rows.get(entry, {}).items():
-                key = _monomial(v, factor) if factor is not None else _monomial(v)
-                out[key] = out.get(key, 0) + lam * c
-        for idx, mu in self.couplings.items():
-            P, K, A, B = (idx, "P"), (idx, "k"), (idx, "A"), (idx, "B")
-            out[_monomial(P, K)] = out.get(_monomial(P, K), 0) + mu
-            out[_monomial(A, B)] = out.get(_monomial(A, B), 0) - mu
-        return out
+        return _polynomial(SignedSystem(chain, self.slots), self)
 
     def check(self, chain: Chain) -> bool:
         """True when the certificate proves it, in exact arithmetic: every multiplier a rational,
@@ -280,7 +270,7 @@ def relaxation_certificate(chain: Chain, slots, *, system: SignedSystem | None =
     """The Stiemke certificate that the linear relaxation of 000 Eqs. (39) has no solution with
     every quantity of its sign (module docstring), checked exactly; None when the relaxation has
     a solution (or no exact certificate could be made)."""
-    from scipy.optimize import linprog
+    from springlab.design.highs import INF, solve
 
     system = system or SignedSystem(chain, slots)
     if not system.slots:
@@ -288,13 +278,13 @@ def relaxation_certificate(chain: Chain, slots, *, system: SignedSystem | None =
     E, _ = _scaled_columns(system.E)
     rows = np.maximum(np.abs(E).max(axis=1), 1e-300)
     Er = E / rows[:, None]
-    # y with Er^T y >= 0 and sum = 1 (a box keeps it bounded): every coefficient of y^T E >= 0
-    res = linprog(np.zeros(len(Er)), A_ub=-Er.T, b_ub=np.zeros(Er.shape[1]), A_eq=Er.sum(axis=1)[None, :],
-                  b_eq=[1.0], bounds=[(-1e6, 1e6)] * len(Er), method="highs")
-    if res.status != 0:
+    # y with Er^T y >= 0 and their sum = 1 (a box keeps it bounded): every coefficient of y^T E >= 0
+    A = np.vstack([Er.T, Er.sum(axis=1)[None, :]])
+    out = solve(np.zeros(len(Er)), A, np.r_[np.zeros(Er.shape[1]), 1.0], np.r_[np.full(Er.shape[1], INF), 1.0],
+                np.full(len(Er), -1e6), np.full(len(Er), 1e6))
+    if out is None:
         return None
-    y = res.x / rows
-    return _exact(system, {(e, None): float(v) for e, v in zip(system.entries, y, strict=True) if v}, {})
+    return relaxation_certificate_from(system, out[0] / rows)
 
 
 def relaxation_certificate_from(system: SignedSystem, y) -> Certificate | None:
@@ -418,17 +408,30 @@ def _exact(system: SignedSystem, equations: dict, couplings: dict) -> Certificat
     return cert if cert.equations and _checks_on(system, cert) else None
 
 
-def _checks_on(system: SignedSystem, cert: Certificate) -> bool:
-    """:meth:`Certificate.check`'s sign test on a system already built (the arm is the system's)."""
+def _polynomial(system: SignedSystem, cert: Certificate) -> dict:
+    """The certificate's combination on a system already built: {monomial: exact coefficient}."""
     poly: dict = {}
     for (entry, factor), lam in cert.equations.items():
-        for v, c in system.rows[entry].items():
+        for v, c in system.rows.get(entry, {}).items():
             key = _monomial(v, factor) if factor is not None else (v,)
             poly[key] = poly.get(key, 0) + lam * c
     for idx, mu in cert.couplings.items():
         for key, s in ((_monomial((idx, "P"), (idx, "k")), 1), (_monomial((idx, "A"), (idx, "B")), -1)):
             poly[key] = poly.get(key, 0) + s * mu
+    return poly
+
+
+def _checks_on(system: SignedSystem, cert: Certificate) -> bool:
+    """:meth:`Certificate.check`'s sign test on a system already built (the arm is the system's)."""
+    poly = _polynomial(system, cert)
     return all(c >= 0 for c in poly.values()) and any(c > 0 for c in poly.values())
+
+
+def sign_certificate(system: SignedSystem, entry, positive: bool) -> Certificate:
+    """The relaxation certificate from signs alone: ``entry``'s terms (gravity's included) are all
+    positive (``positive``) or all negative, so its equation, times 1 or -1, cannot sum to zero."""
+    _checks.instance("system", system, SignedSystem, "SignedSystem(chain, springs)")
+    return Certificate(system.slots, {(entry, None): Fraction(1 if positive else -1)}, {})
 
 
 # --- exact linear algebra over the rationals (small systems: a certificate uses few multipliers) ---

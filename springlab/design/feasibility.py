@@ -350,19 +350,28 @@ class Decision:
         return self.certificate.kind if self.certificate is not None else "none"
 
 
-def _one_signed(chain: Chain, slots):
-    """An exact relaxation certificate from signs alone, or None: an entry whose terms (gravity's
-    included) all have one sign cannot sum to zero (the entry's equation, times -1 or 1)."""
-    from fractions import Fraction
+def _entry_terms(system) -> dict:
+    """Per entry of a :class:`~springlab.design.certificates.SignedSystem`, per spring (-1 for
+    gravity), the signs of the terms it puts there (True: positive)."""
+    terms: dict = {e: {} for e in system.entries}
+    for e, row in system.rows.items():
+        for v, c in row.items():
+            terms[e].setdefault(-1 if v == "t" else v[0], set()).add(c > 0)
+    return terms
 
-    from springlab.design.certificates import Certificate, SignedSystem
 
-    system = SignedSystem(chain, slots)
-    for entry in system.entries:
-        signs = {c > 0 for c in system.rows[entry].values()}
+def _one_signed(terms: dict, present, can_add) -> list[tuple]:
+    """The entries whose terms, from gravity and the ``present`` springs, all have one sign:
+    (how many springs of ``can_add`` would bring the other sign, entry, the sign, those springs),
+    the fewest first."""
+    out = []
+    for e, per in terms.items():
+        signs = set().union(*(per.get(k, set()) for k in [-1, *present]))
         if len(signs) == 1:
-            return Certificate(system.slots, {(entry, None): Fraction(1 if True in signs else -1)}, {})
-    return None
+            sign = next(iter(signs))
+            fixers = frozenset(k for k, sg in per.items() if k >= 0 and (not sign) in sg and k in can_add)
+            out.append((len(fixers), e, sign, fixers))
+    return sorted(out, key=lambda x: (x[0], x[1]))
 
 
 def decide(chain: Chain, slots, *, seed=0) -> Decision:
@@ -371,9 +380,17 @@ def decide(chain: Chain, slots, *, seed=0) -> Decision:
     vertices, the degree-2 certificate, the design search with each long spring's a fixed."""
     _checks.instance("chain", chain, Chain)
     slots = list(as_slots(slots))
-    from springlab.design.certificates import coupling_certificate, relaxation_certificate
+    from springlab.design.certificates import (
+        SignedSystem,
+        coupling_certificate,
+        relaxation_certificate,
+        sign_certificate,
+    )
 
-    cert = _one_signed(chain, slots) or relaxation_certificate(chain, slots)
+    system = SignedSystem(chain, slots)
+    signed = _one_signed(_entry_terms(system), range(len(slots)), ())
+    cert = sign_certificate(system, signed[0][1], signed[0][2]) if signed else None
+    cert = cert or relaxation_certificate(chain, slots, system=system)
     if cert is not None:
         return Decision("no", certificate=cert)
     return _after_relaxation(chain, slots, coupling_certificate, seed=seed)
@@ -470,14 +487,12 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
     max_nodes = _checks.count("max_nodes", max_nodes, least=1)
     if most_springs is not None:
         most_springs = _checks.count("most_springs", most_springs, least=0)
-    from fractions import Fraction
-
     from tqdm import tqdm
 
     from springlab.design.certificates import (
-        Certificate,
         coupling_certificate,
         relaxation_certificate_from,
+        sign_certificate,
     )
 
     start = time.perf_counter()
@@ -486,10 +501,7 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
     most = np.array([items.count(k) for k in kinds])
     relaxation = _Relaxation(chain, kinds)
     universe = relaxation.system
-    terms = {e: {} for e in universe.entries}  # entry -> kind -> set of the signs of its terms there
-    for e, row in universe.rows.items():
-        for v, c in row.items():
-            terms[e].setdefault(-1 if v == "t" else v[0], set()).add(c > 0)
+    terms = _entry_terms(universe)  # entry -> kind -> the signs of its terms there
     out = MinimalSearch(chain.n, signs, chain)
     level: set[tuple[int, ...]] = {tuple([0] * len(kinds))}
     found: list[np.ndarray] = []
@@ -509,16 +521,11 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
             slots = [kinds[k] for k in np.flatnonzero(c) for _ in range(c[k])]
             label = _label(slots)
             cert = None
-            one_signed = []  # signs alone: entries whose terms all have one sign, with the kinds that fix each
-            for e in universe.entries:
-                signs_here = set().union(*(terms[e].get(k, set()) for k in [-1, *np.flatnonzero(c)]))
-                if len(signs_here) == 1:
-                    sign = next(iter(signs_here))  # a fixer brings the other sign
-                    fixers = frozenset(k for k, sg in terms[e].items() if k >= 0 and (not sign) in sg and c[k] < most[k])
-                    one_signed.append((len(fixers), e, sign, fixers))
+            present = np.flatnonzero(c)
+            system = universe.multiset([k for k in present for _ in range(c[k])])
+            one_signed = _one_signed(terms, present, set(np.flatnonzero(c < most)))
             still = 1  # springs still to add, at least (a packing of one-signed entries with disjoint fixers)
             if one_signed:
-                one_signed.sort(key=lambda x: (x[0], x[1]))
                 used: set = set()
                 still = 0
                 for _, _, _, fixers in one_signed:
@@ -526,8 +533,7 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
                         used |= fixers
                         still += 1
                 _, e, sign, _ = one_signed[0]  # branch on the entry the fewest kinds can fix
-                cert = Certificate(tuple(slots), {(e, None): Fraction(1 if sign else -1)}, {})
-            system = universe.multiset([k for k in np.flatnonzero(c) for _ in range(c[k])])
+                cert = sign_certificate(system, e, sign)
             if cert is None:
                 feasible, y = relaxation(c)
                 last = most_springs is not None and len(slots) + 1 > most_springs  # no children: any certificate
