@@ -68,6 +68,7 @@ GRAVITY = "t"
 """The variable that multiplies the gravity entries (t = 1 at a solution; any t > 0 by homogeneity)."""
 
 KINDS = ("relaxation", "coupling (degree 2)")
+_NIL = Fraction(0)
 """The certificate kinds, weakest first."""
 
 
@@ -393,7 +394,7 @@ def _exact(system: SignedSystem, equations: dict, couplings: dict) -> Certificat
             M[at[m], j] = float(c)
     total, size = M @ values, np.abs(M) @ np.abs(values)
     zero = np.flatnonzero(np.abs(total) <= ZERO * np.maximum(np.abs(total).max(), size))
-    Z = [[columns[j].get(monomials[r], Fraction(0)) for j in range(len(keys))] for r in zero]
+    Z = [[columns[j].get(monomials[r], _NIL) for j in range(len(keys))] for r in zero]
     basis = _null_space(Z, len(keys))
     if not basis:
         return None
@@ -468,7 +469,7 @@ def _null_space(Z: list[list[Fraction]], width: int) -> list[list[Fraction]]:
     free = [c for c in range(width) if c not in pivots]
     basis = []
     for f in free:
-        v = [Fraction(0)] * width
+        v = [_NIL] * width
         v[f] = Fraction(1)
         for row, p in zip(R, pivots, strict=True):
             v[p] = -row[f]

@@ -33,6 +33,7 @@ spatial articulated manipulators without auxiliary links. Mechanism and Machine 
 
 from __future__ import annotations
 
+import itertools
 import time
 from collections import Counter
 from dataclasses import dataclass, field
@@ -979,12 +980,14 @@ def fewest_springs(n: int, *, seed: int = 0, signs: str = "paper", max_nodes: in
     start = time.perf_counter()
     arm = random_arm(n, np.random.default_rng(_checks.count("seed", seed)))
     rules_fewest, upper = None, None
-    for tried, (count, _, cfg) in enumerate(best_first_configurations(n)):
-        if tried >= RULES_TRIED:
-            break
-        d = decide(arm, cfg)
-        if d.verdict == "yes":
-            rules_fewest, upper = count, (tuple(cfg), d.springs)
+    configurations = list(itertools.islice(best_first_configurations(n), RULES_TRIED))
+    for quick in (True, False):  # the central start's quick polish on each first, the whole decision after
+        for count, _, cfg in configurations:
+            found = next(_searches(arm, cfg), None) if quick else decide(arm, cfg).springs
+            if found is not None and balances_by_geometry(arm, found) <= ROUTE_TWO_TOLERANCE:
+                rules_fewest, upper = count, (tuple(cfg), found)
+                break
+        if upper is not None:
             break
     limit = len(upper[0]) - 1 if upper else None
     search = minimal_balanceable(arm, signs=signs, max_nodes=max_nodes, fewest=True, most_springs=limit)
