@@ -9,9 +9,9 @@ different patterns, and a pair spanning three or more joints (j - i >= 3) in the
 A multiset is **balanceable** when 000 Eqs. (39) have a solution with every k > 0 and every a, b of
 its pattern's sign. :func:`decide` settles it either way:
 
-* **yes**: a design (k, a, b per spring), found by least squares from the linear relaxation's
-  vertices (:func:`confirm`), checked entry by entry (route 1) and by the total energy over random
-  poses (route 2, :func:`balances_by_geometry`);
+* **yes**: a design (k, a, b per spring), found from the linear programme's centre and vertices by
+  least squares on the couplings (:func:`confirm`), checked entry by entry (route 1) and by the total
+  energy over random poses (route 2, :func:`balances_by_geometry`);
 * **no**: an exact certificate (:mod:`springlab.design.certificates`): the linear relaxation's
   (Stiemke), or, where only the coupling P k = A B forbids it, a degree-2 one. Each is checked in
   rational arithmetic;
@@ -244,18 +244,9 @@ class _Relaxation:
         self.Es = Es
         rows, m = Es.shape
         self.owner = np.array([-1 if v == GRAVITY else v[0] for v in self.system.variables])
-        lp = highspy.HighsLp()
-        lp.num_col_, lp.num_row_ = m + 2 * rows, rows
-        lp.col_cost_ = np.concatenate([np.zeros(m), np.ones(2 * rows)])
-        lp.col_lower_ = np.concatenate([np.ones(m), np.zeros(2 * rows)])
+        lp = _phase_one_lp(_Programme(list(kinds), self.owner, np.ones(m), Es, np.zeros(rows)))
+        lp.col_lower_ = np.concatenate([np.ones(m), np.zeros(2 * rows)])  # homogeneous: [1, inf) is > 0
         lp.col_upper_ = np.full(m + 2 * rows, highspy.kHighsInf)
-        lp.row_lower_ = lp.row_upper_ = np.zeros(rows)
-        dense = np.hstack([Es, np.eye(rows), -np.eye(rows)])
-        present = dense.T != 0
-        lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-        lp.a_matrix_.start_ = np.concatenate([[0], np.cumsum(present.sum(axis=1))]).astype(np.int32)
-        lp.a_matrix_.index_ = np.nonzero(present)[1].astype(np.int32)
-        lp.a_matrix_.value_ = dense.T[present]
         self.highs = _new_highs()
         self.highs.passModel(lp)
         self.columns = np.arange(m, dtype=np.int32)
