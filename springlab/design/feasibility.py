@@ -33,6 +33,7 @@ spatial articulated manipulators without auxiliary links. Mechanism and Machine 
 
 from __future__ import annotations
 
+import functools
 import itertools
 import time
 from collections import Counter
@@ -309,16 +310,27 @@ ROUTE_TWO_TOLERANCE = 1e-9
 designs satisfy 000 Eqs. 39 to 1e-9 of the largest G_1,j; the energies' round-off is near 1e-15)."""
 
 
-def balances_by_geometry(chain: Chain, springs, *, poses: int = ROUTE_TWO_POSES, seed=0) -> float:
+def balances_by_geometry(chain: Chain, springs, *, poses: int = ROUTE_TWO_POSES, seed: int = 0) -> float:
     """Route 2 on a found design: the variation of the total energy over ``poses`` random poses
-    (every link in any direction), relative to the gravity energy's (dimensionless)."""
+    (every link in any direction, drawn from ``seed``), relative to the gravity energy's
+    (dimensionless)."""
     _checks.instance("chain", chain, Chain)
     poses = _checks.count("poses", poses, least=2)
+    seed = _checks.count("seed", seed)
     from springlab.energy.geometry import gravity_energy, total_energy
+
+    X = _random_poses(chain.n, poses, seed)
+    return float(np.ptp(total_energy(chain, springs, X)) / np.ptp(gravity_energy(chain, X)))
+
+
+@functools.lru_cache(maxsize=16)
+def _random_poses(n: int, poses: int, seed) -> np.ndarray:
+    """Route 2's poses, made once per (n, poses, seed): the searches check hundreds of designs."""
     from springlab.model.chain import random_directions
 
-    X = random_directions(chain.n, poses, np.random.default_rng(seed))
-    return float(np.ptp(total_energy(chain, springs, X)) / np.ptp(gravity_energy(chain, X)))
+    X = random_directions(n, poses, np.random.default_rng(seed))
+    X.flags.writeable = False
+    return X
 
 
 @dataclass(frozen=True)
