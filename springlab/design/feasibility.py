@@ -144,11 +144,9 @@ def _long_columns(prog: _Programme, slots) -> list[list[int]]:
     return [where[idx] for idx, s in enumerate(slots) if s.j - s.i >= 3]
 
 
-_HIGHS = None
-
-
 def _phase_one_lp(prog: _Programme):
-    """The phase-one programme of :func:`_phase_one` as a HiGHS model (highspy.HighsLp)."""
+    """The phase-one programme of ``prog`` as a HiGHS model (highspy.HighsLp): least total violation
+    of 000 Eqs. (39) (slacks both ways, each costing 1) with every quantity in its sign box."""
     import highspy
 
     rows, m = prog.A_eq.shape
@@ -180,22 +178,6 @@ def _solved(h):
     if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
         raise SolverError(f"the phase-one programme failed: {h.modelStatusToString(h.getModelStatus())}")
     return float(h.getInfo().objective_function_value)
-
-
-def _phase_one(prog: _Programme):
-    """Least total violation of 000 Eqs. (39) with every quantity in its sign box: (value, y),
-    y the equations' dual values (a subgradient of the value in the right-hand side).
-
-    Solved by HiGHS through highspy, which scipy's linprog also wraps: called directly it
-    costs about 0.6 ms per programme here against 1.7 ms through linprog, and the
-    rules-against-physics search solves thousands.
-    """
-    global _HIGHS
-    if _HIGHS is None:
-        _HIGHS = _new_highs()
-    _HIGHS.passModel(_phase_one_lp(prog))
-    _HIGHS.run()
-    return _solved(_HIGHS), np.array(_HIGHS.getSolution().row_dual)
 
 
 class _WarmPhaseOne:
@@ -380,13 +362,13 @@ def _one_signed(terms: dict, present, can_add) -> list[tuple]:
 
 def decide(chain: Chain, slots, *, seed=0) -> Decision:
     """Decide whether the multiset balances the arm (module docstring), cheapest evidence first:
-    signs alone, the linear relaxation's certificate, the design search from the relaxation's
-    vertices, the degree-2 certificate, the design search with each long spring's a fixed."""
+    signs alone, the linear relaxation's certificate, the degree-2 certificate with the coupled
+    springs' variables as factors, the design search (:func:`confirm`'s), the degree-2 certificate
+    with every variable as a factor."""
     _checks.instance("chain", chain, Chain)
     slots = list(as_slots(slots))
     from springlab.design.certificates import (
         SignedSystem,
-        coupling_certificate,
         relaxation_certificate,
         sign_certificate,
     )
@@ -397,14 +379,16 @@ def decide(chain: Chain, slots, *, seed=0) -> Decision:
     cert = cert or relaxation_certificate(chain, slots, system=system)
     if cert is not None:
         return Decision("no", certificate=cert)
-    return _after_relaxation(chain, slots, coupling_certificate, seed=seed)
+    return _after_relaxation(chain, slots, seed=seed, system=system)
 
 
-def _after_relaxation(chain: Chain, slots, coupling_certificate, *, seed=0, system=None) -> Decision:
+def _after_relaxation(chain: Chain, slots, *, seed=0, system=None) -> Decision:
     """:func:`decide` once the relaxation is feasible: the degree-2 certificate with the coupled
     springs' variables as factors (one linear programme, infeasible at once for a multiset that
     balances), the design search (:func:`confirm`'s), and last the degree-2 certificate with every
     variable as a factor."""
+    from springlab.design.certificates import coupling_certificate
+
     cert = coupling_certificate(chain, slots, system=system, factors="coupled")
     if cert is not None:
         return Decision("no", certificate=cert)
@@ -494,7 +478,6 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
     from tqdm import tqdm
 
     from springlab.design.certificates import (
-        coupling_certificate,
         relaxation_certificate_from,
         sign_certificate,
     )
@@ -545,7 +528,7 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
                     y2 = None if last else relaxation.pruning(c)
                     cert = (relaxation_certificate_from(system, y2) if y2 is not None else None) or relaxation_certificate_from(system, y)
             if cert is None:
-                decision = _after_relaxation(chain, slots, coupling_certificate, system=system)
+                decision = _after_relaxation(chain, slots, system=system)
                 if decision.verdict == "yes":
                     out.minimal.append((tuple(slots), decision.springs))
                     found.append(c)
