@@ -377,15 +377,7 @@ def _exact(system: SignedSystem, equations: dict, couplings: dict) -> Certificat
     values = np.array([equations[k] for k in equations] + [couplings[idx] for idx in couplings], dtype=float)
     if not keys:
         return None
-    columns: list[dict] = []  # each multiplier's exact contribution to each monomial
-    for key in keys:
-        if key[0] == "coupling":
-            idx = key[1]
-            columns.append({_monomial((idx, "P"), (idx, "k")): Fraction(1), _monomial((idx, "A"), (idx, "B")): Fraction(-1)})
-        else:
-            entry, factor = key
-            columns.append({(_monomial(v, factor) if factor is not None else (v,)): c
-                            for v, c in system.rows[entry].items()})
+    columns = [_terms(system, key) for key in keys]  # each multiplier's exact contribution to each monomial
     monomials = list({m for col in columns for m in col})
     at = {m: r for r, m in enumerate(monomials)}
     M = np.zeros((len(monomials), len(keys)))
@@ -409,16 +401,24 @@ def _exact(system: SignedSystem, equations: dict, couplings: dict) -> Certificat
     return cert if cert.equations and _checks_on(system, cert) else None
 
 
+def _terms(system: SignedSystem, key) -> dict:
+    """What one multiplier multiplies, exactly: {monomial: coefficient}. ``key`` is (entry, factor),
+    the entry's equation times the factor (None for 1), or ('coupling', spring index), that spring's
+    w_P w_K - w_A w_B."""
+    if key[0] == "coupling":
+        idx = key[1]
+        return {_monomial((idx, "P"), (idx, "k")): Fraction(1), _monomial((idx, "A"), (idx, "B")): Fraction(-1)}
+    entry, factor = key
+    return {(_monomial(v, factor) if factor is not None else (v,)): c for v, c in system.rows.get(entry, {}).items()}
+
+
 def _polynomial(system: SignedSystem, cert: Certificate) -> dict:
     """The certificate's combination on a system already built: {monomial: exact coefficient}."""
     poly: dict = {}
-    for (entry, factor), lam in cert.equations.items():
-        for v, c in system.rows.get(entry, {}).items():
-            key = _monomial(v, factor) if factor is not None else (v,)
-            poly[key] = poly.get(key, 0) + lam * c
-    for idx, mu in cert.couplings.items():
-        for key, s in ((_monomial((idx, "P"), (idx, "k")), 1), (_monomial((idx, "A"), (idx, "B")), -1)):
-            poly[key] = poly.get(key, 0) + s * mu
+    multipliers = [*cert.equations.items(), *((("coupling", idx), mu) for idx, mu in cert.couplings.items())]
+    for key, lam in multipliers:
+        for m, c in _terms(system, key).items():
+            poly[m] = poly.get(m, 0) + lam * c
     return poly
 
 
