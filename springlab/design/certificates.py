@@ -307,8 +307,7 @@ def coupling_certificate(chain: Chain, slots, *, system: SignedSystem | None = N
     third the size, which finds every certificate of the paper-000 enumerations); ``"all"`` every
     variable.
     """
-    from scipy.sparse import bmat as sparse_bmat
-    from scipy.sparse import csr_matrix
+    from scipy.sparse import csc_matrix
 
     from springlab.design.highs import INF, solve
 
@@ -338,11 +337,13 @@ def coupling_certificate(chain: Chain, slots, *, system: SignedSystem | None = N
         couple_vals += [scale[ip] * scale[ik], -scale[ia] * scale[ib]]
     monomials, rows = np.unique(np.r_[pair, couple_pairs], return_inverse=True)
     nv = ne * nf + len(system.couplings)
-    C = csr_matrix((np.r_[vals, couple_vals], (rows, np.r_[cols, couple_cols])), shape=(len(monomials), nv))
-    C.sum_duplicates()
     # multipliers = plus - minus, both >= 0 (minimise their sum): rows C (x+ - x-) >= 0 and their sum = 1
-    total = np.asarray(C.sum(axis=0)).ravel()
-    A = sparse_bmat([[C, -C], [csr_matrix(total[None, :]), csr_matrix(-total[None, :])]], format="csc")
+    r, c, v = rows, np.r_[cols, couple_cols], np.r_[vals, couple_vals]
+    total = np.bincount(c, weights=v, minlength=nv)  # the coefficients' sum, per multiplier
+    last = np.full(nv, len(monomials))
+    every = np.arange(nv)
+    A = csc_matrix((np.r_[v, -v, total, -total], (np.r_[r, r, last, last], np.r_[c, c + nv, every, every + nv])),
+                   shape=(len(monomials) + 1, 2 * nv))
     low = np.r_[np.zeros(len(monomials)), 1.0]
     up = np.r_[np.full(len(monomials), INF), 1.0]
     out = solve(np.ones(2 * nv), A, low, up, np.zeros(2 * nv), np.full(2 * nv, INF))

@@ -389,10 +389,14 @@ def _after_relaxation(chain: Chain, slots, *, seed=0, system=None) -> Decision:
     variable as a factor."""
     from springlab.design.certificates import coupling_certificate
 
+    searches = _searches(chain, slots, seed=seed)
+    found = next(searches, None)  # Newton steps from the centre: cheap, and most balanceable multisets end here
+    if found is not None and balances_by_geometry(chain, found) <= ROUTE_TWO_TOLERANCE:
+        return Decision("yes", springs=found)
     cert = coupling_certificate(chain, slots, system=system, factors="coupled")
     if cert is not None:
         return Decision("no", certificate=cert)
-    for found in _searches(chain, slots, seed=seed):
+    for found in searches:
         if found is not None and balances_by_geometry(chain, found) <= ROUTE_TWO_TOLERANCE:
             return Decision("yes", springs=found)
     cert = coupling_certificate(chain, slots, system=system, factors="all")
@@ -695,6 +699,8 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
         return springs_of(sol.x)
 
     def springs_of(v):
+        if not np.all(v * prog.signs > 0) or np.abs(residual(v)).max() > 1e-6:
+            return None  # far from a design (in units of the largest G_1,j): no springs to build and check
         where: dict[int, list[int]] = {}
         for col, own in enumerate(prog.owner):
             where.setdefault(int(own), []).append(col)
@@ -724,6 +730,7 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
     vertices = [centre(prog)]
     if vertices[0] is None:
         return
+    yield springs_of(vertices[0]) or springs_of(newton(vertices[0])) or springs_of(newton_free(vertices[0]))
     yield polish(vertices[0], thorough=False)  # None too: the caller may try a proof before the rest
     for _ in range(QUICK_STARTS):  # quick polishes from several vertices, then the thorough one from the first
         lp = solve_lp(rng.normal(size=m), prog.A_eq, prog.b_eq, prog.b_eq, lo, hi)
