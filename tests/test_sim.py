@@ -198,3 +198,14 @@ def test_follow_torques_approach_the_holding_torques_in_a_slow_motion(arm, exact
     expected = np.einsum("tjba,tjb->tja", frames[:, 1:], analytic(arm, springs, frames[..., 0]))
     assert np.abs(expected).max() > 1.0
     assert np.abs(run.torques - expected).max() < 0.02
+
+
+def test_the_control_runs_at_the_looser_tolerances_and_the_balanced_run_at_the_settings(arm, exact_springs, poses):
+    """The control only has to show motion: it runs at sim.CONTROL_TOLERANCES whatever tighter ones
+    the settings ask for, while the balanced run's drift follows the settings' tolerances."""
+    rel, absolute = sim.CONTROL_TOLERANCES
+    tight = sim.hold_test(arm, exact_springs, poses[:1], duration=0.3)
+    loose = sim.hold_test(arm, exact_springs, poses[:1], duration=0.3,
+                          settings=SimSettings(relative_tolerance=rel, absolute_tolerance=absolute))
+    assert tight.control.max_tip_drift == loose.control.max_tip_drift > 1e-3  # the same run
+    assert tight.balanced.max_tip_drift < 1e-10 < loose.balanced.max_tip_drift  # the settings' own

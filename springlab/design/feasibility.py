@@ -383,10 +383,11 @@ def decide(chain: Chain, slots, *, seed=0) -> Decision:
 
 
 def _after_relaxation(chain: Chain, slots, *, seed=0, system=None) -> Decision:
-    """:func:`decide` once the relaxation is feasible: the degree-2 certificate with the coupled
-    springs' variables as factors (one linear programme, infeasible at once for a multiset that
-    balances), the design search (:func:`confirm`'s), and last the degree-2 certificate with every
-    variable as a factor."""
+    """:func:`decide` once the relaxation is feasible: Newton steps from the programme's centre (the
+    design search's first, cheap step), the degree-2 certificate with the coupled springs' variables
+    as factors (one linear programme, infeasible at once for a multiset that balances), the rest of
+    the design search (:func:`confirm`'s), and last the degree-2 certificate with every variable as a
+    factor."""
     from springlab.design.certificates import coupling_certificate
 
     searches = _searches(chain, slots, seed=seed)
@@ -562,9 +563,10 @@ def confirm(chain: Chain, slots, *, starts: int = 2, seed=0):
 
     000 Eqs. (39) are linear in (P, A, B, k) per spring; the coupling P k = A B binds for
     springs spanning three or more joints (for shorter ones k, or a and b, are free to
-    meet it). Two searches, each polished by bounded least squares (scipy) on the
-    equations and the couplings together:
+    meet it). The searches, in order:
 
+    0. Newton steps on the equations and couplings from the linear programme's centre (cheap:
+       most balanceable multisets end here);
     1. quick polishes (SLSQP on the couplings within the equations, then Newton steps) from the
        linear programme's centre (every quantity as far from zero as the equations allow, so the
        springs come out well scaled) and from :data:`QUICK_STARTS` vertices (random objectives);
