@@ -24,6 +24,18 @@ Statuses:
   was left out; its note says whether the paper's value lies inside the bound.
 
 Every claim records ``tolerance_basis``: why its tolerance is what it is.
+
+Precision: a claim stores its value at the precision its tolerance gives it, so that the file
+says what the computation supports and not the round-off of one CPU (another CPU's SIMD paths,
+BLAS kernels or an optimiser's last iterations move the trailing digits; ``claims.json`` is
+committed, and rerunning the notebooks on any machine must leave it unchanged). The
+``resolution`` of a claim with a tolerance t > 0 is one decade below t's leading digit,
+10^(floor(log10 t) - 1) (t = 0.005 stores 1e-4; t = 1e-9 stores 1e-10); ``ours`` and the
+difference are rounded to it (:func:`stored`). A value that rounds to zero is round-off at that
+resolution and reads "< resolution" (:func:`number_text`): a drift of 1.2e-11 m against a
+tolerance of 1e-8 m is recorded as "< 1e-09", not as its noise. The status is decided on the
+unrounded value. Exact counts (t = 0) and values without a tolerance (inputs, bounds) are stored
+to 12 significant digits.
 """
 
 from __future__ import annotations
@@ -59,12 +71,16 @@ class Claim:
     band: dict | None = None  # {"value": the rounding band, "basis": how it was propagated}
     cause: str = ""  # a discrepancy's cause, when one was found
     cell: int | None = None  # the execution count of the notebook cell that recorded it (the book links it)
+    resolution: float | None = None  # the quantum ours is stored at (module docstring); None: 12 digits
+
+    def __post_init__(self):
+        object.__setattr__(self, "ours", stored(self.ours, self.resolution))
 
     @property
     def difference(self) -> float | None:
         if self.paper is None or self.ours is None:
             return None
-        return self.ours - self.paper
+        return stored(self.ours - self.paper, self.resolution)
 
     def _repr_html_(self) -> str:
         """A claim a cell ends with shows as a one-row claims table, not as its repr."""
@@ -89,9 +105,50 @@ def _current_cell() -> int | None:
     return count if isinstance(count, int) else None
 
 
-def number_text(value) -> str:
-    """A claim's number as the report prints it (6 significant digits; empty for None)."""
-    return "" if value is None else f"{value:.6g}"
+SIGNIFICANT_DIGITS = 12
+"""Digits a claim's value is stored to when it has no tolerance to set its resolution."""
+
+
+def resolution(tolerance: float | None) -> float | None:
+    """The quantum a claim with this tolerance stores its value at: one decade below the
+    tolerance's leading digit, 10^(floor(log10 t) - 1); None for no tolerance or t = 0.
+
+    >>> resolution(0.005), resolution(1e-9), resolution(0.5000000005), resolution(0.0)
+    (0.0001, 1e-10, 0.01, None)
+    """
+    if tolerance is None or tolerance <= 0:
+        return None
+    return 10.0 ** (math.floor(math.log10(tolerance)) - 1)
+
+
+def stored(value: float | None, resolution: float | None = None) -> float | None:
+    """``value`` as a claim stores it: rounded to ``resolution`` (a power of ten), or to
+    :data:`SIGNIFICANT_DIGITS` significant digits without one; never -0.0.
+
+    >>> stored(183.99253097059903, 0.01), stored(3.867e-10, 1e-9), stored(2 / 3)
+    (183.99, 0.0, 0.666666666667)
+    """
+    if value is None:
+        return None
+    if resolution is None:
+        return float(f"{value:.{SIGNIFICANT_DIGITS}g}") + 0.0
+    decimals = -round(math.log10(resolution))
+    out = float(f"{value:.{decimals}f}") if decimals >= 0 else float(round(value, decimals))
+    return out + 0.0  # -0.0 -> 0.0
+
+
+def number_text(value, resolution: float | None = None) -> str:
+    """A claim's number as the report prints it (6 significant digits; empty for None); a value
+    stored as zero at a ``resolution`` reads "< resolution" (it is round-off there).
+
+    >>> number_text(183.99), number_text(0.0, 1e-09), number_text(0.0)
+    ('183.99', '< 1e-09', '0')
+    """
+    if value is None:
+        return ""
+    if value == 0 and resolution:
+        return f"< {resolution:g}"
+    return f"{value:.6g}"
 
 
 def markdown_table(records: list[dict]) -> str:
@@ -100,7 +157,9 @@ def markdown_table(records: list[dict]) -> str:
     for r in records:
         band = f"; band {number_text(r['band']['value'])} ({r['band']['basis']})" if r.get("band") else ""
         cause = f" Cause: {r['cause']}" if r.get("cause") else ""
-        rows.append((r["quantity"], r["where"], number_text(r["paper"]), number_text(r["ours"]), number_text(r["difference"]),
+        res = r.get("resolution")
+        rows.append((r["quantity"], r["where"], number_text(r["paper"]), number_text(r["ours"], res),
+                     number_text(r["difference"], res),
                      r["unit"], f"{number_text(r['tolerance'])} ({r.get('tolerance_basis', '')}{band})",
                      f"**{r['status']}**", f"{r['note']}{cause}"))
     return tables.markdown_table(["quantity", "where", "paper", "ours", "difference", "unit", "tolerance (basis)",
@@ -143,7 +202,8 @@ def html_table(records: list[dict], made_in: list | None = None) -> str:
     for k, r in enumerate(records):
         status = report_column(r)  # a discrepancy says whether its cause was found
         cells = [f'{escape(r["quantity"])}<br><span class="claim-where">{escape(r["where"])}</span>',
-                 number_text(r["paper"]), number_text(r["ours"]), number_text(r.get("difference")),
+                 number_text(r["paper"]), number_text(r["ours"], r.get("resolution")),
+                 number_text(r.get("difference"), r.get("resolution")),
                  escape(r["unit"]), f"<strong>{escape(status)}</strong>"]
         if made_in is not None:
             link = made_in[k]
@@ -231,7 +291,7 @@ class Claims:
         paper, ours, tolerance, band, status, diff = self._classify(
             quantity, paper, ours, tolerance, decimals, rounding, band_basis)
         claim = Claim(quantity, where, paper, ours, unit, tolerance, status, note, tolerance_basis,
-                      band, cause if status == "discrepancy" else "")
+                      band, cause if status == "discrepancy" else "", resolution=resolution(tolerance))
         self.records.append(claim := replace(claim, cell=_current_cell()))
         assert status == expect, (
             f"{quantity} ({where}): paper {paper}, ours {ours:.10g}, |difference| {diff:.3g} {unit}: "
@@ -251,7 +311,8 @@ class Claims:
         paper, ours, tolerance, band, status, diff = self._classify(
             quantity, paper, recomputed, tolerance, decimals, rounding, band_basis)
         status = "inconsistent" if status == "discrepancy" else "consistent"
-        claim = Claim(quantity, where, paper, ours, unit, tolerance, status, note, tolerance_basis, band)
+        claim = Claim(quantity, where, paper, ours, unit, tolerance, status, note, tolerance_basis, band,
+                      resolution=resolution(tolerance))
         self.records.append(claim := replace(claim, cell=_current_cell()))
         assert status == expect, (
             f"{quantity} ({where}): paper {paper}, from its own numbers {ours:.10g}, |difference| "

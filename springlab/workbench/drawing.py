@@ -36,6 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from springlab.errors import SpringlabError
+from springlab.workbench.images import unchanged_gif
 
 VIEWS = ("front", "side", "top")
 _AXES = "xyz"
@@ -530,7 +531,8 @@ def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = ""
     """Write a GIF of scenes side by side, one frame per pose: ``panels`` is {panel title:
     (Scene, view)}, the scenes with one common number of poses. Panels of the same view share
     one scale (:func:`shared_limits`). ``times`` (s), one per pose, is shown in the title, and
-    ``note`` on a second line under it. Returns the GIF's path.
+    ``note`` on a second line under it. Returns the GIF's path; a GIF already there with the same
+    pixels in every frame is left as it is (:func:`~springlab.workbench.images.unchanged_gif`).
 
     ``layout="column"``: the panels one above the other instead, each framed on its mechanism
     over every pose (:func:`framed_limits`, not a square), all at one scale, with the legend
@@ -567,7 +569,8 @@ def animate(panels: dict, path, *, fps: int = 10, dpi: int = 90, title: str = ""
         else:
             images.append(rgb.quantize(colors=64, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE))
     plt.close(fig)
-    images[0].save(path, save_all=True, append_images=images[1:], duration=round(1000 / fps), loop=0)
+    if not unchanged_gif(path, images, round(1000 / fps)):  # rewritten only when a frame's pixels changed
+        images[0].save(path, save_all=True, append_images=images[1:], duration=round(1000 / fps), loop=0)
     return str(path)
 
 

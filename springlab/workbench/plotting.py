@@ -21,6 +21,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.colors import to_hex
 
+from springlab.workbench.images import save_png_and_svg
+
 STYLE = Path(__file__).with_name("springlab.mplstyle")
 
 
@@ -31,6 +33,8 @@ def use_style() -> None:
 
 def save_figure(fig, name: str, directory) -> list[Path]:
     """Save ``fig`` as ``directory/name.png`` and ``directory/name.svg``; returns the paths.
+    The files are left as they are when the PNG already there has the same pixels
+    (:mod:`springlab.workbench.images`): what the figure shows did not change.
 
     In a Jupyter kernel the PNG just written is displayed (at the size the notebook would
     draw the figure, ``figure.dpi``) and the figure closed, so a ``plt.show()`` after it
@@ -38,9 +42,9 @@ def save_figure(fig, name: str, directory) -> list[Path]:
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     png, svg = directory / f"{name}.png", directory / f"{name}.svg"
-    with mpl.rc_context({"svg.hashsalt": "springlab", "svg.fonttype": "path"}):
-        fig.savefig(png, format="png", metadata={"Software": None})
-        fig.savefig(svg, format="svg", metadata={"Date": None})
+    with mpl.rc_context({"svg.hashsalt": "springlab", "svg.fonttype": "path"}):  # rewritten only if the pixels changed
+        save_png_and_svg(fig, png, svg, png_options={"metadata": {"Software": None}},
+                         svg_options={"metadata": {"Date": None}})
     if _in_kernel():
         from IPython.display import Image, display
         from PIL import Image as PILImage
