@@ -35,7 +35,7 @@ difference are rounded to it (:func:`stored`). A value that rounds to zero is ro
 resolution and reads "< resolution" (:func:`number_text`): a drift of 1.2e-11 m against a
 tolerance of 1e-8 m is recorded as "< 1e-09", not as its noise. The status is decided on the
 unrounded value. Exact counts (t = 0) and values without a tolerance (inputs, bounds) are stored
-to 12 significant digits.
+to 12 significant digits; the tolerance and the rounding band to 6.
 """
 
 from __future__ import annotations
@@ -75,6 +75,10 @@ class Claim:
 
     def __post_init__(self):
         object.__setattr__(self, "ours", stored(self.ours, self.resolution))
+        if self.tolerance is not None:  # a computed tolerance (1e-9 of a simulated range) carries round-off too
+            object.__setattr__(self, "tolerance", float(f"{self.tolerance:.{TOLERANCE_DIGITS}g}"))
+        if self.band is not None:
+            object.__setattr__(self, "band", {**self.band, "value": float(f"{self.band['value']:.{TOLERANCE_DIGITS}g}")})
 
     @property
     def difference(self) -> float | None:
@@ -104,6 +108,10 @@ def _current_cell() -> int | None:
     count = getattr(result, "execution_count", None)
     return count if isinstance(count, int) else None
 
+
+TOLERANCE_DIGITS = 6
+"""Significant digits a claim's tolerance and rounding band are stored to (the status is decided
+on the unrounded ones)."""
 
 SIGNIFICANT_DIGITS = 12
 """Digits a claim's value is stored to when it has no tolerance to set its resolution."""
