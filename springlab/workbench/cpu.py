@@ -89,8 +89,9 @@ def main(argv=None) -> int:
     parser.add_argument("stems", nargs="*", help="notebooks to run (default: all)")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="notebooks run at once")
     parser.add_argument("--keep", help="folder to keep both runs in (default: a temporary one)")
+    parser.add_argument("--exclude", nargs="*", default=[], help="notebooks left out (say why where you call it)")
     args = parser.parse_args(argv)
-    stems = args.stems or [p.stem for p in notebook_paths()]
+    stems = [s for s in (args.stems or [p.stem for p in notebook_paths()]) if s not in args.exclude]
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(args.keep or tmp)
         usual, narrowed = root / "usual" / "figures", root / "narrowed" / "figures"
@@ -106,7 +107,8 @@ def main(argv=None) -> int:
     if found:
         print(f"{len(found)} files differ between the usual and the narrowed CPU:\n  " + "\n  ".join(found))
         return 1
-    print(f"the same bytes on both CPUs: {len(stems)} notebooks (quick), their claims and figures")
+    left = f" ({', '.join(args.exclude)} left out)" if args.exclude else ""
+    print(f"the same bytes on both CPUs: {len(stems)} notebooks (quick), their claims and figures{left}")
     return 0
 
 
