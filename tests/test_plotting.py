@@ -153,3 +153,33 @@ def test_a_legend_with_no_free_place_goes_beside_its_panel():
     assert covered_lines(ax, legend) == []
     assert legend.get_window_extent().x0 >= ax.get_window_extent().x1  # to the right of the axes
     plt.close(fig)
+
+
+def _png(fig) -> bytes:
+    import io
+
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png")
+    plt.close(fig)
+    return buffer.getvalue()
+
+
+def test_the_fold_figure_shows_round_off_tilt_against_its_bound_and_a_real_tilt_as_itself(paper_001, tmp_path):
+    """Round-off (below the floor) draws the same pixels whatever its digits; a tilt above the floor
+    is drawn as itself (the negative control); the bound's colour means nothing else."""
+    from springlab.workbench.images import same_pixels
+    from springlab.workbench.plotting import fold_figure
+
+    use_style()
+    t, margin, labels = paper_001["t"], paper_001["margin"], [f"module {i}" for i in paper_001["modules"]]
+    rng = np.random.default_rng(1)
+
+    def drawn(scale):
+        return fold_figure(t, margin, labels, tilt={"a": (t, scale * rng.uniform(1e-15, 1e-12, len(t)))}, bound=1e-6)
+
+    fig = drawn(1.0)
+    assert all(len(names) == 1 for names in colour_meanings(fig).values()), colour_meanings(fig)
+    first = tmp_path / "one.png"
+    first.write_bytes(_png(fig))
+    assert same_pixels(first, _png(drawn(1.0)))  # other round-off, the same picture
+    assert not same_pixels(first, _png(drawn(1e5)))  # up to 1e-7 rad: above the floor, drawn

@@ -21,6 +21,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.colors import to_hex
 
+from springlab import _checks
 from springlab.workbench.images import save_png_and_svg
 
 STYLE = Path(__file__).with_name("springlab.mplstyle")
@@ -410,11 +411,17 @@ TILT_COLOURS = ("k", "tab:brown", "0.55", "tab:cyan")
 style's first five), so that a colour names one thing in the figure."""
 
 
-def fold_figure(t, margin, labels, *, tilt=None, title: str = ""):
+def fold_figure(t, margin, labels, *, tilt=None, title: str = "", floor: float = 1e-9, bound: float | None = None):
     """RSSR modules' fold margins against time (upper), and the largest pseudobase tilt
     from vertical in simulations on a log scale (lower, optional ``tilt`` =
     {label: (t, (T,) rad)}, in :data:`TILT_COLOURS`, colours the modules do not use). Each
-    panel's legend where it covers no curve (:func:`clear_legend`), else to its right."""
+    panel's legend where it covers no curve (:func:`clear_legend`), else to its right.
+
+    The tilt is shown against its bound, not as its round-off: values below ``floor`` (rad) are
+    drawn on it, a shaded band marks everything below it as the solver's round-off, and ``bound``
+    (rad, the tolerance the tilt is checked against) is drawn dashed. A simulated tilt of 1e-13 rad
+    is the Newton tolerance's noise, which moves with the CPU; drawn as itself it would redraw the
+    figure on every machine."""
     import numpy as np
 
     panels = 2 if tilt else 1
@@ -429,8 +436,17 @@ def fold_figure(t, margin, labels, *, tilt=None, title: str = ""):
         low = axes[1, 0]
         used = {to_hex(line.get_color()) for line in ax.lines if not line.get_label().startswith("_")}
         free = [c for c in TILT_COLOURS if to_hex(c) not in used]
-        for k, (label, (tt, values)) in enumerate(tilt.items()):
-            low.semilogy(tt, np.maximum(values, 1e-18), color=free[k % len(free)], label=label)
+        floor = _checks.positive("floor", floor, unit="rad")
+        for k, (label, (tt, values)) in enumerate(tilt.items()):  # the first widest: curves on the floor all show
+            low.semilogy(tt, np.maximum(values, floor), color=free[k % len(free)], label=label,
+                         linewidth=1.5 + 2.0 * (len(tilt) - 1 - k))
+        top = max([floor * 10, *(float(np.max(v)) * 3 for _, v in tilt.values())])
+        if bound is not None:
+            bound = _checks.positive("bound", bound, unit="rad")
+            low.axhline(bound, color="tab:olive", linestyle="--", linewidth=1.0, label=f"bound checked, {bound:g} rad")
+            top = max(top, bound * 10)
+        low.axhspan(floor / 10, floor, color="0.85", zorder=0, label=f"round-off: below {floor:g} rad")
+        low.set_ylim(floor / 10, top)
         low.set_ylabel("largest pseudobase tilt (rad)")
     axes[-1, 0].set_xlabel("time t (s)")
     axes[-1, 0].set_xlim(t[0], t[-1])
