@@ -146,16 +146,19 @@ def stored(value: float | None, resolution: float | None = None) -> float | None
 
 
 def number_text(value, resolution: float | None = None) -> str:
-    """A claim's number as the report prints it (6 significant digits; empty for None); a value
-    stored as zero at a ``resolution`` reads "< resolution" (it is round-off there).
+    """A claim's number as the report prints it: with a ``resolution``, to its decimals (every
+    digit stored, so that ours minus the paper's is the difference shown), and "< resolution" for
+    a value stored as zero there (it is round-off); without one, 6 significant digits; empty for None.
 
-    >>> number_text(183.99), number_text(0.0, 1e-09), number_text(0.0)
-    ('183.99', '< 1e-09', '0')
+    >>> number_text(183.99, 0.01), number_text(21.48438, 1e-05), number_text(0.0, 1e-09), number_text(48.0)
+    ('183.99', '21.48438', '< 1e-09', '48')
     """
     if value is None:
         return ""
-    if value == 0 and resolution:
-        return f"< {resolution:g}"
+    if resolution:
+        if value == 0:
+            return f"< {resolution:g}"
+        return f"{value:.{max(0, -round(math.log10(resolution)))}f}"  # every digit stored, no more
     return f"{value:.6g}"
 
 
@@ -210,8 +213,8 @@ def html_table(records: list[dict], made_in: list | None = None) -> str:
     for k, r in enumerate(records):
         status = report_column(r)  # a discrepancy says whether its cause was found
         cells = [f'{escape(r["quantity"])}<br><span class="claim-where">{escape(r["where"])}</span>',
-                 number_text(r["paper"]), number_text(r["ours"], r.get("resolution")),
-                 number_text(r.get("difference"), r.get("resolution")),
+                 escape(number_text(r["paper"])), escape(number_text(r["ours"], r.get("resolution"))),
+                 escape(number_text(r.get("difference"), r.get("resolution"))),
                  escape(r["unit"]), f"<strong>{escape(status)}</strong>"]
         if made_in is not None:
             link = made_in[k]
