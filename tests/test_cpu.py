@@ -65,3 +65,20 @@ def test_differences_lists_changed_and_missing_files(tmp_path):
     (two / "nb" / "claims.json").write_text("[2]\n")
     (one / "nb" / "fig.png").write_bytes(b"png")
     assert cpu.differences(one, two) == [f"nb/fig.png: only in {one}", "nb/claims.json"]
+
+
+def test_the_check_runs_a_notebook_on_both_cpus_and_finds_the_same_bytes(monkeypatch, capsys):
+    from pathlib import Path
+
+    monkeypatch.chdir(Path(__file__).resolve().parents[1])
+    assert cpu.main(["lenzo2017_two_spring_arm", "--jobs", "1"]) == 0
+    assert "the same bytes on both CPUs: 1 notebooks" in capsys.readouterr().out
+
+
+def test_the_check_refuses_a_notebook_it_does_not_know(monkeypatch, capsys):
+    from pathlib import Path
+
+    monkeypatch.chdir(Path(__file__).resolve().parents[1])
+    with pytest.raises(SystemExit):
+        cpu.main(["--exclude", "no_such_notebook"])
+    assert "no notebook named no_such_notebook" in capsys.readouterr().err

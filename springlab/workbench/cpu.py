@@ -25,6 +25,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from springlab.errors import SpringlabError
+
 COMPARED = ("*.json", "*.png", "*.svg", "*.gif", "*.md")
 """The files of a notebook's figures folder that are compared."""
 
@@ -75,8 +77,10 @@ def run_notebooks(stems, figures, env: dict, jobs: int = 1) -> None:
         out = Path(figures).parent / "notebooks" / f"{stem}.ipynb"
         code = ("import sys; from springlab.workbench.notebooks import run_notebook; "
                 "run_notebook(sys.argv[1], sys.argv[2], {'quick': True, 'figures_dir': sys.argv[3]})")
-        subprocess.run([sys.executable, "-c", code, str(NOTEBOOK_DIR / f"{stem}.ipynb"), str(out),
-                        str(Path(figures).resolve() / stem)], env=env, check=True, capture_output=True)
+        done = subprocess.run([sys.executable, "-c", code, str(NOTEBOOK_DIR / f"{stem}.ipynb"), str(out),
+                               str(Path(figures).resolve() / stem)], env=env, capture_output=True, text=True)
+        if done.returncode:
+            raise SpringlabError(f"notebook {stem} failed (quick run, its output in {out}):\n{done.stderr[-2000:]}")
 
     with ThreadPoolExecutor(max_workers=jobs) as pool:
         list(pool.map(one, stems))
@@ -91,16 +95,28 @@ def main(argv=None) -> int:
     parser.add_argument("--keep", help="folder to keep both runs in (default: a temporary one)")
     parser.add_argument("--exclude", nargs="*", default=[], help="notebooks left out (say why where you call it)")
     args = parser.parse_args(argv)
-    stems = [s for s in (args.stems or [p.stem for p in notebook_paths()]) if s not in args.exclude]
+    known = [p.stem for p in notebook_paths()]
+    unknown = sorted((set(args.stems) | set(args.exclude)) - set(known))
+    if unknown:
+        parser.error(f"no notebook named {', '.join(unknown)} in notebooks/ (there are: {', '.join(known)})")
+    if args.jobs < 1:
+        parser.error(f"--jobs must be >= 1, got {args.jobs}")
+    stems = [s for s in (args.stems or known) if s not in args.exclude]
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(args.keep or tmp)
         usual, narrowed = root / "usual" / "figures", root / "narrowed" / "figures"
         for folder in (usual, narrowed):
             (folder.parent / "notebooks").mkdir(parents=True, exist_ok=True)
         env = dict(os.environ)
-        run_notebooks(stems, usual, env, args.jobs)
-        shutil.copytree(usual, narrowed, dirs_exist_ok=True)  # as a clone starts from the committed files
-        run_notebooks(stems, narrowed, narrowed_environment(env), args.jobs)
+        try:
+            print(f"this CPU: {len(stems)} notebooks (quick) ...", flush=True)
+            run_notebooks(stems, usual, env, args.jobs)
+            shutil.copytree(usual, narrowed, dirs_exist_ok=True)  # as a clone starts from the committed files
+            print("the narrowed CPU, over the first run's files ...", flush=True)
+            run_notebooks(stems, narrowed, narrowed_environment(env), args.jobs)
+        except SpringlabError as err:
+            print(f"FAILED: {err}", file=sys.stderr)
+            return 1
         found = differences(usual, narrowed)
     names = narrowed_environment({})
     print("narrowed CPU: " + ", ".join(f"{k}={v!r}" for k, v in sorted(names.items())))
