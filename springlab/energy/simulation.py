@@ -197,7 +197,7 @@ class HoldResult:
 CONTROL_TOLERANCES = (1e-8, 1e-10)
 """Newton tolerances (relative, absolute) of the negative control's runs at least: the control must
 move by centimetres or more, read to three digits, and at the balanced run's 1e-12 it took 8 Newton
-iterations a step instead of 2 (2.8 s of the 000 notebook's 3.8 s hold test; 2.0 s now). The balanced
+iterations a step instead of 2 (2.8 s of the 000 notebook's 3.8 s hold test; 2.2 s now). The balanced
 run keeps the settings' tolerances: its drift is set by them."""
 
 
