@@ -680,6 +680,9 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
             v = v + np.linalg.lstsq(residual_jacobian(v), -F, rcond=None)[0]
         return v if np.all(v * prog.signs > 0) else v0
 
+    def settled(v):  # a design at v, or after Newton steps with the bounds held, or with every unknown free
+        return springs_of(v) or springs_of(newton(v)) or springs_of(newton_free(v))
+
     def polish(v0, thorough=True):
         v0 = np.clip(v0, lo, hi)
         if len(P):  # SLSQP on the coupling within the equations: fast when it converges
@@ -687,11 +690,7 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
                           constraints=[{"type": "eq", "fun": lambda x: prog.A_eq @ x - prog.b_eq,
                                         "jac": lambda x: prog.A_eq}], options={"maxiter": SLSQP_ITERATIONS, "ftol": 1e-30},
                           callback=solved).x
-        found = springs_of(v0)
-        if found is None:
-            found = springs_of(newton(v0))
-        if found is None:
-            found = springs_of(newton_free(v0))
+        found = settled(v0)
         if found is not None:
             return found
         if not thorough:
@@ -732,7 +731,7 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
     vertices = [centre(prog)]
     if vertices[0] is None:
         return
-    yield springs_of(vertices[0]) or springs_of(newton(vertices[0])) or springs_of(newton_free(vertices[0]))
+    yield settled(vertices[0])
     yield polish(vertices[0], thorough=False)  # None too: the caller may try a proof before the rest
     for _ in range(QUICK_STARTS):  # quick polishes from several vertices, then the thorough one from the first
         lp = solve_lp(rng.normal(size=m), prog.A_eq, prog.b_eq, prog.b_eq, lo, hi)

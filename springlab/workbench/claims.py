@@ -76,9 +76,9 @@ class Claim:
     def __post_init__(self):
         object.__setattr__(self, "ours", stored(self.ours, self.resolution))
         if self.tolerance is not None:  # a computed tolerance (1e-9 of a simulated range) carries round-off too
-            object.__setattr__(self, "tolerance", float(f"{self.tolerance:.{TOLERANCE_DIGITS}g}"))
+            object.__setattr__(self, "tolerance", _significant(self.tolerance, TOLERANCE_DIGITS))
         if self.band is not None:
-            object.__setattr__(self, "band", {**self.band, "value": float(f"{self.band['value']:.{TOLERANCE_DIGITS}g}")})
+            object.__setattr__(self, "band", {**self.band, "value": _significant(self.band["value"], TOLERANCE_DIGITS)})
 
     @property
     def difference(self) -> float | None:
@@ -139,10 +139,19 @@ def stored(value: float | None, resolution: float | None = None) -> float | None
     if value is None:
         return None
     if resolution is None:
-        return float(f"{value:.{SIGNIFICANT_DIGITS}g}") + 0.0
-    decimals = -round(math.log10(resolution))
+        return _significant(value, SIGNIFICANT_DIGITS)
+    decimals = _decimals(resolution)
     out = float(f"{value:.{decimals}f}") if decimals >= 0 else float(round(value, decimals))
     return out + 0.0  # -0.0 -> 0.0
+
+
+def _significant(value: float, digits: int) -> float:
+    return float(f"{value:.{digits}g}") + 0.0
+
+
+def _decimals(resolution: float) -> int:
+    """The decimals of a resolution that is a power of ten (1e-4 -> 4, 10 -> -1)."""
+    return -round(math.log10(resolution))
 
 
 def number_text(value, resolution: float | None = None) -> str:
@@ -158,7 +167,7 @@ def number_text(value, resolution: float | None = None) -> str:
     if resolution:
         if value == 0:
             return f"< {resolution:g}"
-        return f"{value:.{max(0, -round(math.log10(resolution)))}f}"  # every digit stored, no more
+        return f"{value:.{max(0, _decimals(resolution))}f}"  # every digit stored, no more
     return f"{value:.6g}"
 
 
