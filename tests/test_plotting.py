@@ -183,3 +183,14 @@ def test_the_fold_figure_shows_round_off_tilt_against_its_bound_and_a_real_tilt_
     first.write_bytes(_png(fig))
     assert same_pixels(first, _png(drawn(1.0)))  # other round-off, the same picture
     assert not same_pixels(first, _png(drawn(1e5)))  # up to 1e-7 rad: above the floor, drawn
+
+
+def test_shown_values_do_not_carry_round_off():
+    from springlab.workbench.plotting import shown
+
+    values = np.array([0.0, 1.0 / 3.0, 18.215838752633520, 105.74228900330095])
+    noisy = values * (1 + np.array([0.0, 3e-16, -4e-16, 1e-16]))
+    assert np.array_equal(shown(values), shown(noisy))  # round-off (1e-16) draws no pixel
+    assert not np.array_equal(shown(values), shown(values * (1 + 1e-6)))  # a change a figure can show stays
+    assert np.max(np.abs(shown(values) - values)) <= 0.5e-6  # 9 digits of 105.7: to 1e-6
+    assert np.array_equal(shown(np.zeros(3)), np.zeros(3))

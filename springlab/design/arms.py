@@ -30,7 +30,9 @@ horizontal and costs nothing). Ends off the plane (along the axes) add a constan
 
 **Best springs elsewhere** (:func:`best_springs`): attachment points within each body's reach
 and rates that minimise the largest holding torque over the workspace (a greedy choice of springs,
-each set polished by least squares on p-norms of route 2's torques, p growing towards the maximum).
+each set polished by sequential linear programmes on route 2's torques towards the smallest maximum).
+The search compares to 9 significant digits and keeps its springs on a grid (:data:`END_GRID`), so
+round-off, which differs from one CPU to another, decides none of its choices.
 """
 
 from __future__ import annotations
@@ -310,6 +312,102 @@ def _offsets(W, end_j, end_k, centres, half, frames) -> tuple[complex, complex]:
     return best[1], best[2]
 
 
+END_GRID = 1e-6
+"""m: the search's spring ends are rounded to this grid after each polish, its rates to
+:data:`RATE_DIGITS` significant digits (a shop works to tenths of a millimetre). Its later choices then
+see the same numbers on every CPU: a polish ends at a linear programme's vertex, which round-off of
+1e-16 in the torques moves by far less than the grid."""
+
+RATE_DIGITS = 7
+"""Significant digits of a searched spring's rate (N/m)."""
+
+PULL = 1e-5
+"""The polish's L1 pull towards where it started, per unit of each variable's scale (the rate cap, the
+box's half-size): it makes the minimum sharp, hence isolated, where moving an end changes no torque."""
+
+
+def _sig(value, digits: int = 9) -> float:
+    """``value`` rounded to ``digits`` significant digits: a key that round-off (1e-16) does not move,
+    so that the search's comparisons, and its ties, come out the same on every CPU."""
+    return float(f"{float(value):.{digits - 1}e}")
+
+
+def _on_grid(x, lo, hi) -> np.ndarray:
+    """Springs packed as the search packs them (k, p_a, p_b per spring) rounded: rates to
+    :data:`RATE_DIGITS` significant digits, ends to :data:`END_GRID`, kept within [lo, hi]."""
+    x = np.array(x, dtype=float)
+    for s in range(len(x) // 7):
+        x[7 * s] = _sig(x[7 * s], RATE_DIGITS)
+        x[7 * s + 1:7 * s + 7] = np.round(x[7 * s + 1:7 * s + 7] / END_GRID) * END_GRID
+    return np.clip(x, lo, hi)
+
+
+def _minimax(x, lo, hi, scale, residual, jacobian, iterations: int, rows: float = 0.7) -> np.ndarray:
+    """min over x in [lo, hi] of max |residual(x)| + :data:`PULL` |(x - x0) / scale|_1 from x0 = ``x``,
+    by sequential linear programming (HiGHS), at most ``iterations`` programmes, the answer then put
+    on the grid (:func:`_on_grid`). ``jacobian(x, r)`` gives d residual / dx at x (r = residual(x)).
+
+    Each programme linearises the residuals within ``rows`` of the largest and bounds the step in a
+    trust region of the scaled variables (x / scale), which grows after a step that did what it
+    predicted and shrinks after one that did not. Its answers are vertices, points that round-off in the
+    residuals hardly moves, so the result is the same on every CPU."""
+    from scipy.sparse import csc_matrix
+
+    from springlab.design.highs import solve
+
+    D = len(x)
+    x0 = np.array(x, dtype=float)
+    zlo, zhi = (lo - x0) / scale, (hi - x0) / scale
+    cost = np.concatenate([np.full(2 * D, PULL), [1.0]])
+
+    def merit(v, r):
+        return float(np.max(np.abs(r))) + PULL * float(np.sum(np.abs((v - x0) / scale)))
+
+    radius, r = 0.25, residual(x0)
+    x, f = x0, merit(x0, r)
+    for _ in range(iterations):
+        keep = np.abs(r) >= rows * np.max(np.abs(r))
+        J = jacobian(x, r)[keep] * scale  # per scaled unit
+        e = (x - x0) / scale
+        Je, rk, M = J @ e, r[keep], int(np.count_nonzero(keep))
+        # columns z+ (D), z- (D), t, with z = z+ - z- = (x_new - x0) / scale; rows |r + J (z - e)| <= t
+        A = csc_matrix(np.block([[J, -J, -np.ones((M, 1))], [-J, J, -np.ones((M, 1))]]))
+        zl, zh = np.maximum(e - radius, zlo), np.minimum(e + radius, zhi)
+        col_lo = np.concatenate([np.where(zl >= 0, zl, 0.0), np.where(zh <= 0, -zh, 0.0), [0.0]])
+        col_up = np.concatenate([np.where(zh <= 0, 0.0, zh), np.where(zl >= 0, 0.0, -zl), [np.inf]])
+        out = solve(cost, A, np.full(2 * M, -np.inf), np.concatenate([Je - rk, rk - Je]), col_lo, col_up)
+        if out is None:
+            break
+        z = out[0][:D] - out[0][D:2 * D]
+        predicted = f - float(cost @ out[0])
+        if predicted <= 1e-14 * max(f, 1e-300):
+            break
+        xn = np.clip(x0 + scale * z, lo, hi)
+        try:
+            rn = residual(xn)
+        except SpringlabError:  # a step out of what the model allows (a cable through its pulley)
+            rn = None
+        fn = merit(xn, rn) if rn is not None else np.inf
+        if f - fn >= 0.1 * predicted:
+            if f - fn >= 0.75 * predicted and np.max(np.abs(z - e)) >= 0.99 * radius:
+                radius = min(2 * radius, 1.0)
+            x, f, r = xn, fn, rn
+        else:
+            radius *= 0.25
+            if radius < 1e-12:
+                break
+    return _on_grid(x, lo, hi)
+
+
+def _scales(lo, hi, k_max, x) -> np.ndarray:
+    """Each packed variable's scale for :func:`_minimax`: a rate's cap (else its size, at least 1 N/m),
+    an end's box half-size."""
+    scale = np.where(hi - lo > 0, 0.5 * (hi - lo), 1.0)
+    for s in range(len(x) // 7):
+        scale[7 * s] = k_max if np.isfinite(k_max) else max(abs(x[7 * s]), 1.0)
+    return scale
+
+
 CLEARANCE_SAMPLES = 32
 """Points along each spring at which its clearance from the bodies is measured."""
 
@@ -477,7 +575,7 @@ def _grid(centre, half) -> np.ndarray:
 
 
 def best_springs(model: RevoluteChain, found: Structure, q, *, target: float = 0.1, reach: float | None = None,
-                 max_springs: int = 8, iterations: int = 12, candidates: int = 4,
+                 max_springs: int = 8, iterations: int = 200, candidates: int = 4,
                  max_stiffness: float = MAX_STIFFNESS) -> BestSprings:
     """The fewest zero-free-length springs, ends within each body's box (``attachment_boxes``), that bring the
     largest holding torque over the poses ``q`` within ``target`` of every joint's scale
@@ -491,7 +589,10 @@ def best_springs(model: RevoluteChain, found: Structure, q, *, target: float = 0
     remaining torques in a least-squares sense weighted towards the largest (an 8-norm's weights);
     adds, in turn, the best candidate of each of the ``candidates`` best pairs; moves every spring's
     ends within their boxes and changes the rates to lower the largest torque itself
-    (``_polish``); and keeps the best of those trials. ``q`` should hold several times more
+    (``_polish``: at most ``iterations`` linear programmes, the springs put on :data:`END_GRID`); and
+    keeps the best of those trials. Scores and trials are compared to 9 significant digits, ties
+    going to the first candidate, so that round-off (which differs from one CPU to another) decides
+    nothing. ``q`` should hold several times more
     poses than the springs have parameters (7 each): the torques are fitted at those poses only.
     """
     from threadpoolctl import threadpool_limits
@@ -513,7 +614,7 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
     pairs = [(a, b) for b in range(first, last + 1) for a in range(0, b)]
     centres, half = attachment_boxes(model, reach)
     tau_g = gravity_torques(model, q)
-    scale = np.maximum(np.max(np.abs(tau_g), axis=0), 0.1 * np.max(np.abs(tau_g)))
+    scale = _joint_scales(model, q)
     F = _features(model, pairs, q) / scale  # (P, 16, N, n)
     g = tau_g / scale
     N, n = g.shape
@@ -535,19 +636,22 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
         norms = np.einsum("rc,r,rc->c", A, weight, A)
         score = np.where(gain > 0, gain**2 / np.maximum(norms, 1e-300), 0.0)
         tried, trials = set(), []
-        for c in np.argsort(-score):  # the best candidate of each of the `candidates` best pairs, each polished
+        top = float(np.max(score))
+        key = np.round(score / top * 1e9) if top > 0 else np.zeros_like(score)
+        order = np.lexsort((np.arange(len(score)), -key))  # by score to 1e-9 of the best, then by index
+        for c in order:  # the best candidate of each of the `candidates` best pairs, each polished
             if score[c] <= 0 or len(tried) == candidates:
                 break
             idx, pa, pb = ends[c]
             if idx in tried:
                 continue
             tried.add(idx)
-            trial = np.concatenate([x, [min(gain[c] / norms[c], max_stiffness), *pa, *pb]])
+            trial = np.concatenate([x, [_sig(min(gain[c] / norms[c], max_stiffness)), *pa, *pb]])
             trial, value = _polish(trial, which + [idx], F, g, N, n, centres, half, pairs, iterations, max_stiffness)
             trials.append((value, float(np.sum(_residual(trial, which + [idx], F, g, N, n) ** 2)), trial, idx))
         if not trials:
             break
-        ratio, _, x, idx = min(trials, key=lambda t: (t[0], t[1]))
+        ratio, _, x, idx = min(trials, key=lambda t: (_sig(t[0]), _sig(t[1]), t[3]))  # ties to the first pair
         which = which + [idx]
         history.append(ratio)
         snapshots.append((ratio, x.copy(), list(which)))
@@ -625,36 +729,20 @@ def _bounds(x, which, centres, half, pairs, k_max=np.inf):
 
 
 def _polish(x, which, F, g, N, L, centres, half, pairs, iterations, k_max=np.inf):
-    """Least squares on the exact bilinear torques (already divided by the joints' scales), the ends
-    in their boxes (trust-region reflective), then the largest torque by continuation on the p-norm:
-    sum (r / m)^p for p = 6, 16, 40 (each a least-squares problem in r |r / m|^(p/2 - 1), m the
-    largest at its start), which tends to the minimax as p grows."""
-    from scipy.optimize import least_squares
+    """The largest torque (already divided by the joints' scales) brought down with every spring's
+    rate and ends free in their boxes (:func:`_minimax`, the exact bilinear Jacobian :func:`_jacobian`),
+    the springs on :data:`END_GRID`. Returns (x, the largest torque)."""
 
-    def ratio_of(x):
-        return float(np.max(np.abs(_residual(x, which, F, g, N, L))))
+    def residual(v):
+        return _residual(v, which, F, g, N, L).reshape(-1)
 
     if not which:
-        return x, ratio_of(x)
+        return x, float(np.max(np.abs(residual(x))))
     lo, hi = _bounds(x, which, centres, half, pairs, k_max)
     x = np.clip(x, lo, hi)
-    for p in (2, 6, 16, 40):
-        m = max(ratio_of(x), 1e-300)
-        half_p = p / 2.0
-
-        def fun(v, m=m, half_p=half_p):
-            r = _residual(v, which, F, g, N, L).reshape(-1) / m
-            return r * np.abs(r) ** (half_p - 1)
-
-        def jac(v, m=m, half_p=half_p):
-            r = _residual(v, which, F, g, N, L).reshape(-1) / m
-            return (half_p * np.abs(r) ** (half_p - 1))[:, None] * _jacobian(v, which, F, N, L) / m
-
-        with np.errstate(over="ignore", invalid="ignore"):  # a trial step far out: an infinite cost, rejected
-            fit = least_squares(fun, x, jac=jac, bounds=(lo, hi), method="trf", x_scale="jac",
-                                max_nfev=max(10, iterations * 4))
-        x = fit.x
-    return x, ratio_of(x)
+    x = _minimax(x, lo, hi, _scales(lo, hi, k_max, x), residual, lambda v, r: _jacobian(v, which, F, N, L),
+                 iterations)
+    return x, float(np.max(np.abs(residual(x))))
 
 
 # --- the whole design: structure, springs, realisation, the torques that remain -------------------
@@ -887,10 +975,10 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
     k L rho alpha that no ideal spring had. So the cable springs are re-balanced on the poses ``fit``
     (default: ``q``'s first 150): each spring's lead (the direction its cable arrives from) is chosen
     among its body's axes and the mean direction to B, and, where that leaves more than
-    :data:`REBALANCE` of a loaded joint's peak, their rates and ends (within
+    :data:`REBALANCE` of a joint's scale (:func:`_joint_scales`), their rates and ends (within
     :func:`attachment_boxes` with ``reach``, rates at most ``max_stiffness``) are moved to bring the
-    largest holding torque down again (least squares on p-norms, as the best springs are polished). The
-    zero-length springs stay as designed.
+    largest holding torque down again (sequential linear programmes, as the best springs are polished).
+    The zero-length springs stay as designed.
 
     :raises SpringlabError: naming the spring when neither realisation fits
     """
@@ -917,10 +1005,11 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
         near = []
     if pulley_radius > 0 and cable:
         fit = q[:150] if fit is None else model.check_q(fit)
-        led = _leads(model, built, cable, fit, pulley_radius)
+        scale = _realised_scales(model, springs, fit)
+        led = _leads(model, built, cable, fit, pulley_radius, scale)
         built = led
-        if _worst(model, led, fit, _joint_scales(model, fit)) > REBALANCE:  # the leads alone leave too much
-            built = _rebalance(model, led, cable, fit, reach, max_stiffness)
+        if _worst(model, led, fit, scale) > REBALANCE:  # the leads alone leave too much
+            built = _rebalance(model, led, cable, fit, reach, max_stiffness, scale)
         windable = lambda spring: cable_spring(spring.k, _length_range(model, spring, R, o), material)[0] is not None  # noqa: E731
         for i in cable:  # a re-balanced spring no stocked wire carries keeps its designed rate and ends
             if not windable(built[i]) and windable(led[i]):
@@ -957,7 +1046,11 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
 
 REBALANCE = 0.1
 """Where the realised springs over their pulleys, leads chosen, leave more than this fraction of a
-loaded joint's peak gravity torque on the fitting poses, their rates and ends are re-balanced too."""
+joint's scale (:func:`_joint_scales`) on the fitting poses, their rates and ends are re-balanced too."""
+
+REBALANCE_STEPS = 40
+"""The most linear programmes the re-balance of the cable springs takes (each on a finite-difference
+Jacobian, 7 route-2 evaluations per cable spring)."""
 
 MAX_PARALLEL = 3
 """The most springs a realised spring is split into, side by side on the same ends, when no stocked
@@ -983,15 +1076,14 @@ def _with(s, **changes) -> PointSpring:
     return PointSpring(**(fields | changes))
 
 
-def _leads(model: RevoluteChain, springs, cable, q, radius: float) -> list:
+def _leads(model: RevoluteChain, springs, cable, q, radius: float, scale) -> list:
     """Each cable spring over a pulley of ``radius`` (m), its lead (in link_a's frame) chosen, one
     spring at a time and twice over, among +-x, +-y, +-z of link_a, the direction from its joint to A
     and the mean direction from A to B and its opposite: whichever leaves the smallest largest
-    holding torque (relative to each joint's scale) at the poses ``q``."""
+    holding torque (relative to each joint's ``scale``, N m) at the poses ``q``."""
     from springlab.model.revolute import world_points
 
     R, o = body_frames(model, q)
-    scale = _joint_scales(model, q)
     out = list(springs)
     candidates = {}
     for i in cable:
@@ -1007,19 +1099,16 @@ def _leads(model: RevoluteChain, springs, cable, q, radius: float) -> list:
     for _ in range(2):
         for i in cable:
             trials = [out[:i] + [_with(out[i], lead=u)] + out[i + 1:] for u in candidates[i]]
-            out = min(trials, key=lambda t: _worst(model, t, q, scale))
+            out = min(trials, key=lambda t: _sig(_worst(model, t, q, scale)))  # ties to the first lead
     return out
 
 
-def _rebalance(model: RevoluteChain, springs, cable, q, reach, max_stiffness) -> list:
+def _rebalance(model: RevoluteChain, springs, cable, q, reach, max_stiffness, scale) -> list:
     """Move the cable springs' rates and ends (within :func:`attachment_boxes`) to bring the largest
-    holding torque at the poses ``q`` down, by least squares on p-norms (p = 2, 8, 20) of the torques
-    relative to each joint's scale (trust-region reflective, finite-difference Jacobian). Kept only
-    where it lowers the largest torque."""
-    from scipy.optimize import least_squares
-
+    holding torque at the poses ``q``, relative to each joint's ``scale`` (N m), down
+    (:func:`_minimax`, at most :data:`REBALANCE_STEPS` programmes on a finite-difference Jacobian).
+    Kept only where it lowers the largest torque."""
     centres, half = attachment_boxes(model, reach)
-    scale = _joint_scales(model, q)
     ends = {i: (model.locate(springs[i].link_a, springs[i].point_a), model.locate(springs[i].link_b, springs[i].point_b))
             for i in cable}
     x0, lo, hi = [], [], []
@@ -1031,7 +1120,6 @@ def _rebalance(model: RevoluteChain, springs, cable, q, reach, max_stiffness) ->
     x0, lo, hi = (np.array(v, dtype=float) for v in (x0, lo, hi))
     hi = np.maximum(hi, x0)  # a designed rate above the cap stays reachable
     x0 = np.clip(x0, lo, hi)
-
     leads = {i: tuple(model.direction(springs[i].link_a, springs[i].lead)[1]) for i in cable}  # in the bodies' frames
 
     def build(x):
@@ -1043,29 +1131,42 @@ def _rebalance(model: RevoluteChain, springs, cable, q, reach, max_stiffness) ->
                                  pulley_radius=springs[i].pulley_radius, lead=leads[i])
         return out
 
-    best_x, best = x0, _worst(model, build(x0), q, scale)
-    x = x0
-    for p in (2, 8, 20):
-        def fun(v, p=p):
-            r = (joint_torques(model, build(v), q) / scale).ravel()
-            m = max(float(np.max(np.abs(r))), 1e-300)
-            return (r / m) * np.abs(r / m) ** (p / 2 - 1)
-        try:
-            x = least_squares(fun, x, bounds=(lo, hi), method="trf", diff_step=1e-6, max_nfev=15).x
-        except (ValueError, SpringlabError):
-            break
-        value = _worst(model, build(x), q, scale)
-        if value < best:
-            best_x, best = x, value
-    return build(best_x)
+    def residual(v):
+        return (joint_torques(model, build(v), q) / scale).ravel()
+
+    def jacobian(v, r):  # forward differences, a step of 1e-7 of each variable's scale, inward at a bound
+        J = np.empty((len(r), len(v)))
+        for c in range(len(v)):
+            step = 1e-7 * var_scale[c] * (1 if v[c] + 1e-7 * var_scale[c] <= hi[c] else -1)
+            w = v.copy()
+            w[c] += step
+            J[:, c] = (residual(w) - r) / step
+        return J
+
+    var_scale = _scales(lo, hi, max_stiffness, x0)
+    x = _minimax(x0, lo, hi, var_scale, residual, jacobian, REBALANCE_STEPS)
+    better = _sig(_worst(model, build(x), q, scale)) < _sig(_worst(model, build(x0), q, scale))
+    return build(x if better else x0)
+
+
+def _realised_scales(model: RevoluteChain, springs, q) -> np.ndarray:
+    """Each joint's scale (N m) for the realised springs' leads and re-balance over the poses ``q``: its own
+    peak gravity torque, or ten times what the ideal ``springs`` leave there where that is more (a light
+    joint the ideal springs leave near its own peak does not take the pulleys' whole correction), a
+    tenth of the arm's largest for a joint gravity leaves (nearly) alone."""
+    peak = np.max(np.abs(gravity_torques(model, q)), axis=0)
+    left = np.max(np.abs(joint_torques(model, springs, q)), axis=0)
+    return np.where(peak > NEGLIGIBLE * np.max(peak), np.maximum(peak, left / REBALANCE), 0.1 * np.max(peak))
 
 
 def _joint_scales(model: RevoluteChain, q) -> np.ndarray:
-    """Each joint's scale (N m) for the realised springs' re-balance: its own peak gravity torque over
-    the poses (each loaded joint keeps its share removed, however light), a tenth of the largest for a
-    joint gravity leaves (nearly) alone."""
+    """Each joint's scale (N m) over the poses ``q``, for the best springs' search and the realised
+    springs' leads and re-balance alike: the larger of its own peak gravity torque and a tenth of the
+    arm's largest. A light joint is held to a tenth of the largest, not to its own small peak: the
+    re-balance that held it to its own peak traded the heavy joints' balance for it (on the Panda, half
+    of a shoulder joint's balance for the wrist's)."""
     peak = np.max(np.abs(gravity_torques(model, q)), axis=0)
-    return np.where(peak > NEGLIGIBLE * np.max(peak), peak, 0.1 * np.max(peak))
+    return np.maximum(peak, 0.1 * np.max(peak))
 
 
 def _check_pulley(model: RevoluteChain, pulley_radius) -> float:

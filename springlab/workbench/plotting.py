@@ -32,6 +32,24 @@ def use_style() -> None:
     plt.style.use(STYLE)
 
 
+SHOWN_DIGITS = 9
+"""Significant digits (of an array's largest value) a figure plots: far more than a figure can show,
+far fewer than round-off moves. A coordinate that lands exactly on a rasteriser's sub-pixel boundary
+(a payload of 1 kg at a round pixel) otherwise takes one grey level more or less from round-off
+alone, so the same figure would differ between CPUs by a few pixels."""
+
+
+def shown(values) -> np.ndarray:
+    """``values`` rounded to :data:`SHOWN_DIGITS` significant digits of their largest magnitude,
+    as a figure plots them (round-off, which differs between CPUs, then draws no pixel)."""
+    values = np.asarray(values, dtype=float)
+    top = float(np.max(np.abs(values[np.isfinite(values)]), initial=0.0))
+    if top == 0.0:
+        return values
+    resolution = 10.0 ** (np.floor(np.log10(top)) - SHOWN_DIGITS + 1)
+    return np.round(values / resolution) * resolution
+
+
 def save_figure(fig, name: str, directory) -> list[Path]:
     """Save ``fig`` as ``directory/name.png`` and ``directory/name.svg``; returns the paths.
     The files are left as they are when the PNG already there has the same pixels
@@ -560,7 +578,8 @@ def payload_figure(study, *, title: str, rated: float | None = None):
     fig, axes = plt.subplots(1, len(loaded), figsize=(3.2 * len(loaded), 3.2), squeeze=False)
     for ax, i in zip(axes[0], loaded, strict=True):
         for case, style in cases.items():
-            ax.plot(study.masses, study.peaks[case][:, i], label=case.replace("realised", "built springs"), **style)
+            ax.plot(study.masses, shown(study.peaks[case][:, i]), label=case.replace("realised", "built springs"),
+                    **style)
         ax.axvline(study.nominal, color="k", lw=0.8, ls=":")
         ax.set_title(study.joints[i], fontsize=9)
         ax.set_xlabel("payload (kg)")
