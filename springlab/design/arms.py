@@ -351,8 +351,6 @@ def _minimax(x, lo, hi, scale, residual, jacobian, iterations: int, rows: float 
     trust region of the scaled variables (x / scale), which grows after a step that did what it
     predicted and shrinks after one that did not. Its answers are vertices, points that round-off in the
     residuals hardly moves, so the result is the same on every CPU."""
-    from scipy.sparse import csc_matrix
-
     from springlab.design.highs import solve
 
     D = len(x)
@@ -371,7 +369,7 @@ def _minimax(x, lo, hi, scale, residual, jacobian, iterations: int, rows: float 
         e = (x - x0) / scale
         Je, rk, M = J @ e, r[keep], int(np.count_nonzero(keep))
         # columns z+ (D), z- (D), t, with z = z+ - z- = (x_new - x0) / scale; rows |r + J (z - e)| <= t
-        A = csc_matrix(np.block([[J, -J, -np.ones((M, 1))], [-J, J, -np.ones((M, 1))]]))
+        A = np.block([[J, -J, -np.ones((M, 1))], [-J, J, -np.ones((M, 1))]])
         zl, zh = np.maximum(e - radius, zlo), np.minimum(e + radius, zhi)
         col_lo = np.concatenate([np.where(zl >= 0, zl, 0.0), np.where(zh <= 0, -zh, 0.0), [0.0]])
         col_up = np.concatenate([np.where(zh <= 0, 0.0, zh), np.where(zl >= 0, 0.0, -zl), [np.inf]])
