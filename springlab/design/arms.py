@@ -973,7 +973,8 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
     k L rho alpha that no ideal spring had. So the cable springs are re-balanced on the poses ``fit``
     (default: ``q``'s first 150): each spring's lead (the direction its cable arrives from) is chosen
     among its body's axes and the mean direction to B, and, where that leaves more than
-    :data:`REBALANCE` of a joint's scale (:func:`_joint_scales`), their rates and ends (within
+    :data:`REBALANCE` of a joint's scale (its own peak gravity torque, or for a light joint ten times what
+    the ideal springs leave on it), their rates and ends (within
     :func:`attachment_boxes` with ``reach``, rates at most ``max_stiffness``) are moved to bring the
     largest holding torque down again (sequential linear programmes, as the best springs are polished).
     The zero-length springs stay as designed.
@@ -1044,7 +1045,8 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
 
 REBALANCE = 0.1
 """Where the realised springs over their pulleys, leads chosen, leave more than this fraction of a
-joint's scale (:func:`_joint_scales`) on the fitting poses, their rates and ends are re-balanced too."""
+joint's scale (its own peak gravity torque, or for a light joint ten times what the ideal springs leave
+on it) on the fitting poses, their rates and ends are re-balanced too."""
 
 REBALANCE_STEPS = 40
 """The most linear programmes the re-balance of the cable springs takes (each on a finite-difference
