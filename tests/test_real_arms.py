@@ -223,3 +223,35 @@ def test_round_off_decides_none_of_the_searchs_choices():
         np.testing.assert_allclose([*s.lead, s.free_length], [*t.lead, t.free_length], rtol=1e-9)
     moved_ideal, moved_realised, _ = _springs_of(1e-3)
     assert moved_ideal != ideal and moved_realised != realised
+
+
+def test_a_rebalanced_cable_that_meets_its_pulley_keeps_its_designed_ends(monkeypatch):
+    """The cable springs' re-balance sees the fitting poses only; ends it moves so that the cable's end
+    comes within the pulley's radius of A at a pose of the check (a spring that cannot be built) must
+    give way to the designed ends, not stop the design with an error."""
+    import springlab.design.arms as arms
+    from springlab.model.revolute import body_frames, world_points
+
+    model = load_robot("UR5")
+    springs = planar_springs(model, structure(model))
+    q = model.random_q(200, 3)
+
+    def meets_its_pulley(model, led, cable, fit, reach, max_stiffness, scale):  # B moved onto A at q[0]
+        s = led[cable[0]]
+        R, o = body_frames(model, q[:1])
+        a, pa = model.locate(s.link_a, s.point_a)
+        b, _ = model.locate(s.link_b, s.point_b)
+        A = world_points(R, o, a, pa)[0]
+        onto = tuple(R[0, b].T @ (A - o[0, b]))
+        out = list(led)
+        out[cable[0]] = PointSpring(model.bodies[a], pa, model.bodies[b], onto, s.k, pulley_radius=s.pulley_radius,
+                                    lead=model.direction(s.link_a, s.lead)[1])
+        return out
+
+    monkeypatch.setattr(arms, "REBALANCE", -1.0)  # every realisation re-balanced
+    monkeypatch.setattr(arms, "_rebalance", meets_its_pulley)
+    realised, kinds, _ = arms.realise_springs(model, springs, q, pulley_radius=0.005)
+    first = next(i for i, kind in enumerate(kinds) if kind.startswith("cable"))
+    assert np.allclose(realised[first].point_b, springs[first].point_b)  # the designed end, not B on A
+    with pytest.raises(SpringlabError, match="pulley"):  # the control: that spring cannot be checked
+        geometry.joint_torques(model, meets_its_pulley(model, list(realised), [first], q, None, 0, 0), q)

@@ -43,7 +43,7 @@ import numpy as np
 
 from springlab import _checks
 from springlab.energy.geometry import gravity_torques, joint_torques
-from springlab.errors import SpringlabError
+from springlab.errors import GeometryError, SpringlabError
 from springlab.model.revolute import RevoluteChain, body_frames, check_point_springs, joint_axes
 from springlab.model.springs import PointSpring
 from springlab.tables import Table
@@ -1009,9 +1009,15 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
         built = led
         if _worst(model, led, fit, scale) > REBALANCE:  # the leads alone leave too much
             built = _rebalance(model, led, cable, fit, reach, max_stiffness, scale)
-        windable = lambda spring: cable_spring(spring.k, _length_range(model, spring, R, o), material)[0] is not None  # noqa: E731
-        for i in cable:  # a re-balanced spring no stocked wire carries keeps its designed rate and ends
-            if not windable(built[i]) and windable(led[i]):
+        def windable(spring):  # None: its cable comes within the pulley's radius of A at a pose of ``q``
+            try:
+                return cable_spring(spring.k, _length_range(model, spring, R, o), material)[0] is not None
+            except GeometryError:
+                return None
+
+        for i in cable:  # a re-balanced spring no stocked wire carries, or whose cable meets its pulley at a
+            fits = windable(built[i])  # pose the fit did not see, keeps its designed rate and ends
+            if fits is None or (not fits and windable(led[i])):
                 built[i] = led[i]
     out, names, coils = [], [], []
     for i, s in enumerate(built):
