@@ -255,3 +255,25 @@ def test_a_rebalanced_cable_that_meets_its_pulley_keeps_its_designed_ends(monkey
     assert np.allclose(realised[first].point_b, springs[first].point_b)  # the designed end, not B on A
     with pytest.raises(SpringlabError, match="pulley"):  # the control: that spring cannot be checked
         geometry.joint_torques(model, meets_its_pulley(model, list(realised), [first], q, None, 0, 0), q)
+
+
+def test_a_group_at_round_off_chooses_no_rows_of_the_polish():
+    """The polish's programme takes each joint's residuals within 0.7 of that joint's largest. A joint
+    whose torques are round-off (the Panda's vertical joint 1 with springs on its axis) would have
+    those rows chosen by round-off: two CPUs' 1e-17 differ, so their programmes, and their springs,
+    would differ. Such a group has no rows; the control shows the rows matter when the group is real."""
+    from springlab.design.arms import _minimax
+
+    def run(noise, size=1.0):
+        def residual(v):  # group 0: x - 1; group 1: noise plus slopes 0.5 and 2 away from x = 0
+            return np.array([v[0] - 1.0, size * (noise[0] + 0.5 * v[0]), size * (noise[1] + 2.0 * v[0])])
+
+        def jacobian(v, r):
+            return np.array([[1.0], [0.5 * size], [2.0 * size]])
+
+        return _minimax(np.array([0.0]), np.array([-1.0]), np.array([1.0]), np.array([10.0]), residual, jacobian, 1,
+                        groups=np.array([0, 1, 1]), spread=1.0)
+
+    one, other = run([1e-17, 0.9e-17]), run([1e-17, 0.5e-17])  # the second row in, then out, at 0.7 (one step)
+    assert np.array_equal(one, other)
+    assert not np.array_equal(run([1e-17, 0.9e-17], 1e12), run([1e-17, 0.5e-17], 1e12))  # 1e-5 and 0.5e-5: real

@@ -313,10 +313,10 @@ def _offsets(W, end_j, end_k, centres, half, frames) -> tuple[complex, complex]:
 
 
 END_GRID = 1e-6
-"""m: the search's spring ends are rounded to this grid after each polish, its rates to
-:data:`RATE_DIGITS` significant digits (a shop works to tenths of a millimetre). Its later choices then
-see the same numbers on every CPU: a polish ends at a linear programme's vertex, which round-off of
-1e-16 in the torques moves by far less than the grid."""
+"""m: every point the search's polish steps to has its spring ends rounded to this grid, its rates to
+:data:`RATE_DIGITS` significant digits (a shop works to tenths of a millimetre). Its later steps and
+choices then see the same numbers on every CPU: each step is a linear programme's vertex, which
+round-off of 1e-16 in the torques moves by far less than the grid."""
 
 RATE_DIGITS = 7
 """Significant digits of a searched spring's rate (N/m)."""
@@ -342,45 +342,72 @@ def _on_grid(x, lo, hi) -> np.ndarray:
     return np.clip(x, lo, hi)
 
 
-def _minimax(x, lo, hi, scale, residual, jacobian, iterations: int, rows: float = 0.7) -> np.ndarray:
-    """min over x in [lo, hi] of max |residual(x)| + :data:`PULL` |(x - x0) / scale|_1 from x0 = ``x``,
-    by sequential linear programming (HiGHS), at most ``iterations`` programmes, the answer then put
-    on the grid (:func:`_on_grid`). ``jacobian(x, r)`` gives d residual / dx at x (r = residual(x)).
+def _minimax(x, lo, hi, scale, residual, jacobian, iterations: int, rows: float = 0.7, groups=None,
+             spread: float = 0.0) -> np.ndarray:
+    """min over x in [lo, hi] of max_g m_g + ``spread`` mean_g m_g + :data:`PULL` |(x - x0) / scale|_1 from
+    x0 = ``x``, m_g the largest |residual(x)| of group g (``groups``: each residual's group, its joint;
+    None: one group), by sequential linear programming (HiGHS), at most ``iterations`` programmes, every
+    point it steps to put on the grid (:func:`_on_grid`). ``jacobian(x, r)`` gives d residual / dx at x.
 
-    Each programme linearises the residuals within ``rows`` of the largest and bounds the step in a
-    trust region of the scaled variables (x / scale), which grows after a step that did what it
+    The mean (``spread`` > 0) moves the search where the largest cannot move yet: each joint's own peak
+    is its scale, so one spring lowers one joint's largest torque but not the largest of all.
+    Each programme linearises the residuals within ``rows`` of their group's largest and bounds the step
+    in a trust region of the scaled variables (x / scale), which grows after a step that did what it
     predicted and shrinks after one that did not. Its answers are vertices, points that round-off in the
-    residuals hardly moves, so the result is the same on every CPU."""
+    residuals hardly moves, and on the grid the next programme sees the same point, so the result is the
+    same on every CPU; a group whose largest is round-off (below 1e-9 of the largest of all) has no
+    rows, since which of them pass the threshold would be round-off's choice."""
     from springlab.design.highs import solve
 
     D = len(x)
     x0 = np.array(x, dtype=float)
     zlo, zhi = (lo - x0) / scale, (hi - x0) / scale
-    cost = np.concatenate([np.full(2 * D, PULL), [1.0]])
+    r = residual(x0)
+    groups = np.zeros(len(r), dtype=int) if groups is None else np.asarray(groups)
+    G = int(groups.max()) + 1
+    T = G if spread > 0 else 0  # the groups' own largest as columns, only where their mean counts
+    cost = np.concatenate([np.full(2 * D, PULL), [1.0], np.full(T, spread / G)])
+
+    def peaks(r):
+        out = np.zeros(G)
+        np.maximum.at(out, groups, np.abs(r))
+        return out
 
     def merit(v, r):
-        return float(np.max(np.abs(r))) + PULL * float(np.sum(np.abs((v - x0) / scale)))
+        m = peaks(r)
+        return float(np.max(m) + spread * np.mean(m)) + PULL * float(np.sum(np.abs((v - x0) / scale)))
 
-    radius, r = 0.25, residual(x0)
+    radius = 0.25
     x, f = x0, merit(x0, r)
     for _ in range(iterations):
-        keep = np.abs(r) >= rows * np.max(np.abs(r))
+        m = peaks(r)
+        # a group whose largest is round-off (a vertical joint the springs do not load) has no rows: which
+        # of its rows pass the threshold would be decided by round-off
+        keep = (np.abs(r) >= rows * (m[groups] if spread > 0 else np.max(m))) & (m[groups] > 1e-9 * np.max(m))
         J = jacobian(x, r)[keep] * scale  # per scaled unit
         e = (x - x0) / scale
         Je, rk, M = J @ e, r[keep], int(np.count_nonzero(keep))
-        # columns z+ (D), z- (D), t, with z = z+ - z- = (x_new - x0) / scale; rows |r + J (z - e)| <= t
-        A = np.block([[J, -J, -np.ones((M, 1))], [-J, J, -np.ones((M, 1))]])
+        # columns z+ (D), z- (D), t, t_g (T), with z = z+ - z- = (x_new - x0) / scale;
+        # rows |r + J (z - e)| <= t_g (its group's), t_g <= t; without the groups' columns, <= t
+        if T:
+            own = np.zeros((M, T))
+            own[np.arange(M), groups[keep]] = -1.0
+            A = np.block([[J, -J, np.zeros((M, 1)), own], [-J, J, np.zeros((M, 1)), own],
+                          [np.zeros((T, 2 * D)), -np.ones((T, 1)), np.eye(T)]])
+        else:
+            A = np.block([[J, -J, -np.ones((M, 1))], [-J, J, -np.ones((M, 1))]])
         zl, zh = np.maximum(e - radius, zlo), np.minimum(e + radius, zhi)
-        col_lo = np.concatenate([np.where(zl >= 0, zl, 0.0), np.where(zh <= 0, -zh, 0.0), [0.0]])
-        col_up = np.concatenate([np.where(zh <= 0, 0.0, zh), np.where(zl >= 0, 0.0, -zl), [np.inf]])
-        out = solve(cost, A, np.full(2 * M, -np.inf), np.concatenate([Je - rk, rk - Je]), col_lo, col_up)
+        col_lo = np.concatenate([np.where(zl >= 0, zl, 0.0), np.where(zh <= 0, -zh, 0.0), np.zeros(1 + T)])
+        col_up = np.concatenate([np.where(zh <= 0, 0.0, zh), np.where(zl >= 0, 0.0, -zl), np.full(1 + T, np.inf)])
+        out = solve(cost, A, np.full(2 * M + T, -np.inf), np.concatenate([Je - rk, rk - Je, np.zeros(T)]),
+                    col_lo, col_up)
         if out is None:
             break
         z = out[0][:D] - out[0][D:2 * D]
         predicted = f - float(cost @ out[0])
         if predicted <= 1e-14 * max(f, 1e-300):
             break
-        xn = np.clip(x0 + scale * z, lo, hi)
+        xn = _on_grid(x0 + scale * z, lo, hi)  # every point on the grid: round-off does not carry on
         try:
             rn = residual(xn)
         except SpringlabError:  # a step out of what the model allows (a cable through its pulley)
@@ -586,12 +613,16 @@ def best_springs(model: RevoluteChain, found: Structure, q, *, target: float = 0
     boxes, ``_grid``, any pair of bodies up to the last loaded one) by how much they reduce the
     remaining torques in a least-squares sense weighted towards the largest (an 8-norm's weights);
     adds, in turn, the best candidate of each of the ``candidates`` best pairs; moves every spring's
-    ends within their boxes and changes the rates to lower the largest torque itself
-    (``_polish``: at most ``iterations`` linear programmes, the springs put on :data:`END_GRID`); and
-    keeps the best of those trials. Scores and trials are compared to 9 significant digits, ties
-    going to the first candidate, so that round-off (which differs from one CPU to another) decides
-    nothing. ``q`` should hold several times more
-    poses than the springs have parameters (7 each): the torques are fitted at those poses only.
+    ends within their boxes and changes the rates to lower the largest torque plus the mean of the
+    joints' largest (``_polish``: at most ``iterations`` linear programmes, every point on
+    :data:`END_GRID`); and keeps the best of those trials (the largest torque, then that mean). The
+    mean moves the search while the largest cannot move yet: every heavy joint starts at its own
+    scale, and one spring lowers one joint's peak, not all of them. Where that search misses the
+    target, the search is run again polishing the largest torque alone (on the Z1, with its slender
+    links, only that one reaches it), and the better of the two is kept. Scores and trials are
+    compared to 9 significant digits, ties going to the first candidate, so that round-off (which
+    differs from one CPU to another) decides nothing. ``q`` should hold several times more poses than
+    the springs have parameters (7 each): the torques are fitted at those poses only.
     """
     from threadpoolctl import threadpool_limits
 
@@ -624,6 +655,39 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
                 cols.append(_unit_torque(f, pa, pb).reshape(-1))
                 ends.append((idx, pa, pb))
     A = np.array(cols).T  # (N n, C): each candidate's torques at unit rate
+
+    def greedy(spread):
+        """The greedy search, each polish's objective the largest torque plus ``spread`` times the mean of
+        the joints' largest: (the fewest springs within the target, else the best step) as (ratio, x,
+        which), and the ratio after each step."""
+        return _greedy(A, ends, F, g, N, n, target, max_springs, candidates, centres, half, pairs, iterations,
+                       max_stiffness, spread)
+
+    (ratio, x, which), history = greedy(1.0)
+    how = "each polish lowering the largest torque and the mean of the joints' largest"
+    if ratio > target:  # the other objective may find another path
+        (ratio2, x2, which2), history2 = greedy(0.0)
+        if (ratio2 <= target, -len(which2) if ratio2 <= target else -_sig(ratio2)) > (False, -_sig(ratio)):
+            (ratio, x, which), history = (ratio2, x2, which2), history2
+            how = "each polish lowering the largest torque alone, which went further than also lowering their mean"
+    steps = ", ".join(f"{k + 1}: {100 * (1 - h):.1f} %" for k, h in enumerate(history))
+    if ratio <= target:
+        note = (f"{len(which)} springs, the fewest the greedy search ({how}) needed to hold every joint within "
+                f"{target:g} of its scale ({steps} of the worst joint's scale removed)")
+    else:
+        note = (f"the target ({target:g} of each joint's scale) was not reached with max_springs = {max_springs} "
+                f"springs ({steps} removed, {how}): the search stopped there; more springs or larger reaches may "
+                "do better")
+    out = tuple(PointSpring(model.bodies[pairs[p][0]], tuple(x[7 * s + 1:7 * s + 4]), model.bodies[pairs[p][1]],
+                            tuple(x[7 * s + 4:7 * s + 7]), float(x[7 * s])) for s, p in enumerate(which) if x[7 * s] > 0)
+    return BestSprings(out, float(ratio), target, note)
+
+
+def _greedy(A, ends, F, g, N, n, target, max_springs, candidates, centres, half, pairs, iterations, max_stiffness,
+            spread):
+    """:func:`best_springs`'s greedy search from no springs (``A``: each candidate's torques at unit rate,
+    ``ends``: its pair and ends): ((ratio, x, which) of the fewest springs within ``target``, else of
+    the best step; the ratio after each step)."""
     x, which = np.zeros(0), []
     ratio = float(np.max(np.abs(g)))
     history, snapshots = [], []
@@ -645,8 +709,11 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
                 continue
             tried.add(idx)
             trial = np.concatenate([x, [_sig(min(gain[c] / norms[c], max_stiffness)), *pa, *pb]])
-            trial, value = _polish(trial, which + [idx], F, g, N, n, centres, half, pairs, iterations, max_stiffness)
-            trials.append((value, float(np.sum(_residual(trial, which + [idx], F, g, N, n) ** 2)), trial, idx))
+            trial, value = _polish(trial, which + [idx], F, g, N, n, centres, half, pairs, iterations, max_stiffness,
+                                   spread)
+            left = _residual(trial, which + [idx], F, g, N, n)  # the mean of the joints' largest, else the squares
+            second = np.mean(np.max(np.abs(left), axis=0)) if spread > 0 else np.sum(left**2)
+            trials.append((value, float(second), trial, idx))
         if not trials:
             break
         ratio, _, x, idx = min(trials, key=lambda t: (_sig(t[0]), _sig(t[1]), t[3]))  # ties to the first pair
@@ -655,17 +722,8 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
         snapshots.append((ratio, x.copy(), list(which)))
     if snapshots:  # the fewest springs within the target, else the best step
         within = [snap for snap in snapshots if snap[0] <= target]
-        ratio, x, which = within[0] if within else min(snapshots, key=lambda snap: snap[0])
-    steps = ", ".join(f"{k + 1}: {100 * (1 - h):.1f} %" for k, h in enumerate(history))
-    if ratio <= target:
-        note = (f"{len(which)} springs, the fewest the greedy search needed to hold every joint within "
-                f"{target:g} of its scale ({steps} of the worst joint's scale removed)")
-    else:
-        note = (f"the target ({target:g} of each joint's scale) was not reached with max_springs = {max_springs} "
-                f"springs ({steps} removed): the search stopped there; more springs or larger reaches may do better")
-    out = tuple(PointSpring(model.bodies[pairs[p][0]], tuple(x[7 * s + 1:7 * s + 4]), model.bodies[pairs[p][1]],
-                            tuple(x[7 * s + 4:7 * s + 7]), float(x[7 * s])) for s, p in enumerate(which) if x[7 * s] > 0)
-    return BestSprings(out, float(ratio), target, note)
+        ratio, x, which = within[0] if within else min(snapshots, key=lambda snap: _sig(snap[0]))
+    return (ratio, x, which), history
 
 
 def _pack(springs, pairs, centres, half):
@@ -726,10 +784,11 @@ def _bounds(x, which, centres, half, pairs, k_max=np.inf):
     return lo, hi
 
 
-def _polish(x, which, F, g, N, L, centres, half, pairs, iterations, k_max=np.inf):
-    """The largest torque (already divided by the joints' scales) brought down with every spring's
-    rate and ends free in their boxes (:func:`_minimax`, the exact bilinear Jacobian :func:`_jacobian`),
-    the springs on :data:`END_GRID`. Returns (x, the largest torque)."""
+def _polish(x, which, F, g, N, L, centres, half, pairs, iterations, k_max=np.inf, spread=0.0):
+    """The largest torque (already divided by the joints' scales), plus ``spread`` times the mean of the
+    joints' largest, brought down with every spring's rate and ends free in their boxes
+    (:func:`_minimax`, the exact bilinear Jacobian :func:`_jacobian`), the springs on :data:`END_GRID`.
+    Returns (x, the largest torque)."""
 
     def residual(v):
         return _residual(v, which, F, g, N, L).reshape(-1)
@@ -739,7 +798,7 @@ def _polish(x, which, F, g, N, L, centres, half, pairs, iterations, k_max=np.inf
     lo, hi = _bounds(x, which, centres, half, pairs, k_max)
     x = np.clip(x, lo, hi)
     x = _minimax(x, lo, hi, _scales(lo, hi, k_max, x), residual, lambda v, r: _jacobian(v, which, F, N, L),
-                 iterations)
+                 iterations, groups=np.tile(np.arange(L), N), spread=spread)
     return x, float(np.max(np.abs(residual(x))))
 
 
@@ -1150,7 +1209,8 @@ def _rebalance(model: RevoluteChain, springs, cable, q, reach, max_stiffness, sc
         return J
 
     var_scale = _scales(lo, hi, max_stiffness, x0)
-    x = _minimax(x0, lo, hi, var_scale, residual, jacobian, REBALANCE_STEPS)
+    x = _minimax(x0, lo, hi, var_scale, residual, jacobian, REBALANCE_STEPS, groups=np.tile(np.arange(model.n), len(q)),
+                 spread=1.0)
     better = _sig(_worst(model, build(x), q, scale)) < _sig(_worst(model, build(x0), q, scale))
     return build(x if better else x0)
 
