@@ -277,3 +277,19 @@ def test_a_group_at_round_off_chooses_no_rows_of_the_polish():
     one, other = run([1e-17, 0.9e-17]), run([1e-17, 0.5e-17])  # the second row in, then out, at 0.7 (one step)
     assert np.array_equal(one, other)
     assert not np.array_equal(run([1e-17, 0.9e-17], 1e12), run([1e-17, 0.5e-17], 1e12))  # 1e-5 and 0.5e-5: real
+
+
+def test_springs_the_target_does_without_are_dropped():
+    """The greedy search can add a spring that later ones make idle; the design keeps none the target
+    does without. Spring 0 cancels gravity exactly, spring 1 has no rate: 1 goes, 0 stays (without it
+    the whole gravity torque is left: the control)."""
+    from springlab.design.arms import _pruned
+
+    rng = np.random.default_rng(0)
+    F = rng.normal(size=(2, 16, 5, 2))  # two pairs' features at 5 poses, 2 joints
+    g = -F[0, 0]  # what a unit spring of pair 0 with both ends at its bodies' origins holds
+    x = np.concatenate([[1.0, 0, 0, 0, 0, 0, 0], [0.0, 0.1, 0.2, 0.3, 0.1, 0.2, 0.3]])
+    ratio, kept, which, dropped = _pruned(x, [0, 1], F, g, 5, 2, 0.1)
+    assert dropped == 1 and which == [0] and np.array_equal(kept, x[:7]) and ratio < 1e-12
+    _, _, which, dropped = _pruned(x[:7], [0], F, 0.5 * g, 5, 2, 0.1)  # half the gravity: spring 0 over-holds
+    assert dropped == 0 and which == [0]  # without it, half the torque: above the target, so it stays
