@@ -314,7 +314,7 @@ def _offsets(W, end_j, end_k, centres, half, frames) -> tuple[complex, complex]:
 
 END_GRID = 1e-6
 """m: every point the search's polish steps to has its spring ends rounded to this grid (the boxes'
-faces moved inwards onto it, :func:`_faces`), its rates to :data:`RATE_DIGITS` significant digits (a
+faces moved inwards onto it, ``_faces``), its rates to :data:`RATE_DIGITS` significant digits (a
 shop works to tenths of a millimetre). Its later steps and
 choices then see the same numbers on every CPU: each step is a linear programme's vertex, which
 round-off of 1e-16 in the torques moves by far less than the grid."""
