@@ -625,8 +625,9 @@ def best_springs(model: RevoluteChain, found: Structure, q, *, target: float = 0
     kept (of the 42 arms of example-robot-data only the Z1 misses it, and there the first stays the
     better). Springs the target then does without are dropped (``_pruned``). Scores and trials are
     compared to 9 significant digits, ties going to the lower candidate or pair index, so that
-    round-off (which differs from one CPU to another) decides nothing. ``q`` should hold several times more poses than
-    the springs have parameters (7 each): the torques are fitted at those poses only.
+    round-off (which differs from one CPU to another) decides nothing. ``q`` should hold several
+    times more poses than the springs have parameters (7 each): the torques are fitted at those poses
+    only.
     """
     from threadpoolctl import threadpool_limits
 
@@ -649,7 +650,7 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
     pairs = [(a, b) for b in range(first, last + 1) for a in range(0, b)]
     centres, half = attachment_boxes(model, reach)
     tau_g = gravity_torques(model, q)
-    scale = _joint_scales(model, q)
+    scale = _joint_scales(tau_g)
     F = _features(model, pairs, q) / scale  # (P, 16, N, n)
     g = tau_g / scale
     N, n = g.shape
@@ -1250,20 +1251,19 @@ def _rebalance(model: RevoluteChain, springs, cable, q, reach, max_stiffness, sc
 def _realised_scales(model: RevoluteChain, springs, q) -> np.ndarray:
     """Each joint's scale (N m) for the realised springs' leads and re-balance over the poses ``q``: its own
     peak gravity torque, or ten times what the ideal ``springs`` leave there where that is more (a light
-    joint the ideal springs leave near its own peak does not take the pulleys' whole correction), a
-    tenth of the arm's largest for a joint gravity leaves (nearly) alone."""
+    joint the ideal springs leave near its own peak does not take the pulleys' whole correction: held to
+    its own peak, the Panda's joint 7, 0.03 N m, set the whole re-balance and cost a shoulder joint half
+    its balance), a tenth of the arm's largest for a joint gravity leaves (nearly) alone."""
     peak = np.max(np.abs(gravity_torques(model, q)), axis=0)
     left = np.max(np.abs(joint_torques(model, springs, q)), axis=0)
     return np.where(peak > NEGLIGIBLE * np.max(peak), np.maximum(peak, left / REBALANCE), 0.1 * np.max(peak))
 
 
-def _joint_scales(model: RevoluteChain, q) -> np.ndarray:
-    """Each joint's scale (N m) over the poses ``q``, for the best springs' search and the realised
-    springs' leads and re-balance alike: the larger of its own peak gravity torque and a tenth of the
-    arm's largest. A light joint is held to a tenth of the largest, not to its own small peak: the
-    re-balance that held it to its own peak traded the heavy joints' balance for it (on the Panda, half
-    of a shoulder joint's balance for the wrist's)."""
-    peak = np.max(np.abs(gravity_torques(model, q)), axis=0)
+def _joint_scales(tau_g) -> np.ndarray:
+    """Each joint's scale (N m) for the best springs' search, from the gravity torques ``tau_g`` (N, n):
+    the larger of its own peak and a tenth of the arm's largest (a light joint, or one gravity leaves
+    alone, is held to a tenth of the largest: the springs must not load it beyond that)."""
+    peak = np.max(np.abs(tau_g), axis=0)
     return np.maximum(peak, 0.1 * np.max(peak))
 
 
