@@ -46,6 +46,7 @@ from springlab.energy.geometry import gravity_torques, joint_torques
 from springlab.errors import GeometryError, SpringlabError
 from springlab.model.revolute import RevoluteChain, body_frames, check_point_springs, joint_axes
 from springlab.model.springs import PointSpring
+from springlab.rounding import significant
 from springlab.tables import Table
 
 ROUND_OFF = 1e-10
@@ -328,9 +329,10 @@ box's half-size): it makes the minimum sharp, hence isolated, where moving an en
 
 
 def _sig(value, digits: int = 9) -> float:
-    """``value`` rounded to ``digits`` significant digits: a key that round-off (1e-16) does not move,
-    so that the search's comparisons, and its ties, come out the same on every CPU."""
-    return float(f"{float(value):.{digits - 1}e}")
+    """``value`` to ``digits`` significant digits (:func:`springlab.rounding.significant`): a key that
+    round-off (1e-16) does not move, so that the search's comparisons, and its ties, come out the same
+    on every CPU."""
+    return significant(value, digits)
 
 
 def _on_grid(x, lo, hi) -> np.ndarray:

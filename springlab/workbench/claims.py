@@ -48,7 +48,7 @@ from pathlib import Path
 
 from springlab import _checks, tables
 from springlab.errors import SpringlabError
-from springlab.rounding import half_unit
+from springlab.rounding import half_unit, significant
 
 STATUSES = ("reproduced", "rounding", "discrepancy", "not reproducible", "input", "consistent", "inconsistent",
             "bound")
@@ -76,9 +76,9 @@ class Claim:
     def __post_init__(self):
         object.__setattr__(self, "ours", stored(self.ours, self.resolution))
         if self.tolerance is not None:  # a computed tolerance (1e-9 of a simulated range) carries round-off too
-            object.__setattr__(self, "tolerance", _significant(self.tolerance, TOLERANCE_DIGITS))
+            object.__setattr__(self, "tolerance", significant(self.tolerance, TOLERANCE_DIGITS))
         if self.band is not None:
-            object.__setattr__(self, "band", {**self.band, "value": _significant(self.band["value"], TOLERANCE_DIGITS)})
+            object.__setattr__(self, "band", {**self.band, "value": significant(self.band["value"], TOLERANCE_DIGITS)})
 
     @property
     def difference(self) -> float | None:
@@ -139,14 +139,10 @@ def stored(value: float | None, resolution: float | None = None) -> float | None
     if value is None:
         return None
     if resolution is None:
-        return _significant(value, SIGNIFICANT_DIGITS)
+        return significant(value, SIGNIFICANT_DIGITS)
     decimals = _decimals(resolution)
     out = float(f"{value:.{decimals}f}") if decimals >= 0 else float(round(value, decimals))
     return out + 0.0  # -0.0 -> 0.0
-
-
-def _significant(value: float, digits: int) -> float:
-    return float(f"{value:.{digits}g}") + 0.0
 
 
 def _decimals(resolution: float) -> int:
