@@ -14,12 +14,16 @@ Large batches are processed in chunks, so memory stays bounded.
 
 from __future__ import annotations
 
+import threading
+from collections import OrderedDict
+
 import numpy as np
 
 from springlab import _checks
 from springlab.errors import GeometryError, SpringlabError
 from springlab.model.chain import UP, Chain
 from springlab.model.revolute import (
+    FRAMES_CACHED_POSES,
     RevoluteChain,
     body_frames,
     centres_of_mass,
@@ -277,7 +281,11 @@ def spring_lengths(model: RevoluteChain, springs, R, o) -> np.ndarray:
 def _loads(model: RevoluteChain, springs, q, *, gravity: bool = True):
     """Per body, the force (N) and its moment about the base origin (N m) of the loads on it:
     its weight at its centre of mass and the spring forces at its attachment points. Returns
-    (F, M, o, axes), F and M of shape (N, n+1, 3); o the bodies' origins, axes the joints' axes."""
+    (F, M, o, axes), F and M of shape (N, n+1, 3); o the bodies' origins, axes the joints' axes.
+
+    Each spring's force and moments at a set of poses are remembered (:func:`_spring_load`) while
+    :func:`~springlab.model.revolute.body_frames` keeps those poses' frames: a search that moves one
+    spring at a time recomputes that spring alone, and the sums are the same, term by term."""
     springs = check_point_springs(model, springs)
     R, o = body_frames(model, q)
     N = R.shape[0]
@@ -287,22 +295,50 @@ def _loads(model: RevoluteChain, springs, q, *, gravity: bool = True):
         F[:, 1:] = model.mass[1:, None] * model.gravity  # the base's weight is the ground's
         M[:, 1:] = np.cross(centres_of_mass(model, R, o)[:, 1:], F[:, 1:])
     for s in springs:
-        A, B, length, ia, ib = _spring_ends(model, s, R, o)  # A: where the pull on body a acts (T over a pulley)
-        d = B - A
-        l0 = s.effective_free_length
-        chord = np.linalg.norm(d, axis=1) if (l0 or s.pulley_radius) else None
-        if chord is not None and np.any(chord == 0):
-            p = int(np.argmax(chord == 0))
-            raise GeometryError(f"{s.label}'s ends coincide at pose {p}: a spring of effective free length {l0:g} m "
-                                "has no line of action there; move its attachments or leave that pose out")
-        # the tension k (l - l0) along the line from B to A (or T), l the length (the cable's path)
-        k_eff = np.full(N, s.k) if chord is None else s.k * (length - l0) / chord
-        f_b = -k_eff[:, None] * d  # the spring pulls B towards A
+        ia, ib, f_b, m_b, m_a = _spring_load(model, s, R, o)
         F[:, ib] += f_b
-        M[:, ib] += np.cross(B, f_b)
+        M[:, ib] += m_b
         F[:, ia] -= f_b
-        M[:, ia] -= np.cross(A, f_b)
+        M[:, ia] -= m_a
     return F, M, o, joint_axes(model, R)
+
+
+def _spring_load(model: RevoluteChain, s, R, o):
+    """One spring's pull on its body b (N), (N, 3), its moment about the base origin (N m), and
+    the moment of the opposite pull on body a, with the bodies' indices: (ia, ib, f_b, m_b, m_a).
+    Remembered for the frames :func:`~springlab.model.revolute.body_frames` keeps (read-only, at most
+    :data:`~springlab.model.revolute.FRAMES_CACHED_POSES` poses),
+    the last :data:`SPRING_LOADS_KEPT`, keyed by the frames and the spring (its every field)."""
+    key = (id(R), s) if not R.flags.writeable and R.shape[0] <= FRAMES_CACHED_POSES else None
+    with _SPRING_LOADS_LOCK:
+        kept = _SPRING_LOADS.get(key) if key is not None else None
+        if kept is not None and kept[0] is R:  # R itself kept with the entry: its id is not reused meanwhile
+            _SPRING_LOADS.move_to_end(key)
+            return kept[1]
+    A, B, length, ia, ib = _spring_ends(model, s, R, o)  # A: where the pull on body a acts (T over a pulley)
+    d = B - A
+    l0 = s.effective_free_length
+    chord = np.linalg.norm(d, axis=1) if (l0 or s.pulley_radius) else None
+    if chord is not None and np.any(chord == 0):
+        p = int(np.argmax(chord == 0))
+        raise GeometryError(f"{s.label}'s ends coincide at pose {p}: a spring of effective free length {l0:g} m "
+                            "has no line of action there; move its attachments or leave that pose out")
+    # the tension k (l - l0) along the line from B to A (or T), l the length (the cable's path)
+    k_eff = np.full(R.shape[0], s.k) if chord is None else s.k * (length - l0) / chord
+    f_b = -k_eff[:, None] * d  # the spring pulls B towards A
+    out = (ia, ib, f_b, np.cross(B, f_b), np.cross(A, f_b))
+    if key is not None:
+        with _SPRING_LOADS_LOCK:
+            _SPRING_LOADS[key] = (R, out)
+            while len(_SPRING_LOADS) > SPRING_LOADS_KEPT:
+                _SPRING_LOADS.popitem(last=False)
+    return out
+
+
+SPRING_LOADS_KEPT = 64
+"""How many springs' loads ``_loads`` remembers (the most recently used; a few MB for 2,000 poses)."""
+_SPRING_LOADS: OrderedDict = OrderedDict()
+_SPRING_LOADS_LOCK = threading.Lock()
 
 
 def joint_torques(model: RevoluteChain, springs, q, *, gravity: bool = True) -> np.ndarray:

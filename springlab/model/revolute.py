@@ -25,6 +25,8 @@ and route 3 (:func:`springlab.energy.simulation.joint_torques`) take this model 
 
 from __future__ import annotations
 
+import threading
+from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -250,10 +252,20 @@ def body_frames(model: RevoluteChain, q) -> tuple[np.ndarray, np.ndarray]:
     (N, n+1, 3) (m); body 0 (the base) is the identity at the origin.
 
     T_i = T_{i-1} @ placement_i @ Rot(axis_i, q_i) (see the module docstring).
+
+    The arrays are read-only: the last few results are kept (:data:`FRAMES_KEPT`, for at most
+    :data:`FRAMES_CACHED_POSES` poses each) and given again for the same model and angles, as a
+    search asks for the torques of one set of poses thousands of times with other springs.
     """
     _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
     q = model.check_q(q)
     N, n = q.shape
+    key = (id(model), q.shape, q.tobytes()) if N <= FRAMES_CACHED_POSES else None
+    with _FRAMES_LOCK:
+        kept = _FRAMES.get(key) if key is not None else None
+        if kept is not None and kept[0] is model:  # the model itself kept alive with its frames: an id is not reused
+            _FRAMES.move_to_end(key)
+            return kept[1], kept[2]
     R = np.empty((N, n + 1, 3, 3))
     o = np.empty((N, n + 1, 3))
     R[:, 0], o[:, 0] = np.eye(3), 0.0
@@ -261,7 +273,23 @@ def body_frames(model: RevoluteChain, q) -> tuple[np.ndarray, np.ndarray]:
         P = model.placements[i - 1]
         o[:, i] = o[:, i - 1] + R[:, i - 1] @ P[:3, 3]
         R[:, i] = (R[:, i - 1] @ P[:3, :3]) @ rot_axis(model.axes[i - 1], q[:, i - 1])
+    R.setflags(write=False)
+    o.setflags(write=False)
+    if key is not None:
+        with _FRAMES_LOCK:
+            _FRAMES[key] = (model, R, o)
+            while len(_FRAMES) > FRAMES_KEPT:
+                _FRAMES.popitem(last=False)
     return R, o
+
+
+FRAMES_KEPT = 8
+"""How many results :func:`body_frames` keeps (the most recently used)."""
+FRAMES_CACHED_POSES = 10_000
+"""The most poses a kept result of :func:`body_frames` may hold (about 1.7 MB per thousand poses of a
+seven-joint arm); more are computed each time."""
+_FRAMES: OrderedDict = OrderedDict()
+_FRAMES_LOCK = threading.Lock()
 
 
 def world_points(R: np.ndarray, o: np.ndarray, body: int, point) -> np.ndarray:

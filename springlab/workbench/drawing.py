@@ -495,7 +495,7 @@ def tight(fig, **layout) -> None:
     the first pass cannot see (its labels may then reach a legend below the panels)."""
     for _ in range(2):
         fig.tight_layout(**layout)
-        fig.canvas.draw()
+        fig.draw_without_rendering()  # the boxes settle at a draw; no pixels are needed for it
 
 
 def scenes_figure(panels: dict, *, view: str = "front", columns: int = 2, title: str = ""):

@@ -139,7 +139,7 @@ def clear_legend(ax, *, fallback: str = "right", pad: float = 5.0, **legend_kw):
     them, under the x label (``"below"``). Call it once the axes have their final size (after
     ``tight_layout``). Returns the legend."""
     fig = ax.figure
-    fig.canvas.draw()
+    fig.draw_without_rendering()  # the axes' final boxes, without rasterising
     renderer = fig.canvas.get_renderer()
     inside = ax.get_window_extent(renderer)
     tops = np.linspace(1.0, 0.0, 41)

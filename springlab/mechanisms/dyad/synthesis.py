@@ -159,30 +159,30 @@ def optimise(comp: Compensator, phi, start: Dyad, *, free_l0: bool = False,
         l0 = x[3] if free_l0 else comp.l0
         return Dyad(x[0], x[1], x[2]), Compensator(comp.G, comp.s, comp.k, l0)
 
-    def moments(x, angles):
-        d, c = unpack(x)
-        u = angles - d.beta
-        closing = np.maximum(d.l**2 - (d.r * np.sin(u)) ** 2, 1e-12)
-        y = d.r * np.cos(u) + np.sqrt(closing)
-        return c.gravity_moment(angles) + c.k * (y - c.l0) * d.r * np.sin(u) * y / np.sqrt(closing)
+    def moments(x, angles):  # the fields of unpack(x) read straight from x: this runs tens of thousands of times
+        r, rod, beta, l0 = x[0], x[1], x[2], (x[3] if free_l0 else comp.l0)
+        u = angles - beta
+        closing = np.maximum(rod**2 - (r * np.sin(u)) ** 2, 1e-12)
+        y = r * np.cos(u) + np.sqrt(closing)
+        return comp.G * comp.s * np.sin(angles) + comp.k * (y - l0) * r * np.sin(u) * y / np.sqrt(closing)
 
     def moments_jacobian(x, angles):
         """d M_ub / d (r, l, beta[, l0]) at each angle, (P, 3 or 4): ``moments`` differentiated
         term by term (the closing term's derivative is zero where it is clamped)."""
-        d, c = unpack(x)
-        u = angles - d.beta
+        r, rod, beta, l0, k = x[0], x[1], x[2], (x[3] if free_l0 else comp.l0), comp.k
+        u = angles - beta
         sin_u, cos_u, zero, one = np.sin(u), np.cos(u), np.zeros_like(u), np.ones_like(u)
-        raw = d.l**2 - (d.r * sin_u) ** 2
+        raw = rod**2 - (r * sin_u) ** 2
         q = np.sqrt(np.maximum(raw, 1e-12))  # l cos(theta)
-        y = d.r * cos_u + q
-        f = (y - c.l0) * y
-        dq = (raw > 1e-12) * np.stack([-d.r * sin_u**2 / q, d.l / q, d.r**2 * sin_u * cos_u / q])
-        dy = dq + np.stack([cos_u, zero, d.r * sin_u])
+        y = r * cos_u + q
+        f = (y - l0) * y
+        dq = (raw > 1e-12) * np.stack([-r * sin_u**2 / q, rod / q, r**2 * sin_u * cos_u / q])
+        dy = dq + np.stack([cos_u, zero, r * sin_u])
         dr, dsin = np.stack([one, zero, zero]), np.stack([zero, zero, -cos_u])  # d r, d sin(u) / d (r, l, beta)
-        out = c.k * (dr * sin_u * f / q + d.r * dsin * f / q + d.r * sin_u * (2 * y - c.l0) * dy / q
-                     - d.r * sin_u * f * dq / q**2)
+        out = k * (dr * sin_u * f / q + r * dsin * f / q + r * sin_u * (2 * y - l0) * dy / q
+                   - r * sin_u * f * dq / q**2)
         if free_l0:
-            out = np.vstack([out, -c.k * d.r * sin_u * y / q])
+            out = np.vstack([out, -k * r * sin_u * y / q])
         return out.T
 
     def closes(x, angles):  # l > r |sin(phi - beta)|: the dyad closes
