@@ -75,6 +75,48 @@ def test_torques_are_the_energy_gradient():
     np.testing.assert_allclose(torques, fd, rtol=0, atol=1e-6)  # central difference: O(h^2) and round-off / h
 
 
+def _forget_kept():
+    from springlab.energy import geometry as g
+    from springlab.model import revolute
+
+    revolute._FRAMES.clear()
+    g._SPRING_LOADS.clear()
+
+
+def test_kept_frames_are_given_again_only_for_the_same_model_and_angles():
+    model, other = load_robot("Panda"), load_robot("Panda", payload=1.0)
+    q = model.random_q(50, 3)
+    R, o = body_frames(model, q)
+    again = body_frames(model, q.copy())
+    assert again[0] is R and again[1] is o  # the same angles: the kept arrays
+    with pytest.raises(ValueError):
+        R[0, 1, 0, 0] = 1.0  # kept arrays are read-only: no caller can change what the next one gets
+    moved = q.copy()
+    moved[7, 2] += 1e-9
+    R_moved, _ = body_frames(model, moved)
+    assert R_moved is not R and not np.array_equal(R_moved[7], R[7])  # other angles: computed afresh
+    assert body_frames(other, q)[0] is not R  # another model with the same angles: its own frames
+    _forget_kept()
+    fresh, _ = body_frames(model, q)
+    assert fresh is not R and np.array_equal(fresh, R)
+
+
+def test_remembered_spring_loads_give_the_same_torques_and_follow_each_field():
+    model = load_robot("Panda")
+    springs = _panda_springs()
+    q = model.random_q(40, 5)
+    _forget_kept()
+    first = geometry.joint_torques(model, springs, q)
+    assert np.array_equal(geometry.joint_torques(model, springs, q), first)  # remembered: the same sums, bit for bit
+    stiffer = springs[:2] + [PointSpring(springs[2].link_a, springs[2].point_a, springs[2].link_b, springs[2].point_b,
+                                          k=springs[2].k * (1 + 1e-12))]
+    moved = geometry.joint_torques(model, stiffer, q)
+    assert not np.array_equal(moved, first)  # one field changed by 1e-12: recomputed, not the remembered load
+    _forget_kept()
+    np.testing.assert_array_equal(geometry.joint_torques(model, stiffer, q), moved)  # nothing kept: the same
+    np.testing.assert_array_equal(geometry.joint_torques(model, springs, q), first)
+
+
 def test_exudyn_holds_what_route_2_computes():
     model = load_robot("Panda")
     springs = _panda_springs()
