@@ -38,6 +38,7 @@ EARLIER = {  # s per notebook: (commit 0abe5ae, one after another, papermill's c
 BEFORE = "cf00226"
 """The last commit before the book (52.6-57.4 s cold on this machine; c73f122, before the round of speed-ups,
 73-76 s), run again here so that before and after share a machine and a day."""
+TARGET_COLD, TARGET_WARM = 45, 2  # s: the targets of the issue on reproducible figures (a fresh clone, then nothing changed)
 EARLIER_COLD = (430, 440)  # s, the whole of `make figures` from a fresh clone
 EARLIER_WARM = (430, 0.6)  # s, again with nothing changed (0abe5ae had no cache: it ran everything again)
 
@@ -104,12 +105,13 @@ def main(argv=None) -> None:
     label = (args.before or "before")[:8]
     print(f"  {'notebook (s)':<{width}}  {'0abe5ae':>8}  {'4d58831':>8}  {label:>8}  {'now':>8}")
     fmt = lambda x: f"{x:8.1f}" if x is not None else f"{'-':>8}"  # noqa: E731
-    for name, (first, second) in EARLIER.items():
-        print(f"  {name:<{width}}  {first:8.0f}  {second:8.0f}  {fmt(per_before.get(name))}  {fmt(per.get(name))}")
+    for name in sorted(set(EARLIER) | set(per) | set(per_before)):  # a notebook newer than the earlier commits: '-'
+        first, second = EARLIER.get(name, (None, None))
+        print(f"  {name:<{width}}  {fmt(first)}  {fmt(second)}  {fmt(per_before.get(name))}  {fmt(per.get(name))}")
     print(f"  {'make figures, cold (fresh clone)':<{width}}  {EARLIER_COLD[0]:8.0f}  {EARLIER_COLD[1]:8.0f}  "
-          f"{fmt(before)}  {fmt(cold)}   (target 60)")
+          f"{fmt(before)}  {fmt(cold)}   (target {TARGET_COLD:g})")
     print(f"  {'make figures, warm (nothing changed)':<{width}}  {EARLIER_WARM[0]:8.0f}  {EARLIER_WARM[1]:8.1f}  "
-          f"{'':>8}  {fmt(warm)}   (target 5)")
+          f"{'':>8}  {fmt(warm)}   (target {TARGET_WARM:g})")
     print(f"  git status after both runs of HEAD: {clean}")
 
 
