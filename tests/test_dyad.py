@@ -99,6 +99,15 @@ def test_optimiser_beats_the_start_and_respects_bounds():
     assert 0.0 <= free.parameters["l0"] <= 3.0
 
 
+def test_the_optimiser_refuses_bounds_that_allow_no_dyad():
+    grid = np.radians(np.linspace(30, 150, 121))
+    start = dy.Dyad(0.125, 0.502, np.radians(0.08))
+    for name, bound in (("r", (-0.5, 1.0)), ("l", (0.0, 2.0)), ("r", (float("nan"), 1.0))):
+        with pytest.raises(SpringlabError, match=rf"bounds\['{name}'\].*lower bound above 0"):
+            dysyn.optimise(COMP, grid, start, bounds={name: bound})
+    assert dysyn.optimise(COMP, grid, start, bounds={"r": (0.05, 1.0)}).parameters["r"] >= 0.05  # the control
+
+
 def test_the_exchange_of_angles_finds_the_minimax_of_the_whole_grid():
     """optimise constrains only the angles that matter; the epigraph over every angle of the grid
     (SLSQP with finite differences, the textbook form) reaches the same largest |M_ub|, and no

@@ -76,11 +76,9 @@ def test_torques_are_the_energy_gradient():
 
 
 def _forget_kept():
-    from springlab.energy import geometry as g
     from springlab.model import revolute
 
-    revolute._FRAMES.clear()
-    g._SPRING_LOADS.clear()
+    revolute._forget_kept()
 
 
 def test_kept_frames_are_given_again_only_for_the_same_model_and_angles():
@@ -115,6 +113,26 @@ def test_remembered_spring_loads_give_the_same_torques_and_follow_each_field():
     _forget_kept()
     np.testing.assert_array_equal(geometry.joint_torques(model, stiffer, q), moved)  # nothing kept: the same
     np.testing.assert_array_equal(geometry.joint_torques(model, springs, q), first)
+
+
+def test_what_is_remembered_goes_with_its_frames():
+    from springlab.model import revolute
+
+    model = load_robot("Panda")
+    _forget_kept()
+    springs = _panda_springs()
+    for seed in range(revolute.FRAMES_KEPT + 4):  # more pose sets than are kept, each with many springs
+        q = model.random_q(30, seed)
+        for k in range(revolute.RESULTS_KEPT + 5):
+            geometry.joint_torques(model, [PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k=s.k + k)
+                                           for s in springs], q)
+    kept = list(revolute._FRAMES.values())
+    assert len(kept) == revolute.FRAMES_KEPT
+    assert sorted(revolute._BY_ROTATIONS) == sorted(id(entry.R) for entry in kept)  # the dropped frames' results went too
+    assert all(len(entry.results) == revolute.RESULTS_KEPT for entry in kept)
+    big = model.random_q(revolute.FRAMES_CACHED_POSES + 1, 1)
+    R, _ = body_frames(model, big)
+    assert body_frames(model, big)[0] is not R and id(R) not in revolute._BY_ROTATIONS  # too many poses: not kept
 
 
 def test_exudyn_holds_what_route_2_computes():

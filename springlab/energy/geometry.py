@@ -14,21 +14,18 @@ Large batches are processed in chunks, so memory stays bounded.
 
 from __future__ import annotations
 
-import threading
-from collections import OrderedDict
-
 import numpy as np
 
 from springlab import _checks
 from springlab.errors import GeometryError, SpringlabError
 from springlab.model.chain import UP, Chain
 from springlab.model.revolute import (
-    FRAMES_CACHED_POSES,
     RevoluteChain,
     body_frames,
     centres_of_mass,
     check_point_springs,
     joint_axes,
+    remembered,
     world_points,
 )
 from springlab.model.springs import Spring, check_springs
@@ -306,15 +303,12 @@ def _loads(model: RevoluteChain, springs, q, *, gravity: bool = True):
 def _spring_load(model: RevoluteChain, s, R, o):
     """One spring's pull on its body b (N), (N, 3), its moment about the base origin (N m), and
     the moment of the opposite pull on body a, with the bodies' indices: (ia, ib, f_b, m_b, m_a).
-    Remembered for the frames :func:`~springlab.model.revolute.body_frames` keeps (read-only, at most
-    :data:`~springlab.model.revolute.FRAMES_CACHED_POSES` poses),
-    the last :data:`SPRING_LOADS_KEPT`, keyed by the frames and the spring (its every field)."""
-    key = (id(R), s) if not R.flags.writeable and R.shape[0] <= FRAMES_CACHED_POSES else None
-    with _SPRING_LOADS_LOCK:
-        kept = _SPRING_LOADS.get(key) if key is not None else None
-        if kept is not None and kept[0] is R:  # R itself kept with the entry: its id is not reused meanwhile
-            _SPRING_LOADS.move_to_end(key)
-            return kept[1]
+    Remembered with the frames :func:`~springlab.model.revolute.body_frames` keeps
+    (:func:`~springlab.model.revolute.remembered`), keyed by the spring (its every field)."""
+    return remembered(R, ("spring load", s), lambda: _spring_load_now(model, s, R, o))
+
+
+def _spring_load_now(model: RevoluteChain, s, R, o):
     A, B, length, ia, ib = _spring_ends(model, s, R, o)  # A: where the pull on body a acts (T over a pulley)
     d = B - A
     l0 = s.effective_free_length
@@ -326,19 +320,7 @@ def _spring_load(model: RevoluteChain, s, R, o):
     # the tension k (l - l0) along the line from B to A (or T), l the length (the cable's path)
     k_eff = np.full(R.shape[0], s.k) if chord is None else s.k * (length - l0) / chord
     f_b = -k_eff[:, None] * d  # the spring pulls B towards A
-    out = (ia, ib, f_b, np.cross(B, f_b), np.cross(A, f_b))
-    if key is not None:
-        with _SPRING_LOADS_LOCK:
-            _SPRING_LOADS[key] = (R, out)
-            while len(_SPRING_LOADS) > SPRING_LOADS_KEPT:
-                _SPRING_LOADS.popitem(last=False)
-    return out
-
-
-SPRING_LOADS_KEPT = 64
-"""How many springs' loads ``_loads`` remembers (the most recently used; a few MB for 2,000 poses)."""
-_SPRING_LOADS: OrderedDict = OrderedDict()
-_SPRING_LOADS_LOCK = threading.Lock()
+    return ia, ib, f_b, np.cross(B, f_b), np.cross(A, f_b)
 
 
 def joint_torques(model: RevoluteChain, springs, q, *, gravity: bool = True) -> np.ndarray:

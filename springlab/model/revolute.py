@@ -25,6 +25,7 @@ and route 3 (:func:`springlab.energy.simulation.joint_torques`) take this model 
 
 from __future__ import annotations
 
+import os
 import threading
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
@@ -255,17 +256,18 @@ def body_frames(model: RevoluteChain, q) -> tuple[np.ndarray, np.ndarray]:
 
     The arrays are read-only: the last few results are kept (:data:`FRAMES_KEPT`, for at most
     :data:`FRAMES_CACHED_POSES` poses each) and given again for the same model and angles, as a
-    search asks for the torques of one set of poses thousands of times with other springs.
+    search asks for the torques of one set of poses thousands of times with other springs
+    (:func:`remembered` keeps what is computed from them alongside).
     """
     _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
     q = model.check_q(q)
     N, n = q.shape
     key = (id(model), q.shape, q.tobytes()) if N <= FRAMES_CACHED_POSES else None
-    with _FRAMES_LOCK:
+    with _KEPT_LOCK[0]:
         kept = _FRAMES.get(key) if key is not None else None
-        if kept is not None and kept[0] is model:  # the model itself kept alive with its frames: an id is not reused
+        if kept is not None and kept.model is model:  # the model itself kept alive with its frames: an id is not reused
             _FRAMES.move_to_end(key)
-            return kept[1], kept[2]
+            return kept.R, kept.o
     R = np.empty((N, n + 1, 3, 3))
     o = np.empty((N, n + 1, 3))
     R[:, 0], o[:, 0] = np.eye(3), 0.0
@@ -276,20 +278,61 @@ def body_frames(model: RevoluteChain, q) -> tuple[np.ndarray, np.ndarray]:
     R.setflags(write=False)
     o.setflags(write=False)
     if key is not None:
-        with _FRAMES_LOCK:
-            _FRAMES[key] = (model, R, o)
+        with _KEPT_LOCK[0]:
+            _FRAMES[key] = _Kept(model, R, o, OrderedDict())
+            _BY_ROTATIONS[id(R)] = _FRAMES[key]
             while len(_FRAMES) > FRAMES_KEPT:
-                _FRAMES.popitem(last=False)
+                del _BY_ROTATIONS[id(_FRAMES.popitem(last=False)[1].R)]
     return R, o
+
+
+def remembered(R: np.ndarray, key, compute):
+    """``compute()``, remembered with the frames ``R`` while :func:`body_frames` keeps them (the
+    :data:`RESULTS_KEPT` most recently used per frames, keyed by ``key``, which must name everything
+    ``compute`` reads besides the frames); frames not kept: computed each time. What is kept goes
+    with its frames, so the memory stays bounded (about 30 MB at most for a seven-joint arm)."""
+    with _KEPT_LOCK[0]:
+        kept = _BY_ROTATIONS.get(id(R))
+        if kept is not None and kept.R is R and key in kept.results:
+            kept.results.move_to_end(key)
+            return kept.results[key]
+    value = compute()
+    if kept is not None and kept.R is R:
+        with _KEPT_LOCK[0]:
+            kept.results[key] = value
+            while len(kept.results) > RESULTS_KEPT:
+                kept.results.popitem(last=False)
+    return value
+
+
+def _forget_kept() -> None:
+    """Drop every kept frame and what was remembered with it."""
+    with _KEPT_LOCK[0]:
+        _FRAMES.clear()
+        _BY_ROTATIONS.clear()
+
+
+@dataclass
+class _Kept:
+    model: RevoluteChain
+    R: np.ndarray
+    o: np.ndarray
+    results: OrderedDict
 
 
 FRAMES_KEPT = 8
 """How many results :func:`body_frames` keeps (the most recently used)."""
-FRAMES_CACHED_POSES = 10_000
-"""The most poses a kept result of :func:`body_frames` may hold (about 1.7 MB per thousand poses of a
+FRAMES_CACHED_POSES = 2_000
+"""The most poses a kept result of :func:`body_frames` may hold (0.77 MB per thousand poses of a
 seven-joint arm); more are computed each time."""
+RESULTS_KEPT = 16
+"""How many results :func:`remembered` keeps with each kept set of frames (a spring's loads at 2,000
+poses are 0.14 MB)."""
 _FRAMES: OrderedDict = OrderedDict()
-_FRAMES_LOCK = threading.Lock()
+_BY_ROTATIONS: dict = {}
+_KEPT_LOCK = [threading.Lock()]
+# a process forked while another thread held the lock starts with a fresh one (a pool's workers)
+os.register_at_fork(after_in_child=lambda: _KEPT_LOCK.__setitem__(0, threading.Lock()))
 
 
 def world_points(R: np.ndarray, o: np.ndarray, body: int, point) -> np.ndarray:

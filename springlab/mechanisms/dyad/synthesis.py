@@ -153,6 +153,10 @@ def optimise(comp: Compensator, phi, start: Dyad, *, free_l0: bool = False,
     phi = np.atleast_1d(check_phi(phi))
     b = {"r": (0.01, 1.0), "l": (0.05, 2.0), "beta": (-np.pi / 2, np.pi / 2), "l0": (0.0, 3.0)}
     b.update(bounds or {})
+    for name in ("r", "l"):  # the trial points are not built as a Dyad (which checks them): the bounds must hold it
+        if not (np.isfinite(b[name][0]) and b[name][0] > 0):
+            raise SpringlabError(f"bounds['{name}'] = {b[name]} allows {name} <= 0 m: give a lower bound above 0, "
+                                 f"e.g. {name}: (0.01, 1.0)")
     keys = ["r", "l", "beta"] + (["l0"] if free_l0 else [])
 
     def unpack(x):
