@@ -263,7 +263,7 @@ def body_frames(model: RevoluteChain, q) -> tuple[np.ndarray, np.ndarray]:
     q = model.check_q(q)
     N, n = q.shape
     key = (id(model), q.shape, q.tobytes()) if N <= FRAMES_CACHED_POSES else None
-    with _KEPT_LOCK[0]:
+    with _KEPT_LOCK:
         kept = _FRAMES.get(key) if key is not None else None
         if kept is not None and kept.model is model:  # the model itself kept alive with its frames: an id is not reused
             _FRAMES.move_to_end(key)
@@ -278,7 +278,7 @@ def body_frames(model: RevoluteChain, q) -> tuple[np.ndarray, np.ndarray]:
     R.setflags(write=False)
     o.setflags(write=False)
     if key is not None:
-        with _KEPT_LOCK[0]:
+        with _KEPT_LOCK:
             _FRAMES[key] = _Kept(model, R, o, OrderedDict())
             _BY_ROTATIONS[id(R)] = _FRAMES[key]
             while len(_FRAMES) > FRAMES_KEPT:
@@ -291,14 +291,14 @@ def remembered(R: np.ndarray, key, compute):
     :data:`RESULTS_KEPT` most recently used per frames, keyed by ``key``, which must name everything
     ``compute`` reads besides the frames); frames not kept: computed each time. What is kept goes
     with its frames, so the memory stays bounded (about 30 MB at most for a seven-joint arm)."""
-    with _KEPT_LOCK[0]:
+    with _KEPT_LOCK:
         kept = _BY_ROTATIONS.get(id(R))
         if kept is not None and kept.R is R and key in kept.results:
             kept.results.move_to_end(key)
             return kept.results[key]
     value = compute()
     if kept is not None and kept.R is R:
-        with _KEPT_LOCK[0]:
+        with _KEPT_LOCK:
             kept.results[key] = value
             while len(kept.results) > RESULTS_KEPT:
                 kept.results.popitem(last=False)
@@ -307,7 +307,7 @@ def remembered(R: np.ndarray, key, compute):
 
 def _forget_kept() -> None:
     """Drop every kept frame and what was remembered with it."""
-    with _KEPT_LOCK[0]:
+    with _KEPT_LOCK:
         _FRAMES.clear()
         _BY_ROTATIONS.clear()
 
@@ -330,9 +330,16 @@ RESULTS_KEPT = 16
 poses are 0.14 MB)."""
 _FRAMES: OrderedDict = OrderedDict()
 _BY_ROTATIONS: dict = {}
-_KEPT_LOCK = [threading.Lock()]
-# a process forked while another thread held the lock starts with a fresh one (a pool's workers)
-os.register_at_fork(after_in_child=lambda: _KEPT_LOCK.__setitem__(0, threading.Lock()))
+_KEPT_LOCK = threading.Lock()
+
+
+def _new_lock_after_fork() -> None:
+    """A process forked while another thread held the lock starts with a fresh one (a pool's workers)."""
+    global _KEPT_LOCK
+    _KEPT_LOCK = threading.Lock()
+
+
+os.register_at_fork(after_in_child=_new_lock_after_fork)
 
 
 def world_points(R: np.ndarray, o: np.ndarray, body: int, point) -> np.ndarray:
