@@ -445,7 +445,7 @@ CLEARANCE_POSES = 100
 """The most workspace poses the clearance is measured at (a mesh's hull has thousands of faces)."""
 
 
-def clearance(model: RevoluteChain, springs, q) -> Table:
+def clearance(model: RevoluteChain, springs, q, *, names=None) -> Table:
     """Each spring's clearance from the bodies it is not attached to, over the poses ``q`` (the first
     :data:`CLEARANCE_POSES`): the
     nearest body and the smallest distance (mm) from the spring's straight run (A to B, or from its
@@ -453,8 +453,8 @@ def clearance(model: RevoluteChain, springs, q) -> Table:
     spring passes through it. Measured as the largest signed distance to the hull's face planes at
     :data:`CLEARANCE_SAMPLES` points along the run, less half their spacing: a lower bound (the
     distance is 1-Lipschitz along the run, and the face planes' distance never exceeds the hull's).
-    Bodies without an outline are not checked (named in the table). Springs are numbered S1, S2, ...
-    in the order given, as the sheet and the payload dial number them."""
+    Bodies without an outline are not checked (named in the table). Springs are named ``names``, by
+    default S1, S2, ... in the order given."""
     from scipy.spatial import ConvexHull, QhullError
 
     from springlab.energy.geometry import spring_lines
@@ -469,7 +469,8 @@ def clearance(model: RevoluteChain, springs, q) -> Table:
             planes[b] = None
     t = np.linspace(0.0, 1.0, CLEARANCE_SAMPLES)
     rows = []
-    for n, (s, (P, B, a, b)) in enumerate(zip(springs, spring_lines(model, springs, q), strict=True), start=1):
+    names = names or [f"S{n}" for n in range(1, len(springs) + 1)]
+    for n, s, (P, B, a, b) in zip(names, springs, spring_lines(model, springs, q), strict=True):
         pts = P[:, None] + t[None, :, None] * (B - P)[:, None]  # (N, K, 3)
         half = 0.5 * np.max(np.linalg.norm(B - P, axis=1)) / (CLEARANCE_SAMPLES - 1)
         best, nearest = np.inf, None
@@ -482,7 +483,7 @@ def clearance(model: RevoluteChain, springs, q) -> Table:
             if value < best:
                 best, nearest = value, model.bodies[c]
         unchecked = [model.bodies[c] for c, eq in planes.items() if eq is None and c not in (a, b)]
-        rows.append((f"S{n} ({s.label})", nearest or "", f"{1e3 * best:.1f}" if nearest else "", "yes" if best < 0 else "no",
+        rows.append((f"{n} ({s.label})", nearest or "", f"{1e3 * best:.1f}" if nearest else "", "yes" if best < 0 else "no",
                      ", ".join(unchecked)))
     return Table(["spring", "nearest body", "smallest clearance (mm)", "passes through it", "bodies not checked"], rows)
 
@@ -682,17 +683,18 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
     dropped = 0
     if ratio <= target and which:  # springs the target does without, added before the last ones: dropped
         ratio, x, which, dropped = _pruned(x, which, F, g, N, n, target)
-    steps = ", ".join(f"{k + 1}: {100 * (1 - h):.1f} %" for k, h in enumerate(history))
+    steps = ("after each spring the greedy search added, the share of the worst joint's scale removed: "
+             + ", ".join(f"{k + 1} spring{'s' if k else ''} {100 * (1 - h):.1f} %" for k, h in enumerate(history)))
     if not history:
         note = f"no spring: gravity alone stays within {target:g} of every joint's scale"
     elif ratio <= target:
         note = (f"{len(which)} springs, the fewest the greedy search ({how}) needed to hold every joint within "
-                f"{target:g} of its scale ({steps} of the worst joint's scale removed"
+                f"{target:g} of its scale ({steps}"
                 + (f"; {dropped} of the springs it added then dropped, the target holding without them)" if dropped
                    else ")"))
     else:
         note = (f"the target ({target:g} of each joint's scale) was not reached with max_springs = {max_springs} "
-                f"springs ({steps} removed, {how}): the search stopped there; more springs (best_springs' "
+                f"springs ({steps}; {how}): the search stopped there; more springs (best_springs' "
                 "max_springs) or larger reaches (--reach) may do better")
     out = tuple(PointSpring(model.bodies[pairs[p][0]], tuple(x[7 * s + 1:7 * s + 4]), model.bodies[pairs[p][1]],
                             tuple(x[7 * s + 4:7 * s + 7]), float(x[7 * s])) for s, p in enumerate(which) if x[7 * s] > 0)
@@ -890,8 +892,13 @@ class ArmDesign:
     :ivar kinds: per realised spring, how ('zero-length spring' or 'cable over a pulley')
     :ivar coils: per realised spring, its coil (:class:`~springlab.design.buildable.ExtensionSpring`) and the
         range (m) of the distance between its ends over the workspace
-    :ivar q: the workspace poses the design is checked on (N, n) rad, not those it was fitted on
+    :ivar q: the workspace poses the design is checked on (N, n) rad, not those it was fitted on: random
+        poses, then the worst poses an independent denser sample found (:class:`Audit`)
     :ivar notes: what was assumed and found
+    :ivar origins: per realised spring, the index of the ideal spring it realises (a spring too strong
+        for one wire is realised by two or three side by side)
+    :ivar changes: per realised spring, what the realisation changed of its ideal spring, and why
+    :ivar audit: the independent sample the peaks were re-checked on (:class:`Audit`), or None
     """
 
     model: RevoluteChain
@@ -903,6 +910,24 @@ class ArmDesign:
     coils: tuple
     q: np.ndarray
     notes: tuple
+    origins: tuple = ()
+    changes: tuple = ()
+    audit: Audit | None = None
+
+    @property
+    def names(self) -> tuple:
+        """The ideal springs' names: S1, S2, ..., in order."""
+        return tuple(f"S{i}" for i in range(1, len(self.ideal) + 1))
+
+    @property
+    def realised_names(self) -> tuple:
+        """Each realised spring named after the ideal spring it realises (S3; S3a, S3b side by side)."""
+        origins = self.origins or tuple(range(len(self.realised)))
+        out = []
+        for m, i in enumerate(origins):
+            count = origins.count(i)
+            out.append(f"S{i + 1}" + ("" if count == 1 else "abc"[origins[:m].count(i)]))
+        return tuple(out)
 
     def table(self) -> Table:
         """Per joint: peak and RMS torque (N m) of gravity alone, with the ideal and with the realised
@@ -918,13 +943,13 @@ class ArmDesign:
         mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
         if which == "ideal":
             return Table(["spring", "link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)"],
-                         [(f"S{n}", s.link_a, mm(s.point_a), s.link_b, mm(s.point_b), f"{s.k:.4g}")
-                          for n, s in enumerate(self.ideal, start=1)])
+                         [(name, s.link_a, mm(s.point_a), s.link_b, mm(s.point_b), f"{s.k:.4g}")
+                          for name, s in zip(self.names, self.ideal, strict=True)])
         rows = []
-        for n, (r, kind, (coil, _)) in enumerate(zip(self.realised, self.kinds, self.coils, strict=True), start=1):
+        for n, r, kind, (coil, _) in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
             pulley = (f"{1e3 * r.pulley_radius:g}, lead ({', '.join(f'{v + 0.0:.2f}' for v in r.lead)})"
                       if r.pulley_radius > 0 else "")
-            rows.append((f"S{n}", r.link_a, mm(r.point_a), r.link_b, mm(r.point_b), f"{r.k:.4g}", kind, pulley,
+            rows.append((n, r.link_a, mm(r.point_a), r.link_b, mm(r.point_b), f"{r.k:.4g}", kind, pulley,
                          f"{1e3 * coil.free_length:.1f}", f"{1e3 * coil.max_length:.1f}", f"{coil.initial_tension:.3g}",
                          f"{1e3 * coil.wire:.2g}"))
         return Table(["spring", "link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)", "realised as",
@@ -941,9 +966,9 @@ class ArmDesign:
 
         mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
         rows = []
-        for n, (r, kind, (coil, _)) in enumerate(zip(self.realised, self.kinds, self.coils, strict=True), start=1):
+        for n, r, kind, (coil, _) in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
             cable = kind.startswith("cable")
-            rows.append((f"S{n}", f"{r.link_a} {mm(r.point_a)}", f"{r.link_b} {mm(r.point_b)}", kind, *coil_cells(coil),
+            rows.append((n, f"{r.link_a} {mm(r.point_a)}", f"{r.link_b} {mm(r.point_b)}", kind, *coil_cells(coil),
                          f"{1e3 * (coil.free_length - r.free_length):.1f}" if cable else "",
                          f"{1e3 * r.pulley_radius:g}" if r.pulley_radius > 0 else "",
                          "(" + ", ".join(f"{v + 0.0:.2f}" for v in r.lead) + ")" if r.pulley_radius > 0 else "",
@@ -992,7 +1017,47 @@ class ArmDesign:
 
     def clearance_table(self) -> Table:
         """The realised springs' clearance from the bodies over the workspace (:func:`clearance`)."""
-        return clearance(self.model, self.realised, self.q)
+        return clearance(self.model, self.realised, self.q, names=self.realised_names)
+
+    def changes_table(self) -> Table:
+        """Per realised spring: the ideal spring it realises and what the realisation changed, and why."""
+        return Table(["realised", "realises", "what changed"],
+                     [(n, f"S{i + 1}", why) for n, i, why in zip(self.realised_names, self.origins, self.changes,
+                                                                  strict=True)])
+
+    def flags(self, factor: float = 0.9) -> tuple:
+        """What makes this design fail its own checks, in words (empty: it passes): the ideal springs
+        leaving no less than their negative control (every rate times ``factor``), or any joint left with
+        more holding torque by the ideal or the realised springs than by gravity alone (above round-off:
+        1e-9 of the arm's largest gravity torque)."""
+        out = []
+        designed, control = self.control(factor)
+        if self.ideal and _sig(control) <= _sig(designed):
+            out.append(f"the springs leave {designed:.3g} N m at worst, no less than their negative control (every rate "
+                       f"x {factor:g}) leaves, {control:.3g} N m: they do not balance this arm")
+        for case, count, pose, why in (self.audit.undefined if self.audit else ()):
+            where = (f"at {count} of the {self.audit.samples:,} poses of the independent check" if count else
+                     "at a pose of the workspace the independent check's local search reached")
+            if case == "realised":
+                number = int(why.split()[1])
+                why = why.replace(f"spring {number}", self.realised_names[number - 1], 1)
+            else:
+                why = why.replace("spring ", "S", 1)
+            out.append(f"the {case} springs have no line of action {where} ({why}; "
+                       f"at {np.round(np.degrees(pose), 1).tolist()} deg): they cannot be built as drawn")
+        gravity = np.max(np.abs(gravity_torques(self.model, self.q)), axis=0)
+        floor = 1e-9 * max(float(np.max(gravity)), 1e-300)
+        for which in ("ideal", "realised"):
+            springs = getattr(self, which)
+            if not springs:
+                continue
+            left = np.max(np.abs(joint_torques(self.model, springs, self.q)), axis=0)
+            for i in np.flatnonzero(left > gravity * (1 + 1e-9) + floor):
+                more = (f"{100 * (left[i] / gravity[i] - 1):.0f} % more than gravity alone, {gravity[i]:.3g} N m"
+                        if gravity[i] > floor else "where gravity alone needs none")
+                out.append(f"joint {self.model.joints[i]}: the {which} springs leave {left[i]:.3g} N m at worst, {more} "
+                           f"({100 * left[i] / np.max(gravity):.2g} % of the arm's largest gravity torque)")
+        return tuple(out)
 
     def control(self, factor: float = 0.9) -> tuple[float, float]:
         """The negative control: the largest holding torque (N m, over joints and the workspace poses)
@@ -1027,12 +1092,21 @@ class ArmDesign:
                 row[f"{case}_peak_Nm"] = float(np.max(np.abs(tau[:, i])))
                 row[f"{case}_rms_Nm"] = float(np.sqrt(np.mean(tau[:, i] ** 2)))
             rows.append(row)
-        return {"arm": self.model.name, "method": self.method, "joints": list(self.model.joints),
+        flags = self.flags()
+        origins = self.origins or tuple(range(len(self.realised)))
+        changes = self.changes or ("",) * len(self.realised)
+        return {"arm": self.model.name, "method": self.method,
+                "status": {"verdict": "flagged" if flags else "passed", "flags": list(flags)},
+                "joints": list(self.model.joints),
                 "loaded_joints": [self.model.joints[i] for i in self.structure.loaded],
                 "structure": self.structure.why, "poses_checked": int(self.q.shape[0]),
-                "ideal": [s.as_dict() for s in self.ideal],
-                "realised": [s.as_dict() | _coil_fields(kind, coil, span)
-                             for s, kind, (coil, span) in zip(self.realised, self.kinds, self.coils, strict=True)],
+                "audit": None if self.audit is None else self.audit.as_dict(),
+                "ideal": [{"name": name} | s.as_dict() for name, s in zip(self.names, self.ideal, strict=True)],
+                "realised": [{"name": name, "realises": f"S{i + 1}", "changed": why} | s.as_dict()
+                             | _coil_fields(kind, coil, span)
+                             for name, i, why, s, kind, (coil, span) in zip(
+                                 self.realised_names, origins, changes, self.realised, self.kinds, self.coils,
+                                 strict=True)],
                 "torques": rows, "notes": list(self.notes)}
 
 
@@ -1068,8 +1142,18 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
     largest holding torque down again (sequential linear programmes, as the best springs are polished).
     The zero-length springs stay as designed.
 
+    A re-balanced spring whose rate falls below :data:`DROP_RATE` of its designed rate carries next to
+    nothing and is left out (its kind says so, as for a spring no wire realises).
+
     :raises SpringlabError: naming the spring when neither realisation fits
     """
+    return _realise(model, springs, q, material=material, pulley_radius=pulley_radius, reach=reach, fit=fit,
+                    max_stiffness=max_stiffness)[:3]
+
+
+def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach, fit, max_stiffness):
+    """:func:`realise_springs`, with a fourth tuple: per realised spring, the index of the ideal
+    spring it realises."""
     from springlab.design.buildable import cable_spring, zero_length_spring
 
     q = model.check_q(q)
@@ -1112,13 +1196,21 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
                 built[i], swapped = led[i], True
         if swapped and _sig(_worst(model, built, fit, scale)) > _sig(_worst(model, led, fit, scale)):
             built = list(led)  # the others were re-balanced around the springs put back: the leads alone do better
-    out, names, coils = [], [], []
+    out, names, coils, origins = [], [], [], []
     for i, s in enumerate(built):
         kind, coil, detail = kinds[i]
+        origins.append(i)
         if kind == "zero-length spring":
             out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, coil.free_length, s.k * coil.free_length))
             names.append(kind)
             coils.append((coil, detail))
+            continue
+        if s.k < DROP_RATE * springs[i].k:
+            names.append(f"not realised: spring S{i + 1} ({s.label}): the re-balance over the pulleys took its rate "
+                         f"from {springs[i].k:.4g} to {s.k:.3g} N/m ({100 * s.k / springs[i].k:.2g} % of it), so it "
+                         "carries next to nothing and is left out")
+            out.append(None)
+            coils.append(None)
             continue
         lengths = _length_range(model, s, R, o)
         coil, why_cable = cable_spring(s.k, lengths, material)
@@ -1127,25 +1219,31 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
             parallel += 1
             coil, _ = cable_spring(s.k / parallel, lengths, material)
         if coil is None:
-            names.append(f"not realised: spring {s.label} (k = {s.k:.4g} N/m): no zero-length spring ({detail}) and no "
-                         f"cable spring ({why_cable}), nor {MAX_PARALLEL} side by side")
+            names.append(f"not realised: spring S{i + 1} ({s.label}, k = {s.k:.4g} N/m): no zero-length spring "
+                         f"({detail}) and no cable spring ({why_cable}), nor {MAX_PARALLEL} side by side")
             out.append(None)
             coils.append(None)
             continue
         k = s.k / parallel
         for m in range(parallel):
+            if m:
+                origins.append(i)
             out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, coil.initial_tension / k,
                                    coil.initial_tension, s.pulley_radius, s.lead))
             names.append("cable over a pulley" + (f" ({m + 1} of {parallel} side by side)" if parallel > 1 else "")
                          + (" (a point pulley: its ends come within twice the pulley's radius)" if i in near else ""))
             coils.append((coil, lengths))
-    return tuple(out), tuple(names), tuple(coils)
+    return tuple(out), tuple(names), tuple(coils), tuple(origins)
 
 
 REBALANCE = 0.1
 """Where the realised springs over their pulleys, leads chosen, leave more than this fraction of a
 joint's scale (its own peak gravity torque, or for a light joint ten times what the ideal springs leave
 on it) on the fitting poses, their rates and ends are re-balanced too."""
+
+DROP_RATE = 0.01
+"""A cable spring the re-balance leaves with less than this fraction of its designed rate carries next to
+nothing: the realisation leaves it out (the Z1's S7 went from 5.2 to 0.007 N/m, a 0.1 mm wire 8 m long)."""
 
 REBALANCE_STEPS = 40
 """The most linear programmes the re-balance of the cable springs takes (each on a finite-difference
@@ -1309,6 +1407,168 @@ def _reach_note(model: RevoluteChain, reach) -> str:
             f"no geometry, within {box} (--reach)")
 
 
+AUDIT_SAMPLES = 20_000
+"""Random poses of the workspace, drawn from their own seed, on which every design's peaks are re-checked
+(:class:`Audit`): ten times the design's own check, independent of it."""
+
+AUDIT_STEPS = (0.05, 1e-5)
+"""rad: the compass search's first and last step (:func:`_climb`); the peaks it refines are then found to
+about the square of the last step times the torque's curvature, below the tables' printed digits."""
+
+
+@dataclass(frozen=True)
+class Audit:
+    """An independent re-check of a design's peak holding torques: :data:`AUDIT_SAMPLES` random poses of
+    the workspace (their own seed), and from the worst of them, per joint and per case (gravity alone,
+    ideal, realised springs), a compass search (:func:`_climb`) that climbs to the nearby worst pose
+    within the workspace. The worst poses found join the design's check poses, so every peak and
+    share the design reports holds on them too.
+
+    :ivar samples: how many random poses were drawn
+    :ivar seed: their seed
+    :ivar worst: the worst poses found, refined, (M, n) rad
+    :ivar raised: per (case, joint name), the peak (N m) over the design's own check poses and over the
+        audit's poses, where the audit found more (above the tables' 3 significant digits)
+    :ivar undefined: per case whose springs have no line of action at some of the random poses (a cable's
+        end within its pulley's radius of the pulley, a spring's ends coinciding), (case, how many, the
+        first such pose (rad), the reason)
+    """
+
+    samples: int
+    seed: int
+    worst: np.ndarray
+    raised: tuple
+    undefined: tuple = ()
+
+    @classmethod
+    def of(cls, model: RevoluteChain, ranges, cases: dict, check, seed: int, samples: int = AUDIT_SAMPLES) -> Audit:
+        """The audit of the springs ``cases`` (name -> springs; gravity alone is added) over the workspace
+        ``ranges`` (n, 2) rad, beside the design's own ``check`` poses."""
+        rng = np.random.default_rng([seed, samples])
+        q = rng.uniform(ranges[:, 0], ranges[:, 1], (samples, model.n))
+        lo, hi = ranges[:, 0], ranges[:, 1]
+        worst, raised, undefined, largest = [], [], [], None
+        for case, springs in ({"gravity alone": ()} | dict(cases)).items():
+            tau, why = _defined_torques(model, springs, q)
+            bad = np.isnan(tau[:, 0])
+            if np.any(bad):
+                undefined.append((case, int(np.sum(bad)), q[int(np.argmax(bad))].tolist(), why))
+            tau = np.abs(np.where(bad[:, None], 0.0, tau))
+            own = np.max(np.abs(joint_torques(model, springs, check)), axis=0)
+            largest = float(np.max(tau)) if largest is None else largest  # gravity's, the first case
+            for j in range(model.n):
+                if not np.max(tau[:, j]) > 0:
+                    continue
+                start = q[int(np.argmax(tau[:, j]))]
+                pose, value, broken = _climb(model, springs, start, j, lo, hi)
+                worst.append(pose)
+                if broken is not None and not any(u[0] == case for u in undefined):
+                    undefined.append((case, 0, broken[0].tolist(), broken[1]))
+                if _sig(value, 3) > _sig(own[j], 3) and value > NEGLIGIBLE * largest:
+                    raised.append((case, model.joints[j], float(own[j]), float(value)))
+        unique = np.unique(np.array(worst).reshape(-1, model.n), axis=0)
+        return cls(samples, seed, unique, tuple(raised), tuple(undefined))
+
+    def note(self, checked: int) -> str:
+        """The sample, in words, for the design's output."""
+        found = ("; it found more than the check at " + ", ".join(
+            f"{joint} ({case}: {own:.3g} -> {value:.3g} N m)" for case, joint, own, value in self.raised)
+                 if self.raised else "; it found no peak above the check's, to 3 digits")
+        return (f"checked by route 2 on {checked} random poses of the workspace, then re-checked on {self.samples:,} "
+                f"independent ones with a local search from the worst of them per joint and case (the {len(self.worst)} "
+                f"worst poses found join the check, so every peak and share below holds on them){found}")
+
+    def as_dict(self) -> dict:
+        """For ``springlab design --json``."""
+        return {"undefined": [{"case": case, "poses": count, "first_pose_rad": pose, "why": why}
+                              for case, count, pose, why in self.undefined],
+                "samples": self.samples, "seed": list((self.seed, self.samples)), "worst_poses_rad": self.worst.tolist(),
+                "raised": [{"case": case, "joint": joint, "check_peak_Nm": own, "audit_peak_Nm": value}
+                           for case, joint, own, value in self.raised]}
+
+
+def _climb(model: RevoluteChain, springs, start, j: int, lo, hi, max_steps: int = 400) -> tuple[np.ndarray, float]:
+    """A compass search for the largest |holding torque| (N m) of joint ``j`` near the pose ``start``
+    within the bounds [lo, hi] (rad): each step tries +- the step on every joint (one route-2 call of
+    2n poses) and moves to the best trial where it beats the current pose (compared to 9 significant
+    digits, ties to the first, so that round-off decides nothing), else halves the step, from
+    :data:`AUDIT_STEPS`' first to its last. Returns the pose, its |torque|, and the first trial pose
+    where a spring had no line of action with the reason (None where every trial had one)."""
+    x = np.array(start, dtype=float)
+    best = float(abs(joint_torques(model, springs, x[None])[0, j]))
+    step, n, broken = AUDIT_STEPS[0], len(x), None
+    for _ in range(max_steps):
+        if step < AUDIT_STEPS[1]:
+            break
+        trials = np.clip(np.repeat(x[None], 2 * n, axis=0) + step * np.vstack([np.eye(n), -np.eye(n)]), lo, hi)
+        tau, why = _defined_torques(model, springs, trials)
+        values = np.abs(tau[:, j])  # nan where undefined: never chosen
+        if why and broken is None:
+            broken = (trials[int(np.argmax(np.isnan(values)))], why)
+        keys = [_sig(v) if np.isfinite(v) else -np.inf for v in values]
+        k = int(np.argmax(keys))
+        if keys[k] > _sig(best):
+            x, best = trials[k], float(values[k])
+        else:
+            step /= 2
+    return x, best, broken
+
+
+def _defined_torques(model: RevoluteChain, springs, q) -> tuple[np.ndarray, str]:
+    """Route 2's holding torques (N m, (N, n)) at the poses ``q``, nan at the poses where a spring has no
+    line of action (route 2 raises GeometryError there: a cable's end within its pulley's radius, a
+    spring's ends coinciding), found by halving the batch; and the first such reason ('' for none)."""
+    try:
+        return joint_torques(model, springs, q), ""
+    except GeometryError as err:
+        if len(q) == 1:
+            for m, s in enumerate(springs, start=1):  # which spring
+                try:
+                    joint_torques(model, [s], q)
+                except GeometryError:
+                    break
+            return np.full((1, model.n), np.nan), f"spring {m} ({s.label}): " + str(err).split(" at pose ")[0]
+        half = len(q) // 2
+        (first, why_1), (second, why_2) = _defined_torques(model, springs, q[:half]), _defined_torques(model, springs, q[half:])
+        return np.vstack([first, second]), why_1 or why_2
+
+
+def realisation_changes(model: RevoluteChain, ideal, realised, kinds, origins) -> tuple:
+    """Per realised spring, what the realisation changed of the ideal spring it realises (``origins``:
+    its index), and why, in words: the rate (N/m, and the share), each end's move (mm), the pulley and
+    its lead, a split side by side; or that only its free length and initial tension were chosen."""
+    out = []
+    for r, kind, i in zip(realised, kinds, origins, strict=True):
+        s = ideal[i]
+        if kind == "zero-length spring":
+            out.append("the designed rate and ends; wound with an initial tension equal to k times its free length")
+            continue
+        parts = []
+        together = sum(x.k for x, o in zip(realised, origins, strict=True) if o == i)
+        if f"{together:.4g}" != f"{s.k:.4g}":
+            parts.append(f"rate {s.k:.4g} -> {together:.4g} N/m ({100 * (together / s.k - 1):+.1f} %)")
+        moves = []
+        for end, (link_i, p_i), (link_r, p_r) in (("A", (s.link_a, s.point_a), (r.link_a, r.point_a)),
+                                                   ("B", (s.link_b, s.point_b), (r.link_b, r.point_b))):
+            bi, pi = model.locate(link_i, p_i)
+            br, pr = model.locate(link_r, p_r)
+            d = float(np.linalg.norm(np.asarray(pr) - np.asarray(pi)))
+            if bi != br or d >= 5e-5:
+                moves.append(f"end {end} moved {1e3 * d:.1f} mm")
+        parts += moves
+        why = ("re-balanced for its pulley: the wrap adds about k rho times the change of the wrap angle, which the "
+               "ideal springs did not have" if parts else "")
+        how = (f"a cable over a {1e3 * r.pulley_radius:g} mm pulley at end A, its lead (the direction the cable arrives "
+               "from) chosen for the least torque left" if r.pulley_radius > 0 else
+               "a cable over a point pulley at end A (its coil on link A), the force k times |B - A|")
+        text = how + ("; " + ", ".join(parts) + " (" + why + ")" if parts else "; the designed rate and ends")
+        count = origins.count(i)
+        if count > 1:
+            text += f"; one of {count} side by side at k / {count} each: no stocked wire carries its force alone"
+        out.append(text)
+    return tuple(out)
+
+
 def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, fit_poses: int = 300, seed: int = 1,
                  target: float = 0.1, reach: float | None = None, max_springs: int = 8,
                  max_stiffness: float = MAX_STIFFNESS, material: str = "music wire",
@@ -1339,16 +1599,14 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         ideal, method = fit.springs, "best springs"
         notes.append(f"not exact: {found.why}; springlab's exact construction needs a planar chain, so the "
                      f"best springs were searched: {fit.note}")
-    realised, kinds, coils = realise_springs(model, ideal, check, material=material, pulley_radius=pulley_radius,
-                                             reach=reach,
-                                             fit=rng.uniform(ranges[:, 0], ranges[:, 1], (min(150, fit_poses), model.n)),
-                                             max_stiffness=max_stiffness)
+    realised, kinds, coils, origins = _realise(
+        model, ideal, check, material=material, pulley_radius=pulley_radius, reach=reach,
+        fit=rng.uniform(ranges[:, 0], ranges[:, 1], (min(150, fit_poses), model.n)), max_stiffness=max_stiffness)
     for kind in kinds:
         if kind.startswith("not realised"):
             notes.append(f"{kind}: the realised design leaves it out")
-    realised = tuple(r for r in realised if r is not None)
-    coils = tuple(c for c in coils if c is not None)
-    kinds = tuple(k for k in kinds if not k.startswith("not realised"))
+    kept = [m for m, r in enumerate(realised) if r is not None]
+    realised, coils, kinds, origins = (tuple(v[m] for m in kept) for v in (realised, coils, kinds, origins))
     gravity = np.max(np.abs(gravity_torques(model, check)), axis=0)
     left = np.max(np.abs(joint_torques(model, ideal, check)), axis=0)
     for i in np.flatnonzero(left > gravity * (1 + 1e-9) + 1e-9 * np.max(gravity)):  # above round-off
@@ -1370,4 +1628,9 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         notes.append(f"cable springs run over pulleys of radius {1e3 * pulley_radius:g} mm (route 2's cable path); "
                      "their leads (and where those leave more than a tenth of a joint's peak, their rates and ends) "
                      f"were chosen for it on {min(150, fit_poses)} poses the table does not use")
-    return ArmDesign(model, found, method, ideal, realised, kinds, coils, check, tuple(notes))
+    changes = realisation_changes(model, ideal, realised, kinds, origins)
+    audit = Audit.of(model, ranges, {"ideal": ideal, "realised": realised}, check, seed)
+    q = np.vstack([check, audit.worst])
+    reported = structure(model, q)  # the same peaks as the torque tables, the audit's worst poses included
+    found = reported if reported.loaded == found.loaded else found
+    return ArmDesign(model, found, method, ideal, realised, kinds, coils, q, tuple(notes), origins, changes, audit)

@@ -83,11 +83,11 @@ class PayloadDial:
             out[i] = _moved(out[i], end, kg * np.asarray(per_kg))
         return tuple(out)
 
-    def table(self) -> Table:
-        """Each move: the spring, its end and link, the move per kilogram (mm/kg, in the link's frame)
-        and its size (mm/kg)."""
+    def table(self, names=None) -> Table:
+        """Each move: the spring (``names``, by default S1, S2, ... in order), its end and link, the move
+        per kilogram (mm/kg, in the link's frame) and its size (mm/kg)."""
         return Table(["spring", "end", "link", "move per kg (mm/kg, link frame)", "size of the move (mm/kg)"],
-                     [(f"S{i + 1}", end, link, "(" + ", ".join(f"{1e3 * v + 0.0:.2f}" for v in per_kg) + ")",
+                     [(names[i] if names else f"S{i + 1}", end, link, "(" + ", ".join(f"{1e3 * v + 0.0:.2f}" for v in per_kg) + ")",
                        f"{1e3 * float(np.linalg.norm(per_kg)):.2f}") for i, end, link, per_kg in self.moves])
 
     def as_dict(self) -> dict:
@@ -243,9 +243,10 @@ class PayloadStudy:
     :ivar outside: per payload, how far (m) the dial takes a moved ideal end outside its body's box
         (:func:`springlab.design.arms.ends_outside`; 0: every end stays where the design may put it)
     :ivar loaded: the loaded joints' indices; ``joints`` all joints' names
-    :ivar holds: per dial ('ideal', 'realised'), the payloads (kg, low, high) over which every end
-        it moves stays in its body's box (the outline and its bracket, where the design may put an
-        end): beyond them the dial needs a longer slot
+    :ivar holds: per dial ('ideal', 'realised'), the payloads (kg, 0 <= low <= nominal <= high) over
+        which every end it moves stays in its body's box (the outline and its bracket, where the design
+        may put an end): beyond them the dial needs a longer slot. Where it is no wider than a gram
+        (:meth:`usable` False), the dial cannot be turned at all
     :ivar stretch: per payload, the longest (m) a realised spring, its dial turned, is stretched
         beyond the longest its coil was wound for (0: within it), and the spring ('' for none)
     """
@@ -261,25 +262,50 @@ class PayloadStudy:
     joints: tuple
     holds: dict
     stretch: tuple
+    names: dict | None = None
+
+    def usable(self, which: str) -> bool:
+        """Whether the ``which`` ('ideal' or 'realised') springs' dial can be turned at all: the payloads
+        it holds span at least a gram (to the printed 0.001 kg)."""
+        lo, hi = self.holds[which]
+        return round(hi - lo, 3) > 0
+
+    def refusal(self, which: str) -> str:
+        """The one line that says a dial (``which``: 'ideal', 'realised', or 'ideal or the realised' for
+        both, the ideal one's move quoted) cannot be turned, with the move it would need and the payload
+        the design does hold."""
+        dial = self.dials[which.split()[0]]
+        i, end, link, per_kg = max(dial.moves, key=lambda m: float(np.linalg.norm(m[3])))
+        name = self.names[which.split()[0]][i] if self.names else f"S{i + 1}"
+        return (f"no payload dial for the {which} springs: the moves that would keep the balance (up to "
+                f"{1e3 * float(np.linalg.norm(per_kg)):,.0f} mm per kg, {name}'s end {end} on {link!r}) take an end "
+                f"off its link and bracket at once, so the design holds only its nominal {self.nominal:g} kg; design "
+                "for the payload you carry or a mid-range one (--payload), or allow longer brackets (--reach)")
 
     def warnings(self) -> list[str]:
-        """What the study finds an engineer must know: payloads beyond the dial's slot, coils
-        stretched past their design, a dial that leaves a joint worse than the springs unchanged."""
+        """What the study finds an engineer must know: a dial that cannot be turned, payloads beyond the
+        dial's slot, coils stretched past their design, a dial that leaves a joint worse than the springs
+        unchanged."""
         out = []
         low, high = float(np.min(self.masses)), float(np.max(self.masses))
+        if not self.usable("ideal") and not self.usable("realised"):
+            out.append(self.refusal("ideal or the realised"))
         for which, (lo, hi) in self.holds.items():
-            if lo > low + 1e-9 or hi < high - 1e-9:
+            if not self.usable(which):
+                if self.usable("ideal") or self.usable("realised"):
+                    out.append(self.refusal(which))
+            elif lo > low + 1e-9 or hi < high - 1e-9:
                 out.append(f"the {which} springs' dial keeps every moved end on its link only from "
-                           f"{round(max(lo, 0.0), 3):g} to {round(hi, 3):g} kg (checked {low:g}-{high:g} kg): beyond, it needs a longer slot than the link and "
+                           f"{round(lo, 3):g} to {round(hi, 3):g} kg (checked {low:g}-{high:g} kg): beyond, it needs a longer slot than the link and "
                            "its bracket give; a design made for a payload mid-range (--payload) has stiffer springs "
                            "and a shorter dial")
         worst = max(range(len(self.masses)), key=lambda m: self.stretch[m][0])
-        if self.stretch[worst][0] > 0:
+        if self.stretch[worst][0] > 0 and self.usable("realised"):
             out.append(f"turned for {self.masses[worst]:g} kg, the built spring {self.stretch[worst][1]} is stretched "
                        f"{1e3 * self.stretch[worst][0]:.0f} mm past the longest its coil was wound for: wind the coils "
                        "for the dial's whole stroke")
         loaded = list(self.loaded)
-        for which in ("ideal", "realised"):
+        for which in [w for w in ("ideal", "realised") if self.usable(w)]:
             turned, unchanged = self.peaks[f"{which}, dial turned"][:, loaded], self.peaks[which][:, loaded]
             worse = [(float(self.masses[m]), self.joints[loaded[i]]) for m, i in zip(*np.nonzero(
                 turned > unchanged * (1 + 1e-6) + 1e-12), strict=True)]
@@ -290,10 +316,13 @@ class PayloadStudy:
         return out
 
     def table(self) -> Table:
-        """Per payload and case: the peak holding torque (N m) of each loaded joint."""
+        """Per payload and case: the peak holding torque (N m) of each loaded joint (a dial that cannot be
+        turned, :meth:`usable`, has no rows)."""
         rows = []
         for m, mass in enumerate(self.masses):
             for case, peaks in self.peaks.items():
+                if case.endswith(", dial turned") and not self.usable(case.split(",")[0]):
+                    continue
                 rows.append((f"{mass:g}", case, *(f"{peaks[m, i]:.3g}" for i in self.loaded)))
         return Table(["payload (kg)", "springs", *(f"{self.joints[i]} peak (N m)" for i in self.loaded)], rows)
 
@@ -309,6 +338,7 @@ class PayloadStudy:
                 "dial": {"ideal": self.dials["ideal"].as_dict(), "realised": self.dials["realised"].as_dict()},
                 "checked_by": "route 2 (direct geometry) over the design's poses",
                 "dial_holds_kg": {which: list(v) for which, v in self.holds.items()},
+                "dial_usable": {which: self.usable(which) for which in self.holds},
                 "warnings": self.warnings(),
                 "checks": [{"payload_kg": float(mass), "dial_end_outside_box_m": float(self.outside[m]),
                             "realised_stretch_past_coil_m": float(self.stretch[m][0]),
@@ -343,14 +373,25 @@ def payload_study(design, frame: str, masses, *, nominal: float = 0.0, point=(0.
         peaks[f"{which}, dial turned"] = payload_torques(model, springs, q, frame, masses, nominal=nominal, point=point,
                                                          dial=dial)
     outside = np.array([ends_outside(model, ideal.turned(design.ideal, float(m) - nominal), reach) for m in masses])
-    holds = {which: tuple(nominal + t for t in _travel(model, getattr(design, which), dial, reach))
+    holds = {which: _holds(nominal, _travel(model, getattr(design, which), dial, reach))
              for which, dial in (("ideal", ideal), ("realised", realised))}
     from springlab.model.revolute import body_frames
 
     frames = body_frames(model, q)
     stretch = tuple(_stretch(design, realised.turned(design.realised, float(m) - nominal), *frames) for m in masses)
     return PayloadStudy(frame, tuple(float(v) for v in point), float(nominal), masses, {"ideal": ideal, "realised": realised},
-                        peaks, outside, tuple(design.structure.loaded), tuple(model.joints), holds, stretch)
+                        peaks, outside, tuple(design.structure.loaded), tuple(model.joints), holds, stretch,
+                        {"ideal": design.names, "realised": design.realised_names})
+
+
+def _holds(nominal: float, travel) -> tuple[float, float]:
+    """The payloads (kg) a dial holds, from its travel (kg, the changes from ``nominal``): never below
+    0 kg (no payload is negative), and the nominal alone where the travel does not contain 0 (an end
+    already off its box)."""
+    low, high = travel
+    if not low <= 0.0 <= high:
+        return nominal, nominal
+    return max(nominal + low, 0.0) + 0.0, min(nominal + high, MAX_PAYLOAD_RANGE)
 
 
 def _travel(model: RevoluteChain, springs, dial: PayloadDial, reach) -> tuple[float, float]:
@@ -382,8 +423,8 @@ def _stretch(design, turned, R, o) -> tuple[float, str]:
 
     lengths = spring_lengths(design.model, list(turned), R, o)
     worst = (0.0, "")
-    for n, (length, (_, span)) in enumerate(zip(lengths, design.coils, strict=True), start=1):
+    for n, length, (_, span) in zip(design.realised_names, lengths, design.coils, strict=True):
         excess = float(np.max(length)) - float(span[1])
         if excess > max(worst[0], 1e-9 * span[1]):
-            worst = (excess, f"S{n}")
+            worst = (excess, n)
     return worst

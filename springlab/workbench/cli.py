@@ -10,7 +10,13 @@ design, one row each, for a spreadsheet.
 Every argument, the arm file and the output path are checked before the search
 starts. An error prints one line, ``springlab: <what is wrong and what to do>``,
 and exits with status 2; a search that finds no design prints why the
-configurations were rejected and exits with status 1.
+configurations were rejected and exits with status 1. A URDF arm's design that fails
+its own checks (:meth:`springlab.design.arms.ArmDesign.flags`: no better than its
+negative control, a joint left worse than gravity alone, a spring with no line of action
+at a workspace pose) is still written, its JSON's ``status`` says why, a warning line
+says so and the command exits with status 3. An unexpected error (a defect in
+springlab) exits with status 4. The last line printed is the wall time of the whole
+command.
 """
 
 from __future__ import annotations
@@ -23,6 +29,14 @@ import time
 from pathlib import Path
 
 from springlab.errors import LineChainError, SpringlabError, UpAdviceError
+
+_STARTED = time.perf_counter()  # when the command started (this module is the first springlab imports)
+
+EXIT_FLAGGED = 3
+"""Exit status of a design written although it fails its own checks."""
+
+EXIT_INTERNAL = 4
+"""Exit status of an unexpected error (a defect in springlab)."""
 
 TIME_LIMIT = 300.0
 """s: the default limit on the command line's search (``--time-limit``)."""
@@ -57,6 +71,14 @@ def _check_arguments(args) -> None:
     _checks.count("--seed", args.seed)
     _checks.positive("--time-limit", args.time_limit, unit="s")
     _checks.positive("--pulley-radius", args.pulley_radius, allow_zero=True, unit="m")
+    if args.payload is not None:
+        from springlab.design.payload import MAX_PAYLOAD_RANGE
+        from springlab.model.armfile import parse_quantity
+
+        mass = parse_quantity(args.payload, "mass", "--payload")
+        if not 0 <= mass <= MAX_PAYLOAD_RANGE:
+            raise SpringlabError(f"--payload = {args.payload!r} ({mass:g} kg): give a payload from 0 to "
+                                 f"{MAX_PAYLOAD_RANGE:g} kg, e.g. --payload '2 kg'")
     args.payloads = None if args.payload_range is None else _payload_range(args.payload_range)
     if args.pick > args.max_designs:
         raise SpringlabError(f"--pick = {args.pick} is above --max-designs = {args.max_designs}: "
@@ -206,7 +228,9 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material, reach=reach,
                           pulley_radius=args.pulley_radius)
     seconds = time.perf_counter() - started
-    print(f"# {model.name}: {model.n} revolute joints from {model.bodies[0]!r} to {model.bodies[-1]!r}"
+    tip = (f"the tip {args.tip!r} (fixed to {model.bodies[-1]!r}, the last body a joint moves)"
+           if args.tip and args.tip != model.bodies[-1] else repr(model.bodies[-1]))
+    print(f"# {model.name}: {model.n} revolute joints from {model.bodies[0]!r} to {tip}"
           + (f", payload {payload:g} kg at the tip frame" if payload else ""))
     ranges = workspace_ranges(model, workspace)
     print("workspace (deg): " + ", ".join(f"{name} {np.degrees(lo):.0f}..{np.degrees(hi):.0f}"
@@ -222,13 +246,16 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     if design.method == "nothing to balance":
         print("\nnothing to balance: no file written")
         return 0
-    print(f"\n{design.method}: {len(design.ideal)} springs in {seconds:.1f} s, checked by route 2 on "
-          f"{design.q.shape[0]} random poses of the workspace\n")
+    checked = design.q.shape[0] - (0 if design.audit is None else len(design.audit.worst))
+    print(f"\n{design.method}: {len(design.ideal)} springs (searched, realised and checked in {seconds:.1f} s); "
+          + (design.audit.note(checked) if design.audit else f"checked by route 2 on {checked} random poses") + "\n")
     print(design.table())
     designed, control = design.control()
     print(f"\nnegative control: the same springs at 0.9 of their rates leave {control:.3g} N m at worst (as designed: "
           f"{designed:.3g} N m)\n")
     print(design.springs_table())
+    print("\nwhat the realisation changed, per spring (a realised spring keeps the name of the ideal one it realises):")
+    print(design.changes_table())
     if design.realised and model.outline:
         print(f"\nclearance of the realised springs from the bodies (their outlines), over "
               f"{min(len(design.q), 100)} workspace poses:")
@@ -253,7 +280,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
               "material": args.material}
     try:
         extra = {} if study is None else {"payload": study.as_dict()}
-        out.write_text(json.dumps({"source": str(path), "inputs": inputs} | design.as_dict() | extra, indent=1) + "\n")
+        out.write_text(json.dumps({"source": str(path), "inputs": inputs} | design.as_dict() | extra, indent=1,
+                                  allow_nan=False) + "\n")
     except OSError as err:
         raise SpringlabError(f"--json {out} cannot be written ({err.strerror})") from None
     print(f"\ndesign written to {out}")
@@ -261,17 +289,32 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
         _write_general_sheet(args, path, design, study, out)
     if mjcf:
         _write_mjcf(mjcf, model, design.ideal, design.realised)
-    return 0
+    flags = design.flags()
+    if not flags:
+        print("\nstatus: passed (better than its negative control; no joint left worse than gravity alone; every "
+              "spring with a line of action at every pose checked)")
+        return 0
+    print(f"\nstatus: flagged, {len(flags)} of the design's own checks fail:")
+    for flag in flags:
+        print(f"  - {flag}")
+    print(f"springlab: warning: the design fails {len(flags)} of its own checks (listed under 'status', and in {out}'s "
+          f"\"status\"); the files are written; exit status {EXIT_FLAGGED}", file=sys.stderr)
+    return EXIT_FLAGGED
 
 
 def _print_dial(study) -> None:
     dial, built = study.dials["ideal"], study.dials["realised"]
-    print(f"\npayload dial ({'exact' if dial.exact else 'not exact'}: {dial.how}); per kg of payload at {study.frame!r}, "
-          "move:")
-    print(dial.table())
-    print(f"the built springs' own dial ({built.how}; linearised: {100 * built.left:.2g} % of each kilogram's torque "
-          "left):")
-    print(built.table())
+    print()
+    if study.usable("ideal"):
+        lo, hi = study.holds["ideal"]
+        print(f"payload dial ({'exact' if dial.exact else 'not exact'}: {dial.how}); it keeps every moved end on its "
+              f"link from {lo:.3g} to {hi:.3g} kg; per kg of payload at {study.frame!r}, move:")
+        print(dial.table(study.names["ideal"]))
+    if study.usable("realised"):
+        lo, hi = study.holds["realised"]
+        print(f"the built springs' own dial ({built.how}; linearised: {100 * built.left:.2g} % of each kilogram's torque "
+              f"left; it keeps every moved end on its link from {lo:.3g} to {hi:.3g} kg):")
+        print(built.table(study.names["realised"]))
     print(f"checked by route 2 at {', '.join(f'{m:g}' for m in study.masses)} kg (design made for {study.nominal:g} kg):")
     print(study.table())
     for warning in study.warnings():
@@ -282,14 +325,18 @@ def _dial_markdown(study) -> str:
     """The sheet's section on the payload dial."""
     ideal, realised = study.dials["ideal"], study.dials["realised"]
     outside = ", ".join(f"{m:g} kg: {1e3 * d:.0f} mm" for m, d in zip(study.masses, study.outside, strict=True))
-    holds = "; ".join(f"{which}: {round(max(lo, 0.0), 3):g} to {round(hi, 3):g} kg" for which, (lo, hi) in study.holds.items())
+    holds = "; ".join(f"{which}: {round(lo, 3):g} to {round(hi, 3):g} kg" for which, (lo, hi) in study.holds.items()
+                      if study.usable(which))
     warnings = "".join(f"- {w}\n" for w in study.warnings())
-    return (f"\n## Payload dial\n\nDesigned for {study.nominal:g} kg at the origin of {study.frame!r}. "
-            f"{'Exact' if ideal.exact else 'Not exact'}: {ideal.how}. For each kilogram more, move (each end in its "
-            f"link's URDF frame; fewer kilograms, the other way):\n\n{ideal.table().markdown()}\n\n"
-            f"The built springs' own moves ({realised.how}; linearised, they leave {100 * realised.left:.2g} % of each "
-            f"kilogram's torque):\n\n{realised.table().markdown()}\n\nHow far the ideal dial takes the moved ends "
-            f"outside their links' boxes: {outside}. The dials keep every moved end on its link over: {holds}.\n\n"
+    dials = (f"{'Exact' if ideal.exact else 'Not exact'}: {ideal.how}. For each kilogram more, move (each end in its "
+             f"link's URDF frame; fewer kilograms, the other way):\n\n{ideal.table(study.names['ideal']).markdown()}\n\n"
+             f"How far the ideal dial takes the moved ends outside their links' boxes: {outside}.\n\n"
+             if study.usable("ideal") else f"{study.refusal('ideal')}.\n\n")
+    dials += (f"The built springs' own moves ({realised.how}; linearised, they leave {100 * realised.left:.2g} % of each "
+              f"kilogram's torque):\n\n{realised.table(study.names['realised']).markdown()}\n\n"
+              if study.usable("realised") else f"{study.refusal('realised')}.\n\n")
+    dials += f"The dials keep every moved end on its link over: {holds}.\n\n" if holds else ""
+    return (f"\n## Payload dial\n\nDesigned for {study.nominal:g} kg at the origin of {study.frame!r}. {dials}"
             f"Checked by route 2 (peak holding torque over the workspace poses, N m):\n\n{study.table().markdown()}\n"
             + (f"\n{warnings}" if warnings else ""))
 
@@ -313,7 +360,9 @@ def _write_general_sheet(args, path: Path, design, study, out: Path) -> None:
           "lengths are measured inside the hooks.\n\n"
           "## Balance the built springs leave (route 2)\n\nPer loaded joint, the percentage of its peak gravity "
           "torque removed; each tolerance at its limit on every spring at once.\n\n"
-          f"{design.tolerance_table().markdown()}\n{clearance}" + ("" if study is None else _dial_markdown(study))
+          f"{design.tolerance_table().markdown()}\n\n## What the realisation changed\n\nEach realised spring keeps "
+          f"the name of the ideal spring it realises.\n\n{design.changes_table().markdown()}\n"
+          f"{clearance}" + ("" if study is None else _dial_markdown(study))
           + "\n## Notes\n\n" + "".join(f"- {note}\n" for note in design.notes)
           + "- the coils are sized for the nominal payload's workspace; the clearance and the room along the links "
             "are for the engineer to check (negative clearance: the spring passes through that link)\n")
@@ -438,10 +487,30 @@ def _write_sheet(args, spec, chosen, out: Path) -> None:
     print(f"spec sheet written to {csv_path} and {md_path}")
 
 
+EPILOG = """\
+what a URDF arm's output says:
+  the best springs' note lists, after each spring the greedy search added, the share of the
+  worst joint's scale removed ("1 spring 0.0 %, 2 springs 36.1 %, ..."): a joint's scale is its own
+  peak gravity torque, or a tenth of the arm's largest for a light joint; the search stops when
+  every joint is within the target (a tenth of its scale) or at its spring limit.
+  every peak and share is checked by route 2 on the design's random poses, then re-checked on
+  20,000 independent ones with a local search from the worst of them; the worst poses found join
+  the check, so the tables hold on them.
+
+exit status: 0 a design that passes its own checks; 1 no design found; 2 bad input (one line
+  naming it, nothing written); 3 a design written that fails its own checks (its JSON's "status"
+  says which: no better than its negative control, a joint worse than gravity alone, a spring
+  with no line of action at a pose); 4 an unexpected error (a defect: rerun with --debug).
+  The last line printed is the wall time of the whole command.
+"""
+
+
 def main(argv=None) -> int:
+    started = _STARTED if argv is None else time.perf_counter()  # a console run: from its start
     parser = _Parser(prog="springlab", description="Spring gravity balancing of robot arms.")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    p = sub.add_parser("design", help="rank verified spring designs for an arm file (.toml or .json)")
+    p = sub.add_parser("design", help="rank verified spring designs for an arm file (.toml or .json)", epilog=EPILOG,
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("arm_file")
     p.add_argument("--json", help="where to write the chosen design (default: <arm>.design.json here)")
     p.add_argument("--pick", type=int, default=1, help="which ranked design to write (default 1)")
@@ -489,7 +558,9 @@ def main(argv=None) -> int:
     p.add_argument("--debug", action="store_true", help="show the traceback of an unexpected error")
     args = parser.parse_args(argv)
     try:
-        return _design(args)
+        status = _design(args)
+        print(f"\ndone in {time.perf_counter() - started:.1f} s (wall time of the whole command)")
+        return status
     except SpringlabError as err:
         print(f"springlab: {err}", file=sys.stderr)
         return 2
@@ -501,7 +572,7 @@ def main(argv=None) -> int:
             raise
         print(f"springlab: internal error ({type(err).__name__}: {err}); rerun with --debug and report it",
               file=sys.stderr)
-        return 3
+        return EXIT_INTERNAL
 
 
 if __name__ == "__main__":
