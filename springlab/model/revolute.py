@@ -203,10 +203,18 @@ class RevoluteChain:
         mass and inertia are combined as one rigid body's (parallel axes); the gravity torques are
         linear in ``mass``.
 
-        :raises SpringlabError: when the body would be left with a negative mass
+        :raises SpringlabError: when the point is not three finite numbers, or the body would be left
+            with a negative mass
         """
         mass = _checks.finite("mass", mass, unit="kg")
-        body, p = self.locate(name, point)
+        try:
+            given = np.asarray(point, dtype=float)
+        except (TypeError, ValueError):
+            given = np.full(1, np.nan)
+        if given.shape != (3,) or not np.all(np.isfinite(given)):
+            raise SpringlabError(f"point = {point!r}: give three finite numbers (m, in frame {name!r}), where the "
+                                 "mass is carried")
+        body, p = self.locate(name, given)
         total = float(self.mass[body]) + mass
         if total < -1e-12 * max(1.0, float(self.mass[body])):
             raise SpringlabError(f"mass = {mass:g} kg takes more off body {self.bodies[body]!r} than its "

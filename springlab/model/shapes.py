@@ -17,6 +17,12 @@ loader keeps the numbers as they are: such a file is where the two differ). A me
 :data:`MAX_MESH_BYTES` is skipped. A mesh that cannot be found or read is named in a note and left
 out (the link then bounds springs by its other shapes, or by the default reach):
 :class:`~springlab.errors.MeshError`, caught by the reader.
+
+Refused with the URDF (:class:`RefusedMeshError`, which the reader passes on), since either would
+put a false outline where springs attach: a ``package://`` path whose normalised rest leaves its
+package's folder (``package://pkg/../../x.stl``) or that names no package (``package://../x.stl``),
+and a COLLADA unit that is not a finite positive number of metres (``meter="-1"`` would mirror
+the mesh, ``meter="0"`` shrink it to a point).
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ from __future__ import annotations
 import functools
 import math
 import os
+import posixpath
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
@@ -35,6 +42,13 @@ from springlab.model.rotations import rot_rpy
 
 ROUND_POINTS = 64
 """Points per circle on a cylinder's rims, a sphere's or capsule's circles."""
+
+
+class RefusedMeshError(MeshError):
+    """A mesh the URDF names that would give its link a false outline (a ``package://`` path out of
+    its package, a COLLADA unit that is not a length): the URDF is refused, where a mesh that cannot
+    be found or read is only left out with a note."""
+
 
 @dataclass(frozen=True)
 class Shape:
@@ -136,13 +150,24 @@ def _shape(g, T) -> Shape | None:
 
 
 def resolve_mesh(filename: str, folder: Path | None, package_dirs=()) -> Path | None:
-    """The file a URDF's mesh name points to, or None (see the module docstring for the search)."""
+    """The file a URDF's mesh name points to, or None (see the module docstring for the search).
+
+    :raises RefusedMeshError: for a ``package://`` path that names no package or whose rest, once
+        normalised (``a/../b`` is ``b``; ROS joins it to the package's folder, so leading slashes
+        stay inside), leaves the package's folder
+    """
     if filename.startswith("file://"):
         filename = filename[len("file://"):]  # an absolute path, or (loosely) one relative to the URDF
     if not filename.startswith("package://"):
         path = Path(filename) if Path(filename).is_absolute() or folder is None else Path(folder) / filename
         return path if path.is_file() else None
     package, _, rest = filename[len("package://"):].lstrip("/").partition("/")
+    rest = posixpath.normpath(rest.lstrip("/") or ".")
+    if package in ("", ".", "..") or rest == ".." or rest.startswith("../"):
+        why = (f"names no package ({package!r})" if package in ("", ".", "..") else
+               f"leaves the folder of package {package!r} (its path normalised: {rest!r})")
+        raise RefusedMeshError(f"mesh {filename!r} {why}: a package:// path is package://PACKAGE/PATH within the "
+                               "package's folder; give the mesh's path inside its package", filename=filename)
     candidates = []
     for d in map(Path, package_dirs):
         candidates += [d / package / rest, d / rest] if d.name == package else [d / package / rest]
@@ -195,6 +220,8 @@ def _hull_of(path: str, mtime_ns: int, size: int, scale: tuple) -> tuple[np.ndar
     import trimesh
     from scipy.spatial import ConvexHull, QhullError
 
+    if path.lower().endswith(".dae"):
+        _check_collada_unit(path)
     mesh = trimesh.load(path, force="mesh", process=False)
     units = getattr(mesh, "units", None)
     if units and units != "meters":  # a COLLADA file's <unit meter="0.001">: its own unit, as ROS's viewers take it
@@ -216,9 +243,47 @@ def _hull_of(path: str, mtime_ns: int, size: int, scale: tuple) -> tuple[np.ndar
     return out, units
 
 
+def _check_collada_unit(path: str) -> None:
+    """Refuse a COLLADA file whose ``<asset><unit meter="...">`` (metres per unit of its numbers) is not
+    a finite positive number. The file is read up to the end of its own ``<asset>`` (its first
+    element); a file that is not XML is left to the mesh reader, which names it as unreadable."""
+    depth, in_asset = 0, False
+    with open(path, "rb") as file:
+        try:
+            for event, element in ET.iterparse(file, events=("start", "end")):
+                tag = element.tag.rpartition("}")[2]
+                if event == "start":
+                    depth += 1
+                    in_asset = tag == "asset" if depth == 2 else in_asset
+                    meter = element.get("meter") if depth == 3 and in_asset and tag == "unit" else None
+                    if meter is not None and not _positive_number(meter):
+                        raise RefusedMeshError(
+                            f"mesh {path}: its COLLADA unit <unit meter=\"{meter}\"> is not a finite positive "
+                            "number of metres (a negative one would mirror the mesh, zero shrink it to a point): "
+                            "give the file's unit in metres, e.g. <unit meter=\"0.001\"/> for millimetres, or "
+                            "leave the <unit> out for metres", filename=path)
+                    continue
+                depth -= 1
+                if depth == 1:
+                    if tag == "asset":
+                        return  # the file's own asset read: no unit (metres), or a good one
+                    element.clear()  # an asset out of place: read on, keeping nothing
+        except ET.ParseError:
+            return
+
+
+def _positive_number(text: str) -> bool:
+    try:
+        value = float(text)
+    except ValueError:
+        return False
+    return math.isfinite(value) and value > 0
+
+
 def shape_points(shape: Shape, folder: Path | None = None, package_dirs=(), notes: list | None = None) -> np.ndarray:
     """Points (m, in the link's frame) whose convex hull is the shape, (k, 3). A mesh that cannot be
-    found or read raises :class:`~springlab.errors.MeshError` (``found`` says which); a mesh in
+    found or read raises :class:`~springlab.errors.MeshError` (``found`` says which), one that would
+    give a false outline :class:`RefusedMeshError` (see the module docstring); a mesh in
     other units than metres is converted, with a line added to ``notes``."""
     if shape.kind == "box":
         h = np.asarray(shape.size) / 2

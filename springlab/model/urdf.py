@@ -40,7 +40,14 @@ What becomes of the URDF (all at the zero configuration, every joint at 0):
 
 Refused with the element named: a file that is not URDF, a branching tree, a closed loop, a
 prismatic, planar or floating joint on the arm's path (or anywhere, without a tip), a link without ``<inertial>`` that would leave a moving
-link massless, two revolute joints at one point that are not a wrist, a zero-length link.
+link massless, two revolute joints at one point that are not a wrist, a zero-length link; a xacro
+file not yet expanded (``<xacro:...>`` elements, ``${...}`` or ``$(...)`` in an attribute); a tip
+with no movable joint between it and the base (the base itself, or a frame fixed to it), with the
+file's revolute joints named; a link the arm carries whose ``<inertia>`` is no rigid body's (a
+negative principal moment, or one larger than the sum of the other two, beyond
+:data:`INERTIA_TOLERANCE`: a point mass, all six zero, is one), where such a link riding on the
+base, whose inertia is never used, is only noted; on the general model, a mesh that would give a
+false outline (:class:`springlab.model.shapes.RefusedMeshError`).
 Refused at once, before the text is parsed into objects (its elements counted as they stream
 past): a text of more than :data:`springlab.model.armfile.MAX_FILE_BYTES`, more movable joints
 than an arm of ``max_links`` links can have (or than :data:`MAX_MOVABLE_JOINTS`), more than
@@ -82,11 +89,34 @@ MAX_BODIES = 10_000
 together is read; a file of more is refused before it is parsed)."""
 
 
+INERTIA_TOLERANCE = 1e-9
+"""How far a link's principal moments of inertia may miss a rigid body's (each >= 0, each at most
+the sum of the other two) and be read as round-off in the file: this fraction of the largest
+moment, or of the link's mass times (1 mm)^2 where that is larger (a point mass written with
+round-off in its zeros)."""
+
+
 @dataclass(frozen=True)
 class _Inertial:
     mass: float  # kg
     com: np.ndarray  # (3,) m, in the link's frame
     inertia: np.ndarray  # (3, 3) kg m^2 about the centre of mass, in the link's frame
+    given: str = ""  # the <inertia> element's six values as the file writes them
+
+
+def _inertia_fault(inertial: _Inertial) -> str | None:
+    """Why a link's inertia is no rigid body's (a negative principal moment, or one larger than the
+    sum of the other two), or None; within :data:`INERTIA_TOLERANCE`."""
+    J = inertial.inertia
+    w = np.linalg.eigvalsh((J + J.T) / 2)
+    tol = INERTIA_TOLERANCE * max(float(np.max(np.abs(w))), inertial.mass * 1e-6)
+    moments = ", ".join(f"{x:.6g}" for x in w)
+    if w[0] < -tol:
+        return f"its principal moments ({moments} kg m^2) include a negative one"
+    if w[2] > w[0] + w[1] + tol:
+        return (f"its principal moments ({moments} kg m^2) break the triangle inequality: "
+                f"{w[2]:.6g} > {w[0]:.6g} + {w[1]:.6g}")
+    return None
 
 
 def _combine(parts) -> _Inertial:
@@ -152,11 +182,34 @@ def _origin(element, where: str) -> np.ndarray:
     return T
 
 
+def _xacro_refusal(source: str, what: str) -> SpringlabError:
+    name = Path(source).name
+    out = (name[:-len(".xacro")] if name.endswith(".xacro") else f"{Path(name).stem}.expanded")
+    out += "" if out.endswith(".urdf") else ".urdf"
+    return SpringlabError(f"{source}: a xacro file, not yet a URDF ({what}): expand it first with xacro (ROS's "
+                          f"xacro package), e.g. xacro {name} > {out}, and give the URDF it writes")
+
+
+def _xacro_in(root, source: str) -> None:
+    """Refuse a parsed file that xacro has not expanded: an element of xacro's namespace (a macro, a
+    property, an include) or a ``${...}`` or ``$(...)`` substitution in an attribute. An expanded
+    file may keep ``xmlns:xacro`` on its <robot> and name its source in a comment: that is read."""
+    for element in root.iter():
+        if isinstance(element.tag, str) and element.tag.startswith("{") and "xacro" in element.tag.partition("}")[0]:
+            raise _xacro_refusal(source, f"it has <xacro:{element.tag.partition('}')[2]}> elements")
+        for key, value in element.attrib.items():
+            if "${" in value or "$(" in value:
+                raise _xacro_refusal(source, f"<{element.tag} {key}={value!r}> holds a substitution")
+
+
 def _parse(text: str, source: str):
     try:
         root = ET.fromstring(text)
     except ET.ParseError as err:
+        if "<xacro:" in text:  # xacro's elements without their namespace declared
+            raise _xacro_refusal(source, "it has <xacro:...> elements") from None
         raise SpringlabError(f"{source}: not valid XML: {err}") from None
+    _xacro_in(root, source)
     if root.tag != "robot":
         raise SpringlabError(f"{source}: not a URDF file (its root element is <{root.tag}>, not <robot>)")
     links = {}
@@ -178,15 +231,16 @@ def _parse(text: str, source: str):
         if mass < 0:
             raise SpringlabError(f"{where} <mass value> = {mass:g} kg must be >= 0")
         frame = _origin(inertial, where)
-        inertia = np.zeros((3, 3))
+        inertia, given = np.zeros((3, 3)), ""
         inertia_el = inertial.find("inertia")
         if inertia_el is not None:
-            v = {key: _floats(inertia_el.get(key), 1, f"{where} <inertia {key}>", (0.0,))[0]
-                 for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+            keys = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+            v = {key: _floats(inertia_el.get(key), 1, f"{where} <inertia {key}>", (0.0,))[0] for key in keys}
+            given = " ".join(f'{key}="{inertia_el.get(key, "0").strip()}"' for key in keys)
             inertia = np.array([[v["ixx"], v["ixy"], v["ixz"]], [v["ixy"], v["iyy"], v["iyz"]],
                                 [v["ixz"], v["iyz"], v["izz"]]])
             inertia = frame[:3, :3] @ inertia @ frame[:3, :3].T  # about the centre of mass, in the link's frame
-        links[name] = _Inertial(float(mass), frame[:3, 3], inertia)
+        links[name] = _Inertial(float(mass), frame[:3, 3], inertia, given)
     joints, notes = [], []
     for el in root.findall("joint"):
         name = el.get("name") or "?"
@@ -239,6 +293,10 @@ def _choose(links: dict, joints: list, source: str, base: str | None, tip: str |
         for j in joints:
             if j.kind in SLIDING:
                 raise _sliding_refusal(j, source, " (choose the arm's chain with --tip LINK to lock it)")
+        refusal = _no_joint_refusal(links, joints, source, None, None, []) if links and all(
+            j.kind == "fixed" for j in joints) else None
+        if refusal is not None:
+            raise refusal
         return joints, None
     for name, what in ((tip, "tip"), (base, "base")):
         if name is not None and name not in links:
@@ -279,7 +337,64 @@ def _choose(links: dict, joints: list, source: str, base: str | None, tip: str |
         for j in chosen:
             if j.kind in SLIDING:
                 raise _sliding_refusal(j, source, " (choose the arm's chain with --tip LINK to lock it)")
+    if links and all(j.kind == "fixed" for j in (path if tip is not None else chosen)):
+        refusal = _no_joint_refusal(links, joints, source, base, tip, path)
+        if refusal is not None:
+            raise refusal
     return chosen, base
+
+
+def _no_joint_refusal(links: dict, joints: list, source: str, base: str | None, tip: str | None,
+                      path: list) -> SpringlabError | None:
+    """The refusal of a base and tip with no movable joint between them (or of a base with none below
+    it): names them, the file's revolute joints and the tips beyond the base that one would give.
+    None where the tree itself is at fault (no single root): :func:`_serial` names that."""
+    by_parent: dict[str, list] = {}
+    for j in joints:
+        by_parent.setdefault(j.parent, []).append(j)
+    root = base
+    if root is None:
+        children = {j.child for j in joints}
+        roots = [name for name in links if name not in children]
+        if len(roots) != 1:
+            return None
+        root = roots[0]
+    if tip is not None and not path and tip != root:
+        return None  # a tip that is a second root
+    movable = [j for j in joints if j.kind in ("revolute", "continuous")]
+    beyond, stack, seen = [], [(root, False)], set()  # the links below the base, and whether a joint moves them
+    while stack:
+        here, moved = stack.pop()
+        if here in seen:
+            continue
+        seen.add(here)
+        out = by_parent.get(here, [])
+        if moved and not out:
+            beyond.append(here)  # a leaf a movable joint turns: a tip to give
+        stack += [(j.child, moved or j.kind in ("revolute", "continuous")) for j in reversed(out)]
+    below = [j for j in movable if j.parent in seen]
+    if tip is not None and tip == root:
+        where = (f"base = {base!r}" if base is not None else "the file's root link, where the arm stands")
+        said = f"tip = {tip!r} is the base link itself ({where}): no joint lies between them"
+    elif tip is not None:
+        said = (f"no revolute joint lies between base {root!r} and tip {tip!r} (only fixed joint"
+                f"{'s' if len(path) > 1 else ''} {', '.join(repr(j.name) for j in path)}): nothing there moves")
+    elif base is not None:
+        said = f"no revolute joint lies below base {root!r}: nothing there moves"
+    else:
+        said = "no joint of the file moves"
+    if not movable:
+        return SpringlabError(f"{source}: {said + '; ' if tip or base else ''}the file has no revolute or continuous "
+                              "joint: nothing to balance")
+    shown = below or movable
+    listed = ", ".join(f"{j.name!r} ({j.parent!r} to {j.child!r})" for j in shown[:8])
+    more = f" and {len(shown) - 8} more" if len(shown) > 8 else ""
+    if below:
+        tips = ", ".join(map(repr, beyond[:6])) + (", ..." if len(beyond) > 6 else "")
+        advice = f"give a tip beyond the base that they move (--tip LINK), e.g. {tips}"
+        return SpringlabError(f"{source}: {said}; the revolute joints below {root!r} are {listed}{more}: {advice}")
+    return SpringlabError(f"{source}: {said}; the file's revolute joints are {listed}{more}, none of them below "
+                          f"{root!r}: give a base nearer the root (--base LINK; the root by default)")
 
 
 def _serial(links: dict, joints: list, source: str) -> tuple[str, list, str]:
@@ -495,15 +610,41 @@ def _select(text: str, *, source: str, up, max_links: int | None, tip: str | Non
         up = R.T @ up
         kept = {base, *(j.child for j in joints)}
         links = {k: v for k, v in links.items() if k in kept}
+    as_written = links
     if payload:
         held = _Inertial(payload, np.zeros(3), np.zeros((3, 3)))  # a point mass at the tip frame's origin
         links = {**links, tip: held if links.get(tip) is None else _combine([links[tip], held])}
         notes.append(f"payload {payload:g} kg at the origin of link {tip!r}'s frame")
     root, chain, last_link = _serial(links, joints, source)
+    notes += _check_inertias(as_written, chain, source)
     if tip is not None:
         notes.append(f"the arm runs from {root!r} to {tip!r}; every other joint is locked at zero, its bodies "
                      "carried by the link they hang from")
     return _Selection(str(name), links, root, chain, last_link, up, notes, given, base)
+
+
+def _check_inertias(links: dict, chain: list, source: str) -> list:
+    """Refuse a link the arm carries (one that turns with a movable joint) whose inertia is no rigid
+    body's (:func:`_inertia_fault`), naming the link and its values; such a link that rides on the
+    base, whose inertia is never used, is only noted."""
+    moving: set = set()
+    for j in chain:  # from the root outward: a joint's parent is placed before it
+        if j.kind != "fixed" or j.parent in moving:
+            moving.add(j.child)
+    notes = []
+    for name, inertial in links.items():
+        why = None if inertial is None else _inertia_fault(inertial)
+        if why is None:
+            continue
+        if name in moving:
+            raise SpringlabError(
+                f"{source}: link {name!r}: <inertia {inertial.given}> is no rigid body's: {why}; a rigid body's "
+                "principal moments are >= 0 and each at most the sum of the other two (the triangle inequality): "
+                "give the link's inertia about its centre of mass (kg m^2, e.g. from its CAD model's mass "
+                "properties), or all six zero for a point mass")
+        notes.append(f"link {name!r}: <inertia {inertial.given}> is no rigid body's ({why}); not used: the link "
+                     "rides on the base")
+    return notes
 
 
 def read_urdf(text: str, *, source: str = "arm.urdf", up=None, max_links: int | None = None,
@@ -763,7 +904,7 @@ def read_revolute_chain(text: str, *, source: str = "arm.urdf", up=None, tip: st
         T_body = {link: np.linalg.solve(frames[body], pose[link]) for link, body in owner.items()}
         names = (sel.root, *(j.child for j in movers))
         length = float(np.sum(np.linalg.norm(np.array(placements)[:, :3, 3], axis=1)))
-        outline, said = _outlines(text, owner, T_body, names, folder, package_dirs, length)
+        outline, said = _outlines(text, owner, T_body, names, folder, package_dirs, length, source)
         notes += said
     return RevoluteChain(sel.name, (sel.root, *(j.child for j in movers)), tuple(j.name for j in movers),
                          np.array(placements), np.array([j.axis for j in movers]),
@@ -788,11 +929,13 @@ scale or size) or over 5 times the arm's length (at least 2 m: a mesh in millime
 a misplaced scale)."""
 
 
-def _outlines(text, owner, T_body, names, folder, package_dirs, length) -> tuple[tuple, list]:
+def _outlines(text, owner, T_body, names, folder, package_dirs, length, source) -> tuple[tuple, list]:
     """Each body's outline (points, m, body frame) from its links' shapes (collision, else visual:
     also where no collision shape of a link could be read), and notes on what was read and what was
-    not (a mesh not found or unreadable, an outline out of proportion, a body with no geometry)."""
-    from springlab.model.shapes import link_shapes, shape_points
+    not (a mesh not found or unreadable, an outline out of proportion, a body with no geometry). A
+    mesh that would give a false outline (:class:`~springlab.model.shapes.RefusedMeshError`) is
+    refused, with its link named."""
+    from springlab.model.shapes import RefusedMeshError, link_shapes, shape_points
 
     found, notes = link_shapes(text)
     points = [[] for _ in names]
@@ -804,6 +947,8 @@ def _outlines(text, owner, T_body, names, folder, package_dirs, length) -> tuple
                 try:
                     local = shape_points(shape, folder, package_dirs, notes)
                 except MeshError as err:
+                    if isinstance(err, RefusedMeshError):  # a false outline, not a missing one: refused
+                        raise RefusedMeshError(f"{source}: link {link!r}: {err}", filename=err.filename) from None
                     if err.found:
                         unreadable.setdefault(str(err), None)
                     else:
