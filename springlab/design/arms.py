@@ -1522,15 +1522,21 @@ def _defined_torques(model: RevoluteChain, springs, q) -> tuple[np.ndarray, str]
         return joint_torques(model, springs, q), ""
     except GeometryError as err:
         if len(q) == 1:
-            for m, s in enumerate(springs, start=1):  # which spring
-                try:
-                    joint_torques(model, [s], q)
-                except GeometryError:
-                    break
-            return np.full((1, model.n), np.nan), f"spring {m} ({s.label}): " + str(err).split(" at pose ")[0]
+            m = next(m for m, s in enumerate(springs) if not _defined(model, s, q))  # which spring
+            return (np.full((1, model.n), np.nan),
+                    f"spring {m + 1} ({springs[m].label}): " + str(err).split(" at pose ")[0])
         half = len(q) // 2
         (first, why_1), (second, why_2) = _defined_torques(model, springs, q[:half]), _defined_torques(model, springs, q[half:])
         return np.vstack([first, second]), why_1 or why_2
+
+
+def _defined(model: RevoluteChain, spring, q) -> bool:
+    """Whether route 2 gives ``spring`` a line of action at the poses ``q``."""
+    try:
+        joint_torques(model, [spring], q)
+    except GeometryError:
+        return False
+    return True
 
 
 def realisation_changes(model: RevoluteChain, ideal, realised, kinds, origins) -> tuple:
