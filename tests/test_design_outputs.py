@@ -14,7 +14,13 @@ import numpy as np
 import pytest
 
 from springlab.design import arms
-from springlab.design.arms import AUDIT_SAMPLES, ArmDesign, _defined_torques, design_model, workspace_ranges
+from springlab.design.arms import (
+    AUDIT_SAMPLES,
+    ArmDesign,
+    _defined_torques,
+    design_model,
+    workspace_ranges,
+)
 from springlab.design.payload import payload_study
 from springlab.energy.geometry import gravity_torques, joint_torques
 from springlab.model.robots import ROBOTS, load_robot, robot_urdf
