@@ -219,3 +219,12 @@ def test_help_explains_the_search_steps_and_the_exit_statuses(capsys):
 def test_gravity_is_what_the_flags_compare_with(ur5):
     gravity = np.max(np.abs(gravity_torques(ur5.model, ur5.q)), axis=0)
     assert ur5.structure.peak == pytest.approx(gravity, rel=1e-12)
+
+
+def test_a_xacro_file_is_refused_with_how_to_expand_it(tmp_path, capsys):
+    arm = tmp_path / "arm.urdf.xacro"
+    arm.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="a"><xacro:include filename="x"/></robot>')
+    code = main(["design", str(arm), "--json", str(tmp_path / "d.json")])
+    err = capsys.readouterr().err
+    assert code == 2 and "is a xacro file" in err and "xacro arm.urdf.xacro > arm.urdf" in err
+    assert err.count("\n") == 1 and not (tmp_path / "d.json").exists()

@@ -380,6 +380,10 @@ def read_arm_data(path) -> tuple[Path, dict | str]:
     if not path.is_file():
         raise SpringlabError(f"arm file {path} is not a file (a directory?): give the path of a .toml or .json file")
     if path.suffix not in (".toml", ".json", ".urdf"):
+        if path.suffix.lower() == ".xacro":
+            urdf = path.stem if path.stem.endswith(".urdf") else path.stem + ".urdf"
+            raise SpringlabError(f"{path} is a xacro file: expand it into a URDF first (xacro {path.name} > {urdf}), "
+                                 "then give springlab the .urdf")
         raise SpringlabError(f"{path}: arm files are .toml, .json or .urdf, got {path.suffix!r}")
     try:
         size = path.stat().st_size
