@@ -115,7 +115,7 @@ def test_a_rebalanced_spring_left_with_nothing_is_left_out(monkeypatch):
     monkeypatch.setattr(arms, "_worst", lambda *a: 1.0)  # the leads "leave too much": re-balance
     monkeypatch.setattr(arms, "_rebalance", lambda m, springs, cable, *a: [s.scaled(1e-3) for s in springs])
     realised, kinds, _ = arms.realise_springs(model, [spring], q, pulley_radius=0.005)
-    assert realised == (None,) and "left out" in kinds[0] and "S1" in kinds[0]
+    assert realised == (None,) and "carries next to nothing" in kinds[0] and "S1" in kinds[0]
     monkeypatch.setattr(arms, "_rebalance", lambda m, springs, cable, *a: [s.scaled(0.5) for s in springs])
     realised, kinds, _ = arms.realise_springs(model, [spring], q, pulley_radius=0.005)  # the control: kept
     assert realised[0] is not None and realised[0].k == pytest.approx(100.0)
@@ -228,3 +228,14 @@ def test_a_xacro_file_is_refused_with_how_to_expand_it(tmp_path, capsys):
     err = capsys.readouterr().err
     assert code == 2 and "is a xacro file" in err and "xacro arm.urdf.xacro > arm.urdf" in err
     assert err.count("\n") == 1 and not (tmp_path / "d.json").exists()
+
+
+def test_a_spring_left_out_is_named_in_the_changes_and_the_json(monkeypatch):
+    monkeypatch.setattr(arms, "_worst", lambda *a: 1.0)
+    monkeypatch.setattr(arms, "_rebalance", lambda m, springs, cable, *a: [
+        s.scaled(1e-3) if i == cable[0] else s for i, s in enumerate(springs)])
+    design = design_model(load_robot("SO-101"), samples=40, fit_poses=60, max_springs=3, pulley_radius=0.005)
+    (index, why), = design.left_out
+    assert "carries next to nothing" in why and design.names[index] not in design.realised_names
+    assert ["(left out)", design.names[index], why] in [list(row) for row in design.changes_table().rows]
+    assert design.as_dict()["left_out"] == [{"realises": design.names[index], "why": why}]

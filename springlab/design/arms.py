@@ -899,6 +899,9 @@ class ArmDesign:
         for one wire is realised by two or three side by side)
     :ivar changes: per realised spring, what the realisation changed of its ideal spring, and why
     :ivar audit: the independent sample the peaks were re-checked on (:class:`Audit`), or None
+    :ivar left_out: the ideal springs the realisation leaves out, (index, why) each
+    :ivar tag: the letter its springs are named by (S: S1, S2, ...), so that two designs of one arm
+        shown side by side have distinct names
     """
 
     model: RevoluteChain
@@ -913,11 +916,13 @@ class ArmDesign:
     origins: tuple = ()
     changes: tuple = ()
     audit: Audit | None = None
+    tag: str = "S"
+    left_out: tuple = ()
 
     @property
     def names(self) -> tuple:
-        """The ideal springs' names: S1, S2, ..., in order."""
-        return tuple(f"S{i}" for i in range(1, len(self.ideal) + 1))
+        """The ideal springs' names: S1, S2, ..., in order (:attr:`tag` and a number)."""
+        return tuple(f"{self.tag}{i}" for i in range(1, len(self.ideal) + 1))
 
     @property
     def realised_names(self) -> tuple:
@@ -926,7 +931,7 @@ class ArmDesign:
         out = []
         for m, i in enumerate(origins):
             count = origins.count(i)
-            out.append(f"S{i + 1}" + ("" if count == 1 else "abc"[origins[:m].count(i)]))
+            out.append(f"{self.tag}{i + 1}" + ("" if count == 1 else "abc"[origins[:m].count(i)]))
         return tuple(out)
 
     def table(self) -> Table:
@@ -1020,10 +1025,12 @@ class ArmDesign:
         return clearance(self.model, self.realised, self.q, names=self.realised_names)
 
     def changes_table(self) -> Table:
-        """Per realised spring: the ideal spring it realises and what the realisation changed, and why."""
+        """Per realised spring: the ideal spring it realises and what the realisation changed, and why; then
+        each ideal spring the realisation left out, and why."""
         return Table(["realised", "realises", "what changed"],
-                     [(n, f"S{i + 1}", why) for n, i, why in zip(self.realised_names, self.origins, self.changes,
-                                                                  strict=True)])
+                     [(n, self.names[i], why) for n, i, why in zip(self.realised_names, self.origins, self.changes,
+                                                                   strict=True)]
+                     + [("(left out)", self.names[i], why) for i, why in self.left_out])
 
     def flags(self, factor: float = 0.9) -> tuple:
         """What makes this design fail its own checks, in words (empty: it passes): the ideal springs
@@ -1038,11 +1045,8 @@ class ArmDesign:
         for case, count, pose, why in (self.audit.undefined if self.audit else ()):
             where = (f"at {count} of the {self.audit.samples:,} poses of the independent check" if count else
                      "at a pose of the workspace the independent check's local search reached")
-            if case == "realised":
-                number = int(why.split()[1])
-                why = why.replace(f"spring {number}", self.realised_names[number - 1], 1)
-            else:
-                why = why.replace("spring ", "S", 1)
+            number = int(why.split()[1])
+            why = why.replace(f"spring {number}", (self.realised_names if case == "realised" else self.names)[number - 1], 1)
             out.append(f"the {case} springs have no line of action {where} ({why}; "
                        f"at {np.round(np.degrees(pose), 1).tolist()} deg): they cannot be built as drawn")
         gravity = np.max(np.abs(gravity_torques(self.model, self.q)), axis=0)
@@ -1102,11 +1106,12 @@ class ArmDesign:
                 "structure": self.structure.why, "poses_checked": int(self.q.shape[0]),
                 "audit": None if self.audit is None else self.audit.as_dict(),
                 "ideal": [{"name": name} | s.as_dict() for name, s in zip(self.names, self.ideal, strict=True)],
-                "realised": [{"name": name, "realises": f"S{i + 1}", "changed": why} | s.as_dict()
+                "realised": [{"name": name, "realises": self.names[i], "changed": why} | s.as_dict()
                              | _coil_fields(kind, coil, span)
                              for name, i, why, s, kind, (coil, span) in zip(
                                  self.realised_names, origins, changes, self.realised, self.kinds, self.coils,
                                  strict=True)],
+                "left_out": [{"realises": self.names[i], "why": why} for i, why in self.left_out],
                 "torques": rows, "notes": list(self.notes)}
 
 
@@ -1208,7 +1213,7 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
         if s.k < DROP_RATE * springs[i].k:
             names.append(f"not realised: spring S{i + 1} ({s.label}): the re-balance over the pulleys took its rate "
                          f"from {springs[i].k:.4g} to {s.k:.3g} N/m ({100 * s.k / springs[i].k:.2g} % of it), so it "
-                         "carries next to nothing and is left out")
+                         "carries next to nothing")
             out.append(None)
             coils.append(None)
             continue
@@ -1578,13 +1583,16 @@ def realisation_changes(model: RevoluteChain, ideal, realised, kinds, origins) -
 def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, fit_poses: int = 300, seed: int = 1,
                  target: float = 0.1, reach: float | None = None, max_springs: int = 8,
                  max_stiffness: float = MAX_STIFFNESS, material: str = "music wire",
-                 pulley_radius: float = 0.0) -> ArmDesign:
+                 pulley_radius: float = 0.0, tag: str = "S") -> ArmDesign:
     """Springs for an arm of the general model over its workspace (:func:`workspace_ranges`): its
     structure (:func:`structure`); the exact planar springs where its loaded joints form a planar
     chain (:func:`planar_springs`), else the best springs (:func:`best_springs`, fitted on
     ``fit_poses`` poses); their realisation (:func:`realise_springs`); all checked by route 2 on
-    ``samples`` other random poses of the workspace."""
+    ``samples`` other random poses of the workspace, then re-checked on an independent sample
+    (:class:`Audit`). Its springs are named ``tag`` and a number (S1, S2, ...)."""
     _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
+    if not (isinstance(tag, str) and tag.isalpha() and tag.isupper()):
+        raise SpringlabError(f"tag = {tag!r}: give capital letters, e.g. 'S' (springs S1, S2, ...) or 'P'")
     samples = _checks.count("samples", samples, least=1)
     _check_pulley(model, pulley_radius)
     ranges = workspace_ranges(model, workspace)
@@ -1594,7 +1602,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     notes = list(model.notes)
     if not found.loaded:
         return ArmDesign(model, found, "nothing to balance", (), (), (), (), check,
-                         (*notes, "gravity loads no joint of this arm over its workspace: nothing to balance"))
+                         (*notes, "gravity loads no joint of this arm over its workspace: nothing to balance"), tag=tag)
     notes.append(_reach_note(model, reach))
     if found.planar:
         ideal, method = planar_springs(model, found, reach=reach), "exact: planar chain"
@@ -1611,6 +1619,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     for kind in kinds:
         if kind.startswith("not realised"):
             notes.append(f"{kind}: the realised design leaves it out")
+    left_out = tuple((origins[m], kinds[m].split("): ", 1)[-1]) for m, r in enumerate(realised) if r is None)
     kept = [m for m, r in enumerate(realised) if r is not None]
     realised, coils, kinds, origins = (tuple(v[m] for m in kept) for v in (realised, coils, kinds, origins))
     gravity = np.max(np.abs(gravity_torques(model, check)), axis=0)
@@ -1639,4 +1648,5 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     q = np.vstack([check, audit.worst])
     reported = structure(model, q)  # the same peaks as the torque tables, the audit's worst poses included
     found = reported if reported.loaded == found.loaded else found
-    return ArmDesign(model, found, method, ideal, realised, kinds, coils, q, tuple(notes), origins, changes, audit)
+    return ArmDesign(model, found, method, ideal, realised, kinds, coils, q, tuple(notes), origins, changes, audit, tag,
+                     left_out)

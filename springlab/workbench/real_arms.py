@@ -137,7 +137,8 @@ def payload_study(label: str, *, nominal: float | None = None, masses: int = 11,
     """A robot's design made for ``nominal`` kg (default half its rated payload,
     :data:`RATED_PAYLOADS`) at its tip frame, studied from 0 to the rated payload at ``masses``
     payloads (:func:`springlab.design.payload.payload_study`), realised over :data:`PULLEY` pulleys.
-    ``design``: a design already made for ``nominal``."""
+    ``design``: a design already made for ``nominal``. A design made here names its springs P1, P2, ...,
+    apart from the arm's own design (S1, S2, ...) shown beside it."""
     from springlab.design.payload import payload_study as study_payload
     from springlab.model.robots import ROBOTS
 
@@ -145,7 +146,7 @@ def payload_study(label: str, *, nominal: float | None = None, masses: int = 11,
     nominal = 0.5 * rated if nominal is None else nominal
     if design is None:
         design = design_model(load_robot(label, payload=nominal), samples=samples, fit_poses=fit_poses, seed=seed,
-                              pulley_radius=PULLEY)
+                              pulley_radius=PULLEY, tag="P")
     grid = np.union1d(np.linspace(0.0, rated, masses), [nominal, min(nominal + 1.0, rated)])
     return study_payload(design, ROBOTS[label].tip, grid, nominal=nominal)
 
