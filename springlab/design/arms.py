@@ -1417,7 +1417,7 @@ AUDIT_SAMPLES = 20_000
 (:class:`Audit`): ten times the design's own check, independent of it."""
 
 AUDIT_STEPS = (0.05, 1e-5)
-"""rad: the compass search's first and last step (:func:`_climb`); the peaks it refines are then found to
+"""rad: the compass search's first and last step (``_climb``); the peaks it refines are then found to
 about the square of the last step times the torque's curvature, below the tables' printed digits."""
 
 
@@ -1425,7 +1425,7 @@ about the square of the last step times the torque's curvature, below the tables
 class Audit:
     """An independent re-check of a design's peak holding torques: :data:`AUDIT_SAMPLES` random poses of
     the workspace (their own seed), and from the worst of them, per joint and per case (gravity alone,
-    ideal, realised springs), a compass search (:func:`_climb`) that climbs to the nearby worst pose
+    ideal, realised springs), a compass search (``_climb``) that climbs to the nearby worst pose
     within the workspace. The worst poses found join the design's check poses, so every peak and
     share the design reports holds on them too.
 
