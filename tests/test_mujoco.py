@@ -1,8 +1,9 @@
 """MuJoCo beside springlab's routes: an arm exported with its springs (springlab.model.mjcf) is held
-at rest by the same torques as route 2, its gravity is Pinocchio's on the original URDF, released
+at rest by the same torques as route 2, the realised cables over their pulleys too, the file loaded
+as written with only the arm's joints set; its gravity is Pinocchio's on the original URDF, released
 at rest the exact design stays put while the 0.9-rate control falls, and a tendon with the wrong
-rate fails the agreement (the negative control). Bad --mjcf input is refused before anything is
-written."""
+rate fails the agreement (the negative control). The file's generated names never clash with the
+arm's. Bad --mjcf input is refused before anything is written."""
 
 import json
 
@@ -30,7 +31,10 @@ and spring sums in float64 (about 1e-15); the real-arms target is 1e-9."""
 
 @pytest.fixture(scope="module")
 def designs():
-    return {label: design_model(load_robot(label), samples=200, fit_poses=100) for label in ("UR5", "Panda")}
+    """The UR5's and the Panda's designs, the realised cable springs over 5 mm pulleys (the ideal
+    springs are the same with or without pulleys)."""
+    return {label: design_model(load_robot(label), samples=200, fit_poses=100, pulley_radius=0.005)
+            for label in ("UR5", "Panda")}
 
 
 @pytest.mark.parametrize("label", ["UR5", "Panda"])
@@ -46,6 +50,104 @@ def test_mujoco_holds_the_design_as_route_2_does(designs, label):
     wrong[0] = wrong[0].scaled(0.9)
     off = mujoco_holding_torques(to_mjcf(model, wrong), model, q)
     assert np.max(np.abs(off - ours)) > 1e3 * AGREE * scale
+
+
+def _held_as_written(mjcf: str, model, q) -> np.ndarray:
+    """MuJoCo's holding torques (N m), qfrc_bias - qfrc_passive after mj_forward, of the MJCF text loaded
+    as written, only the arm's joints set to ``q`` (N, n) rad (every other coordinate left as loaded)."""
+    mj = mujoco.MjModel.from_xml_string(mjcf)
+    data = mujoco.MjData(mj)
+    joints = [mj.joint(name) for name in model.joints]
+    out = np.empty(q.shape)
+    for p, angles in enumerate(q):
+        mujoco.mj_resetData(mj, data)
+        for joint, angle in zip(joints, angles, strict=True):
+            data.qpos[joint.qposadr[0]] = angle
+        mujoco.mj_forward(mj, data)
+        out[p] = [(data.qfrc_bias - data.qfrc_passive)[joint.dofadr[0]] for joint in joints]
+    return out
+
+
+@pytest.mark.parametrize("label", ["UR5", "Panda"])
+def test_the_realised_file_holds_route_2s_torques_as_written(designs, label):
+    """The realised file opened in MuJoCo as it is, only the arm's joints set (random poses within
+    their limits): the cables over their pulleys hold what route 2 holds, with nothing to turn."""
+    design = designs[label]
+    model = design.model
+    assert sum(s.pulley_radius > 0 for s in design.realised) >= 3
+    q = model.random_q(24, 11)
+    held = _held_as_written(to_mjcf(model, design.realised), model, q)
+    ours = geometry.joint_torques(model, design.realised, q)
+    scale = np.max(np.abs(geometry.gravity_torques(model, q)))
+    assert np.max(np.abs(held - ours)) < AGREE * scale
+
+
+TWO_JOINTS = """<robot name="two">
+  <link name="base"/>
+  <link name="turn"><inertial><origin xyz="0 0 0.05"/><mass value="1"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="arm"><inertial><origin xyz="0 0 0.2"/><mass value="2"/>
+    <inertia ixx="0.02" iyy="0.02" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="yaw" type="revolute"><parent link="base"/><child link="turn"/><axis xyz="0 0 1"/>
+    <limit lower="-3.1416" upper="3.1416" effort="1" velocity="1"/></joint>
+  <joint name="pitch" type="revolute"><parent link="turn"/><child link="arm"/><origin xyz="0 0 0.1"/><axis xyz="0 1 0"/>
+    <limit lower="-3.1416" upper="3.1416" effort="1" velocity="1"/></joint>
+</robot>"""
+"""A turntable (yaw about z) and an arm pitching on it about y, 0.1 m up."""
+
+
+def test_a_cable_is_held_from_every_side_of_its_lead():
+    """Two cables from A on the lead's line (u = +z, A on both joints' axes) to B on the arm: the
+    pitch is the angle alpha between the lead and B - A, from next to 0 (B straight ahead, the path
+    S -> B through the pulley) to next to pi (B behind A, the straight path clear of it). The first
+    is on the base, so the yaw swings B all round its lead; the second on the turntable, where B
+    keeps to one plane through the lead. MuJoCo holds route 2's torques at every side of the lead
+    but within SIDE_TILT rad of the lead's line behind A (the side sites' one limit)."""
+    from springlab.model.mjcf import SIDE_TILT
+    from springlab.model.urdf import read_revolute_chain
+
+    model = read_revolute_chain(TWO_JOINTS, source="two.urdf")
+    springs = [PointSpring("base", (0.0, 0.0, 0.1), "arm", (0.0, 0.0, 0.3), 200.0, 0.05, 2.0, pulley_radius=0.01,
+                           lead=(0.0, 0.0, 1.0)),
+               PointSpring("turn", (0.0, 0.0, 0.1), "arm", (0.01, 0.0, 0.25), 150.0, 0.04, 1.0, pulley_radius=0.008,
+                           lead=(0.0, 0.0, 1.0))]
+    alphas = [1e-6, 1e-3, 0.3, 1.0, np.pi / 2, 2.0, 3.0, np.pi - 1e-3, np.pi - 10 * SIDE_TILT]
+    yaws = np.random.default_rng(4).uniform(-np.pi, np.pi, 8)
+    q = np.array([(yaw, alpha) for alpha in alphas for yaw in (0.0, *yaws)])
+    mjcf = to_mjcf(model, springs)
+    ours = geometry.joint_torques(model, springs, q)
+    assert np.max(np.abs(_held_as_written(mjcf, model, q) - ours)) < AGREE * np.max(np.abs(ours))
+
+
+def test_generated_names_never_clash_with_the_arms():
+    """Links and joints named as the file's generated elements (the pulley 'S1 pulley', the sites
+    'S1 A', 'S1 side 1', 'S2 B', the tendon 'S2', the mesh 'outline gripper_link', the former
+    'S1 swivel'), and a '--' that an XML comment may not hold: MuJoCo loads the file, every name in
+    it once, and holds route 2's torques."""
+    import re
+
+    from springlab.model.urdf import read_revolute_chain
+
+    path = robot_urdf("SO-101")
+    text = path.read_text()
+    renamed = {"shoulder_link": "S1 pulley", "upper_arm_link": "S1 A", "lower_arm_link": "outline gripper_link",
+               "wrist_link": "S2", "base_link": "base--link", "shoulder_lift": "S1 swivel", "elbow_flex": "S1 side 1",
+               "wrist_flex": "S2 B"}
+    for old, new in renamed.items():
+        text = text.replace(f'"{old}"', f'"{new}"')
+    model = read_revolute_chain(text, source=path.name, folder=path.parent)
+    assert set(renamed.values()) <= {*model.bodies, *model.joints}
+    springs = [PointSpring("S1 pulley", (0.0, 0.01, 0.03), "outline gripper_link", (0.02, 0.0, 0.01), 300.0, 0.02, 1.0,
+                           pulley_radius=0.004, lead=(0.0, 0.0, -1.0)),
+               PointSpring("base--link", (0.02, 0.0, 0.05), "S2", (0.0, 0.01, 0.02), 80.0, 0.03, 2.4)]
+    mjcf = to_mjcf(model, springs)
+    mj = mujoco.MjModel.from_xml_string(mjcf)  # MuJoCo refuses a repeated name
+    names = re.findall(r'\bname="([^"]*)"', mjcf)
+    assert len(names) == len(set(names)) and "outline gripper_link" in names
+    assert mj.nq == model.n
+    q = model.random_q(10, 3)
+    ours = geometry.joint_torques(model, springs, q)
+    assert np.max(np.abs(_held_as_written(mjcf, model, q) - ours)) < AGREE * np.max(np.abs(ours))
 
 
 def test_realised_springs_keep_their_force_law_in_mujoco():
@@ -166,7 +268,7 @@ def test_the_ur5_over_5_mm_pulleys_keeps_90_percent_by_route_2_and_mujoco(ur5_pu
     held = mujoco_holding_torques(to_mjcf(model, design.realised), model, q)
     ours = geometry.joint_torques(model, design.realised, q)
     scale = np.max(np.abs(geometry.gravity_torques(model, q)))
-    assert np.max(np.abs(held - ours)) < AGREE * scale  # MuJoCo's wrapped cylinders: route 2's cable path
+    assert np.max(np.abs(held - ours)) < AGREE * scale  # MuJoCo's wrapped spheres: route 2's cable path
     # negative control: the same springs exported with 4 mm pulleys must disagree
     smaller = [PointSpring(**(s.as_dict() | {"pulley_radius": 0.004})) if s.pulley_radius else s
                for s in design.realised]

@@ -4,7 +4,9 @@ gravity torques on a robot's own URDF.
 Pinocchio (``pin``, the ``robots`` extra) reads the file itself and locks every joint off the arm's
 path at zero with ``buildReducedModel``, as :func:`springlab.model.urdf.read_revolute_chain` does;
 its ``computeGeneralizedGravity`` is the torque that holds each pose, our
-:func:`springlab.energy.geometry.gravity_torques`.
+:func:`springlab.energy.geometry.gravity_torques`. MuJoCo (``mujoco``, the same extra) holds and
+releases the MJCF :func:`springlab.model.mjcf.to_mjcf` writes, taken as written: only the arm's
+joints are set.
 """
 
 from __future__ import annotations
@@ -139,28 +141,25 @@ def _mujoco():
 def mujoco_holding_torques(mjcf: str, model, q) -> np.ndarray:
     """MuJoCo's holding torques (N m), (N, n), of an arm written by :func:`springlab.model.mjcf.to_mjcf`
     at joint angles ``q`` (N, n) rad, at rest: ``qfrc_bias - qfrc_passive`` after ``mj_forward`` (gravity
-    less the tendons' spring forces), route 2's :func:`springlab.energy.geometry.joint_torques`.
+    less the tendons' spring forces), route 2's :func:`springlab.energy.geometry.joint_torques`. The file
+    is taken as written: only the arm's joints are set (its cables' pulleys need no turning).
 
-    :raises SpringlabError: when MuJoCo is not installed
+    :raises SpringlabError: when MuJoCo is not installed, or the MJCF is not ``model``'s arm
     """
     mujoco = _mujoco()
     q = model.check_q(q)
     mj = mujoco.MjModel.from_xml_string(mjcf)
     data = mujoco.MjData(mj)
     arm = [_joint(mujoco, mj, name) for name in model.joints]
-    swivels = [_joint(mujoco, mj, f"S{k} swivel") for k in range(1, mj.ntendon + 1)
-               if mujoco.mj_name2id(mj, mujoco.mjtObj.mjOBJ_JOINT, f"S{k} swivel") >= 0]
-    if mj.nq != len(arm) + len(swivels):
-        raise SpringlabError(f"the MJCF has {mj.nq} joint coordinates, the model {model.n} and {len(swivels)} "
-                             "pulleys: not the same arm")
+    if mj.nq != len(arm):
+        raise SpringlabError(f"the MJCF has {mj.nq} joint coordinates, the model {model.n}: not the same arm")
     qpos = [int(mj.jnt_qposadr[j]) for j in arm]
     dof = [int(mj.jnt_dofadr[j]) for j in arm]
     out = np.empty(q.shape)
     for p, angles in enumerate(q):
-        data.qpos[:] = 0.0
+        data.qpos[:] = mj.qpos0
         data.qpos[qpos] = angles
         data.qvel[:] = 0.0
-        _swivel(mujoco, mj, data, swivels)
         mujoco.mj_forward(mj, data)
         out[p] = (data.qfrc_bias - data.qfrc_passive)[dof]
     return out
@@ -171,20 +170,6 @@ def _joint(mujoco, mj, name: str) -> int:
     if index < 0:
         raise SpringlabError(f"the MJCF has no joint {name!r}: not the arm it was given with")
     return index
-
-
-def _swivel(mujoco, mj, data, swivels) -> None:
-    """Turn each pulley about its lead (the swivel's x axis) until spring k's end B lies in its
-    plane (the swivel's local x-y plane, B on the +y side), from MuJoCo's own kinematics."""
-    if not swivels:
-        return
-    mujoco.mj_kinematics(mj, data)
-    for j in swivels:
-        k = mujoco.mj_id2name(mj, mujoco.mjtObj.mjOBJ_JOINT, j).split()[0]
-        body = int(mj.jnt_bodyid[j])
-        B = data.site_xpos[mujoco.mj_name2id(mj, mujoco.mjtObj.mjOBJ_SITE, f"{k} B")]
-        local = data.xmat[body].reshape(3, 3).T @ (B - data.xpos[body])
-        data.qpos[mj.jnt_qposadr[j]] += np.arctan2(local[2], local[1])
 
 
 def mujoco_release(mjcf: str, q0, seconds: float, *, every: int = 10) -> tuple[np.ndarray, np.ndarray]:
