@@ -241,9 +241,10 @@ def record(claims, studies) -> None:
                        "float64: round-off, about 1e-15; the real-arms target is 1e-9")
         claims.compare(f"{st.label}: holding torques with the realised springs over {1e3 * PULLEY:g} mm pulleys, MuJoCo - "
                        "route 2, relative to the largest gravity torque",
-                       "MuJoCo 4.0: each cable a tendon wrapping a swivelling cylinder", 0.0, st.mujoco_realised, unit="-",
-                       tolerance=1e-9, tolerance_basis="the same wrapped path (arc and tangent runs, MuJoCo's cylinder "
-                       "wrapping with a side site) and forces in float64: round-off, about 1e-14")
+                       "MuJoCo 4.0, the file as written: each cable tendons wrapping a sphere at its pulley", 0.0,
+                       st.mujoco_realised, unit="-", tolerance=1e-9, tolerance_basis="the same wrapped path (arc and "
+                       "tangent runs in the plane of the lead and B, MuJoCo's sphere wrapping, springlab.model.mjcf) and "
+                       "forces in float64: round-off, about 1e-14")
         if st.design.method.startswith("exact"):
             designed, control = st.design.control()
             peak = float(np.max(st.design.structure.peak))
