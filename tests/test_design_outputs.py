@@ -80,6 +80,14 @@ def test_a_dial_that_cannot_be_turned_is_one_line_and_never_a_negative_range(ur5
     assert data["dial_usable"] == {"ideal": False, "realised": False}
 
 
+def test_a_dial_that_holds_a_sliver_of_the_range_is_none(ur5):
+    study = payload_study(ur5, ROBOTS["UR5"].tip, [0.0, 1.0], nominal=0.0, dial_poses=100)
+    sliver = dataclasses.replace(study, holds={"ideal": (0.0, 0.02), "realised": (0.0, 0.2)})
+    assert not sliver.usable("ideal") and sliver.usable("realised")  # 20 g of a 1 kg study is none; 200 g is
+    assert any(w.startswith("no payload dial for the ideal springs") and "only 0 to 0.02 kg" in w
+               for w in sliver.warnings())
+
+
 def test_a_dial_that_turns_says_the_range_it_holds():
     # the control: designed at 2.5 kg, the anchors can move towards lighter payloads, down to 0 kg
     design = design_model(load_robot("UR5", payload=2.5), samples=300, fit_poses=100)

@@ -50,6 +50,10 @@ STEP = 1e-3
 """m: the moves' finite-difference step (exact for zero-free-length springs, whose torques are
 linear in the moves; a linearisation for the others)."""
 
+DIAL_SPAN = 0.1
+"""A payload dial is worth turning where the payloads over which it keeps every moved end on its link
+span at least this fraction of the payloads studied (a dial for 0 to 1 kg that holds 20 g is none)."""
+
 MAX_PAYLOAD_RANGE = 1e3
 """kg: the largest payload a range may reach (more is a unit mistake for an arm's payload)."""
 
@@ -265,10 +269,12 @@ class PayloadStudy:
     names: dict | None = None
 
     def usable(self, which: str) -> bool:
-        """Whether the ``which`` ('ideal' or 'realised') springs' dial can be turned at all: the payloads
-        it holds span at least a gram (to the printed 0.001 kg)."""
+        """Whether the ``which`` ('ideal' or 'realised') springs' dial is worth turning: the payloads it
+        holds span at least :data:`DIAL_SPAN` of the payloads studied, and at least a gram (the printed
+        0.001 kg)."""
         lo, hi = self.holds[which]
-        return round(hi - lo, 3) > 0
+        span = float(np.max(self.masses) - np.min(self.masses))
+        return round(hi - lo, 3) > 0 and hi - lo >= DIAL_SPAN * span
 
     def refusal(self, which: str) -> str:
         """The one line that says a dial (``which``: 'ideal', 'realised', or 'ideal or the realised' for
@@ -277,10 +283,15 @@ class PayloadStudy:
         dial = self.dials[which.split()[0]]
         i, end, link, per_kg = max(dial.moves, key=lambda m: float(np.linalg.norm(m[3])))
         name = self.names[which.split()[0]][i] if self.names else f"S{i + 1}"
+        lo, hi = self.holds[which.split()[0]]
+        at_once = round(hi - lo, 3) == 0
+        holds = (f"only its nominal {self.nominal:g} kg" if at_once else
+                 f"only {round(lo, 3):g} to {round(hi, 3):g} kg with it")
         return (f"no payload dial for the {which} springs: the moves that would keep the balance (up to "
                 f"{1e3 * float(np.linalg.norm(per_kg)):,.0f} mm per kg, {name}'s end {end} on {link!r}) take an end "
-                f"off its link and bracket at once, so the design holds only its nominal {self.nominal:g} kg; design "
-                "for the payload you carry or a mid-range one (--payload), or allow longer brackets (--reach)")
+                f"off its link and bracket {'at once' if at_once else 'within a tenth of the payloads checked'}, so "
+                f"the design holds {holds}; design for the payload you carry or a mid-range one (--payload), or allow "
+                "longer brackets (--reach)")
 
     def warnings(self) -> list[str]:
         """What the study finds an engineer must know: a dial that cannot be turned, payloads beyond the
