@@ -29,7 +29,7 @@ comments that say what each generated element is:
   fixed in its body, and no site fixed in link A lies on B's far side at every pose. So the spring
   is three tendons on the same sites, each of springlength (L_0 - F_i / k) + run: two of rate k
   wrapping the sphere with side sites :data:`SIDE_OFFSET` rho in front of A and :data:`SIDE_TILT`
-  of that off the lead, on opposite sides (in the direction :func:`_aside` picks from B's poses),
+  of that off the lead, on opposite sides (in the direction ``_aside`` picks from B's poses),
   and one of rate -k with no side site (the shortest path). At every pose the tendon whose side
   site lies on B's far side takes route 2's path and the other the shortest path, which the third
   takes too and cancels: MuJoCo's passive forces are route 2's cable's to round-off. They differ
@@ -158,7 +158,7 @@ route 2's path only while B is more than this angle (rad) from the lead's line b
 
 
 SIDE_POSES = 2000
-"""How many random poses within the joint limits :func:`_aside` reads B's directions from."""
+"""How many random poses within the joint limits ``_aside`` reads B's directions from."""
 
 
 def _aside(model: RevoluteChain, s, n0, m0) -> np.ndarray:
