@@ -23,6 +23,7 @@ from springlab.design.arms import (
 )
 from springlab.design.payload import payload_study
 from springlab.energy.geometry import gravity_torques, joint_torques
+from springlab.errors import SpringlabError
 from springlab.model.robots import ROBOTS, load_robot, robot_urdf
 from springlab.model.springs import PointSpring
 from springlab.workbench.cli import EXIT_FLAGGED, main
@@ -247,3 +248,15 @@ def test_a_spring_left_out_is_named_in_the_changes_and_the_json(monkeypatch):
     assert "carries next to nothing" in why and design.names[index] not in design.realised_names
     assert ["(left out)", design.names[index], why] in [list(row) for row in design.changes_table().rows]
     assert design.as_dict()["left_out"] == [{"realises": design.names[index], "why": why}]
+
+
+def test_the_books_two_ur5_designs_name_their_springs_apart():
+    from springlab.workbench import real_arms
+
+    loaded = real_arms.payload_study("UR5", samples=100, fit_poses=60, masses=3)
+    assert loaded.names["ideal"] == ("P1", "P2", "P3", "P4", "P5", "P6")
+    assert all(row[0].startswith("P") for row in loaded.dials["ideal"].table(loaded.names["ideal"]).rows)
+    unloaded = design_model(load_robot("UR5"), samples=100, fit_poses=60)
+    assert unloaded.names[0] == "S1" and not set(unloaded.names) & set(loaded.names["ideal"])
+    with pytest.raises(SpringlabError, match="tag"):
+        design_model(load_robot("UR5"), samples=10, tag="s1")
