@@ -260,3 +260,16 @@ def test_the_books_two_ur5_designs_name_their_springs_apart():
     assert unloaded.names[0] == "S1" and not set(unloaded.names) & set(loaded.names["ideal"])
     with pytest.raises(SpringlabError, match="tag"):
         design_model(load_robot("UR5"), samples=10, tag="s1")
+
+
+@pytest.mark.parametrize("outputs", [["--json", "{arm}"], ["--json", "x.xml", "--mjcf", "x.xml"],
+                                     ["--json", "x.realised.xml", "--mjcf", "x.xml"]],
+                         ids=["json is the arm", "json is the mjcf", "json is the realised mjcf"])
+def test_an_output_that_overwrites_the_arm_or_another_output_is_refused(outputs, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    urdf = tmp_path / "two.urdf"
+    urdf.write_text(TWO_LINKS)
+    code = main(["design", str(urdf), "--tip", "tool", "--quiet", *[a.format(arm=urdf) for a in outputs]])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and ("arm file itself" in err or "overwrite the other" in err)
+    assert urdf.read_text() == TWO_LINKS and sorted(p.name for p in tmp_path.iterdir()) == ["two.urdf"]

@@ -61,6 +61,22 @@ def _writable(path: Path, what: str) -> Path:
     return path
 
 
+def _no_clash(arm_file, outputs) -> None:
+    """Refuse, before any work, an output that is the arm file itself or that another output also names:
+    ``outputs`` is (the flag, the path) pairs the command will write."""
+    source = Path(arm_file).resolve()
+    seen = {}
+    for what, path in outputs:
+        where = Path(path).resolve()
+        if where == source:
+            raise SpringlabError(f"{what} {path} is the arm file itself: writing there would replace it; give "
+                                 "another file name")
+        if where in seen:
+            raise SpringlabError(f"{seen[where]} and {what} both name {path}: one would overwrite the other; give "
+                                 "each its own file name")
+        seen[where] = what
+
+
 def _check_arguments(args) -> None:
     from springlab import _checks
 
@@ -153,6 +169,8 @@ def _design(args) -> int:
     mjcf = _mjcf_paths(args)
     if args.csv:
         _writable(Path(args.csv), "--csv")
+    _no_clash(args.arm_file, [("--json", out), *(("--sheet", p) for p in (_sheet_paths(out) if args.sheet else ())),
+                              *(("--mjcf", p) for p in mjcf), *((("--csv", args.csv),) if args.csv else ())])
     report = design_arm(spec, method=args.method, max_designs=args.max_designs,
                         max_configurations=args.max_configurations, seed=args.seed, progress=not args.quiet,
                         time_limit=args.time_limit)
@@ -222,6 +240,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
         for sheet_path in _sheet_paths(out):
             _writable(sheet_path, "--sheet")
     mjcf = _mjcf_paths(args)
+    _no_clash(path, [("--json", out), *(("--sheet", p) for p in (_sheet_paths(out) if args.sheet else ())),
+                     *(("--mjcf", p) for p in mjcf)])
     started = time.perf_counter()
     reach = None if args.reach is None else _checks.positive(
         "--reach", parse_quantity(args.reach, "length", "--reach"), allow_zero=True, unit="m") + 0.0
@@ -423,6 +443,7 @@ def _design_dh(args, path: Path) -> int:
     out = _writable(Path(args.json or path.with_suffix(".design.json").name), "--json")
     if args.csv:
         _writable(Path(args.csv), "--csv")
+    _no_clash(path, [("--json", out), *((("--csv", args.csv),) if args.csv else ())])
     springs = dh.design()
     q = np.random.default_rng(args.seed).uniform(-np.pi, np.pi, (2000, dh.arm.n))
     energy = geometry.energies(dh.arm, springs, q)
