@@ -1049,6 +1049,11 @@ class ArmDesign:
             why = why.replace(f"spring {number}", (self.realised_names if case == "realised" else self.names)[number - 1], 1)
             out.append(f"the {case} springs have no line of action {where} ({why}; "
                        f"at {np.round(np.degrees(pose), 1).tolist()} deg): they cannot be built as drawn")
+        for m, angle, pose in (self.audit.crossings if self.audit else ()):
+            out.append(f"the realised spring {self.realised_names[m]}'s end B crosses the line of its pulley's lead "
+                       f"(within {np.degrees(angle):.1g} deg, at {np.round(np.degrees(pose), 1).tolist()} deg): its pulley "
+                       "must swivel half a turn there at once, and its pull jumps, so the torques near that pose are not "
+                       "what the tables show; give it another lead or other ends")
         gravity = np.max(np.abs(gravity_torques(self.model, self.q)), axis=0)
         floor = 1e-9 * max(float(np.max(gravity)), 1e-300)
         for which in ("ideal", "realised"):
@@ -1183,9 +1188,9 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
     if pulley_radius > 0 and cable:
         fit = q[:150] if fit is None else model.check_q(fit)
         scale = _realised_scales(model, springs, fit)
-        led = _leads(model, built, cable, fit, pulley_radius, scale)
+        led = _leads(model, built, cable, fit, pulley_radius, scale, clear_q=q)
         built = led
-        if _worst(model, led, fit, scale) > REBALANCE:  # the leads alone leave too much
+        if max(_worst(model, led, fit, scale), _worst(model, led, q, scale)) > REBALANCE:  # the leads leave too much
             built = _rebalance(model, led, cable, fit, reach, max_stiffness, scale)
         def windable(spring):  # None: its cable comes within the pulley's radius of A at a pose of ``q``
             try:
@@ -1194,11 +1199,19 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
                 return None
 
         built = list(built)
-        swapped = False
-        for i in cable:  # a re-balanced spring no stocked wire carries, or whose cable meets its pulley at a
-            fits = windable(built[i])  # pose the fit did not see, keeps its designed rate and ends
-            if fits is None or (not fits and windable(led[i])):
-                built[i], swapped = led[i], True
+        swapped = []
+        dense = _dense(model, q)
+        for i in cable:  # a re-balanced spring no stocked wire carries, whose cable meets its pulley at a pose
+            fits = windable(built[i])  # the fit did not see, or whose end now crosses its lead's line, keeps its
+            crosses = built[i] is not led[i] and _lead_tier(_lead_clearance(model, built[i], dense)) == 2
+            if fits is None or (not fits and windable(led[i])) or crosses:  # designed rate and ends
+                built[i] = led[i]
+                swapped.append(i)
+        rest = [i for i in cable if i not in swapped]
+        if swapped and rest and _worst(model, built, q, scale) > REBALANCE:  # the others re-balanced around them
+            again = _rebalance(model, built, rest, fit, reach, max_stiffness, scale)
+            if all(windable(again[i]) and _lead_tier(_lead_clearance(model, again[i], dense)) < 2 for i in rest):
+                built = list(again)
         if swapped and _sig(_worst(model, built, fit, scale)) > _sig(_worst(model, led, fit, scale)):
             built = list(led)  # the others were re-balanced around the springs put back: the leads alone do better
     out, names, coils, origins = [], [], [], []
@@ -1278,13 +1291,76 @@ def _with(s, **changes) -> PointSpring:
     return PointSpring(**(fields | changes))
 
 
-def _leads(model: RevoluteChain, springs, cable, q, radius: float, scale) -> list:
+LEAD_CLEAR = 0.1
+"""rad: a cable spring's lead is chosen, where one can be, so that at every pose of the design's check B
+stays at least this far in angle from the lead's line through A (:func:`lead_angles`): where B crosses
+that line a swivelling pulley must turn half a turn at once and the cable's pull jumps (over 5 mm
+pulleys the UR5's S2 passed within 1e-6 rad of its line, its elbow torque jumping by 4 N m)."""
+
+
+LEAD_AXES = 2
+"""How many of the directions that B keeps furthest from (:func:`_clearest_axes`) join a cable spring's
+candidate leads."""
+
+
+def _clearest_axes(model: RevoluteChain, spring, q, count: int = LEAD_AXES, directions: int = 400) -> np.ndarray:
+    """The ``count`` lines through A (unit vectors in body a's frame, (count, 3)) that the direction from A
+    to the spring's end B keeps furthest from, in angle, over the poses ``q``: the best of ``directions``
+    spread evenly over a hemisphere (a line and its opposite are one)."""
+    from springlab.model.revolute import world_points
+
+    R, o = body_frames(model, q)
+    a, pa = model.locate(spring.link_a, spring.point_a)
+    d = np.einsum("pji,pj->pi", R[:, a], world_points(R, o, *model.locate(spring.link_b, spring.point_b))
+                  - world_points(R, o, a, pa))
+    d /= np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
+    k = np.arange(directions) + 0.5  # a Fibonacci lattice on the upper hemisphere
+    z, phi = k / directions, np.pi * (1 + 5 ** 0.5) * k
+    U = np.column_stack([np.sqrt(1 - z**2) * np.cos(phi), np.sqrt(1 - z**2) * np.sin(phi), z])
+    nearest = np.min(np.arccos(np.clip(np.abs(d @ U.T), 0.0, 1.0)), axis=0)
+    keys = [-_sig(v) for v in nearest]
+    return U[np.argsort(keys, kind="stable")[:count]]
+
+
+def _lead_tier(clearance: float) -> int:
+    """0: B keeps :data:`LEAD_CLEAR` from the lead's line; 1: it comes nearer, but not within three
+    times :data:`CROSSING` (a margin for the audit, which searches other poses); 2: it does."""
+    return 0 if clearance >= LEAD_CLEAR else 1 if clearance >= 3 * CROSSING else 2
+
+
+LEAD_SAMPLES = 20_000
+"""Random poses of the workspace's box (their own seed) on which a candidate lead's clearance is measured
+(:func:`_lead_clearance`): as many as the audit's, so that the two find the same near crossings."""
+
+
+def _dense(model: RevoluteChain, q):
+    """:data:`LEAD_SAMPLES` random poses within the box of the poses ``q`` (their own seed), with their body
+    frames, and the box: what the leads' clearances are measured on."""
+    lo, hi = np.min(q, axis=0), np.max(q, axis=0)
+    dense = np.random.default_rng([LEAD_SAMPLES, model.n]).uniform(lo, hi, (LEAD_SAMPLES, model.n))
+    return dense, body_frames(model, dense), lo, hi
+
+
+def _lead_clearance(model: RevoluteChain, spring, dense) -> float:
+    """rad: how near B comes to a cable spring's lead line (:func:`lead_angles`) over the poses of
+    ``dense`` (:func:`_dense`), refined by :func:`_compass` within their box from the nearest."""
+    q, frames, lo, hi = dense
+    angle = lead_angles(model, spring, q, frames)
+    _, value = _compass(lambda t: -lead_angles(model, spring, t), q[int(np.argmin(angle))], lo, hi)
+    return _sig(-value)
+
+
+def _leads(model: RevoluteChain, springs, cable, q, radius: float, scale, clear_q=None) -> list:
     """Each cable spring over a pulley of ``radius`` (m), its lead (in link_a's frame) chosen, one
     spring at a time and twice over, among +-x, +-y, +-z of link_a, the direction from its joint to A
     and the mean direction from A to B and its opposite: whichever leaves the smallest largest
-    holding torque (relative to each joint's ``scale``, N m) at the poses ``q``."""
+    holding torque (relative to each joint's ``scale``, N m) at the poses ``q``, among the leads
+    whose line B keeps :data:`LEAD_CLEAR` from (:func:`_lead_clearance` over the poses ``clear_q``,
+    default ``q``) where any does, else among those it does not cross (:func:`_lead_tier`); the
+    candidates include the lines B keeps furthest from (:func:`_clearest_axes`)."""
     from springlab.model.revolute import world_points
 
+    clear_q = q if clear_q is None else clear_q
     R, o = body_frames(model, q)
     out = list(springs)
     candidates = {}
@@ -1296,12 +1372,16 @@ def _leads(model: RevoluteChain, springs, cable, q, radius: float, scale) -> lis
         own = np.asarray(model.locate(s.link_a, (0.0, 0.0, 0.0))[1])  # link_a's origin in body a's frame
         found = [*np.eye(3), *-np.eye(3), towards, -towards, np.asarray(pa) - own]
         rotation = model.rotation(s.link_a)  # link_a -> body
+        found += list(_clearest_axes(model, s, clear_q))
         candidates[i] = [tuple(rotation.T @ (u / np.linalg.norm(u))) for u in found if np.linalg.norm(u) > 1e-9]
-        out[i] = _with(s, pulley_radius=radius, lead=candidates[i][-1])  # from link_a's origin to A, or -towards
+        out[i] = _with(s, pulley_radius=radius, lead=candidates[i][-1 - LEAD_AXES])  # link_a's origin to A, or -towards
+    dense = _dense(model, clear_q)
+    crosses = {i: [_lead_tier(_lead_clearance(model, _with(out[i], lead=u), dense)) for u in candidates[i]]
+               for i in cable}
     for _ in range(2):
         for i in cable:
-            trials = [out[:i] + [_with(out[i], lead=u)] + out[i + 1:] for u in candidates[i]]
-            out = min(trials, key=lambda t: _sig(_worst(model, t, q, scale)))  # ties to the first lead
+            trials = [(crosses[i][c], out[:i] + [_with(out[i], lead=u)] + out[i + 1:]) for c, u in enumerate(candidates[i])]
+            out = min(trials, key=lambda t: (t[0], _sig(_worst(model, t[1], q, scale))))[1]  # ties to the first lead
     return out
 
 
@@ -1437,6 +1517,8 @@ class Audit:
     :ivar undefined: per case whose springs have no line of action at some of the random poses (a cable's
         end within its pulley's radius of the pulley, a spring's ends coinciding), (case, how many, the
         first such pose (rad), the reason)
+    :ivar crossings: per realised cable spring whose end B crosses its lead's line in the workspace
+        (within :data:`CROSSING`), (its index, the angle (rad), the pose (rad))
     """
 
     samples: int
@@ -1444,6 +1526,7 @@ class Audit:
     worst: np.ndarray
     raised: tuple
     undefined: tuple = ()
+    crossings: tuple = ()
 
     @classmethod
     def of(cls, model: RevoluteChain, ranges, cases: dict, check, seed: int, samples: int = AUDIT_SAMPLES) -> Audit:
@@ -1471,8 +1554,15 @@ class Audit:
                     undefined.append((case, 0, broken[0].tolist(), broken[1]))
                 if _sig(value, 3) > _sig(own[j], 3) and value > NEGLIGIBLE * largest:
                     raised.append((case, model.joints[j], float(own[j]), float(value)))
+        crossings = []
+        for m, spring in enumerate(dict(cases).get("realised", ())):
+            if spring.pulley_radius > 0:
+                angle = lead_angles(model, spring, q)
+                pose, value = _compass(lambda t, s=spring: -lead_angles(model, s, t), q[int(np.argmin(angle))], lo, hi)
+                if -value < CROSSING:
+                    crossings.append((m, float(-value), pose.tolist()))
         unique = np.unique(np.array(worst).reshape(-1, model.n), axis=0)
-        return cls(samples, seed, unique, tuple(raised), tuple(undefined))
+        return cls(samples, seed, unique, tuple(raised), tuple(undefined), tuple(crossings))
 
     def note(self, checked: int) -> str:
         """The sample, in words, for the design's output."""
@@ -1485,38 +1575,74 @@ class Audit:
 
     def as_dict(self) -> dict:
         """For ``springlab design --json``."""
-        return {"undefined": [{"case": case, "poses": count, "first_pose_rad": pose, "why": why}
+        return {"lead_crossings": [{"spring": m + 1, "angle_rad": angle, "pose_rad": pose}
+                                   for m, angle, pose in self.crossings],
+                "undefined": [{"case": case, "poses": count, "first_pose_rad": pose, "why": why}
                               for case, count, pose, why in self.undefined],
                 "samples": self.samples, "seed": list((self.seed, self.samples)), "worst_poses_rad": self.worst.tolist(),
                 "raised": [{"case": case, "joint": joint, "check_peak_Nm": own, "audit_peak_Nm": value}
                            for case, joint, own, value in self.raised]}
 
 
-def _climb(model: RevoluteChain, springs, start, j: int, lo, hi, max_steps: int = 400) -> tuple[np.ndarray, float]:
-    """A compass search for the largest |holding torque| (N m) of joint ``j`` near the pose ``start``
-    within the bounds [lo, hi] (rad): each step tries +- the step on every joint (one route-2 call of
-    2n poses) and moves to the best trial where it beats the current pose (compared to 9 significant
-    digits, ties to the first, so that round-off decides nothing), else halves the step, from
-    :data:`AUDIT_STEPS`' first to its last. Returns the pose, its |torque|, and the first trial pose
-    where a spring had no line of action with the reason (None where every trial had one)."""
+def _climb(model: RevoluteChain, springs, start, j: int, lo, hi) -> tuple[np.ndarray, float, tuple | None]:
+    """The largest |holding torque| (N m) of joint ``j`` near the pose ``start`` within the bounds [lo, hi]
+    (rad), by :func:`_compass` on route 2's torques. Returns the pose, its |torque|, and the first trial
+    pose where a spring had no line of action with the reason (None where every trial had one)."""
+    broken = []
+
+    def value(trials):
+        tau, why = _defined_torques(model, springs, trials)
+        if why and not broken:
+            broken.append((trials[int(np.argmax(np.isnan(tau[:, j])))], why))
+        return np.abs(tau[:, j])  # nan where undefined: never chosen
+
+    x, best = _compass(value, start, lo, hi)
+    return x, best, broken[0] if broken else None
+
+
+def _compass(value, start, lo, hi, max_steps: int = 400) -> tuple[np.ndarray, float]:
+    """A compass search for the largest ``value`` (a function of poses (M, n) rad, nan where undefined)
+    near the pose ``start`` within the bounds [lo, hi] (rad): each step tries +- the step on every joint
+    (one call of 2n poses) and moves to the best trial where it beats the current pose (compared to 9
+    significant digits, ties to the first, so that round-off decides nothing), else halves the step,
+    from :data:`AUDIT_STEPS`' first to its last. Returns the pose and its value."""
     x = np.array(start, dtype=float)
-    best = float(abs(joint_torques(model, springs, x[None])[0, j]))
-    step, n, broken = AUDIT_STEPS[0], len(x), None
+    best = float(value(x[None])[0])
+    step, n = AUDIT_STEPS[0], len(x)
     for _ in range(max_steps):
         if step < AUDIT_STEPS[1]:
             break
         trials = np.clip(np.repeat(x[None], 2 * n, axis=0) + step * np.vstack([np.eye(n), -np.eye(n)]), lo, hi)
-        tau, why = _defined_torques(model, springs, trials)
-        values = np.abs(tau[:, j])  # nan where undefined: never chosen
-        if why and broken is None:
-            broken = (trials[int(np.argmax(np.isnan(values)))], why)
+        values = value(trials)
         keys = [_sig(v) if np.isfinite(v) else -np.inf for v in values]
         k = int(np.argmax(keys))
-        if keys[k] > _sig(best):
+        if keys[k] > (_sig(best) if np.isfinite(best) else -np.inf):
             x, best = trials[k], float(values[k])
         else:
             step /= 2
-    return x, best, broken
+    return x, best
+
+
+def lead_angles(model: RevoluteChain, spring, q, frames=None) -> np.ndarray:
+    """rad, (N,): at each pose ``q``, how far the direction from a cable spring's pulley (at A) to its
+    end B lies from the line of its lead, either way: min(alpha, pi - alpha), alpha the angle between
+    the lead and B - A. Where it is zero the pulley, which swivels about the lead to hold B in its plane,
+    must turn half a turn at once, and the cable's line of action jumps (route 2's
+    :func:`springlab.energy.geometry.cable_geometry` is discontinuous there). ``frames``: the poses'
+    body frames (:func:`springlab.model.revolute.body_frames`), where already computed."""
+    from springlab.model.revolute import world_points
+
+    R, o = body_frames(model, q) if frames is None else frames
+    a, pa = model.locate(spring.link_a, spring.point_a)
+    d = world_points(R, o, *model.locate(spring.link_b, spring.point_b)) - world_points(R, o, a, pa)
+    u = np.einsum("pij,j->pi", R[:, a], model.direction(spring.link_a, spring.lead)[1])
+    cos = np.einsum("pi,pi->p", d, u) / np.maximum(np.linalg.norm(d, axis=1) * np.linalg.norm(u, axis=1), 1e-300)
+    return np.arccos(np.clip(np.abs(cos), 0.0, 1.0))
+
+
+CROSSING = 1e-3
+"""rad: a cable spring whose end B comes within this angle of its lead's line at a pose of the workspace
+(the audit's sample, then a compass search towards the line) is taken to cross it there: flagged."""
 
 
 def _defined_torques(model: RevoluteChain, springs, q) -> tuple[np.ndarray, str]:
