@@ -273,3 +273,29 @@ def test_an_output_that_overwrites_the_arm_or_another_output_is_refused(outputs,
     err = capsys.readouterr().err
     assert code == 2 and err.count("\n") == 1 and ("arm file itself" in err or "overwrite the other" in err)
     assert urdf.read_text() == TWO_LINKS and sorted(p.name for p in tmp_path.iterdir()) == ["two.urdf"]
+
+
+def test_a_cable_whose_end_crosses_its_lead_line_is_found_and_avoided(ur5):
+    from springlab.design.arms import CROSSING, Audit, lead_angles
+
+    model, ranges = ur5.model, workspace_ranges(ur5.model)
+    spring = dataclasses.replace(ur5.ideal[1], pulley_radius=0.005, lead=(0.0, 1.0, 0.0))  # S2 along link y
+    q = model.random_q(50, 2)
+    angle = lead_angles(model, spring, q)  # against the angle computed directly
+    from springlab.model.revolute import body_frames, world_points
+    R, o = body_frames(model, q)
+    a, pa = model.locate(spring.link_a, spring.point_a)
+    d = world_points(R, o, *model.locate(spring.link_b, spring.point_b)) - world_points(R, o, a, pa)
+    u = R[:, a] @ model.direction(spring.link_a, spring.lead)[1]
+    alpha = np.arccos(np.einsum("pi,pi->p", d, u) / np.linalg.norm(d, axis=1) / np.linalg.norm(u, axis=1))
+    np.testing.assert_allclose(angle, np.minimum(alpha, np.pi - alpha), atol=1e-12)
+    crossing = Audit.of(model, ranges, {"realised": [spring]}, q, seed=5, samples=2000).crossings
+    assert len(crossing) == 1 and crossing[0][1] < CROSSING  # the compass search reaches the line
+    clear = dataclasses.replace(spring, lead=(1.0, 0.0, 0.0))  # the control: B keeps 0.6 deg from this line
+    assert Audit.of(model, ranges, {"realised": [clear]}, q, seed=5, samples=2000).crossings == ()
+    flagged = dataclasses.replace(ur5, realised=(spring,), kinds=("cable over a pulley",), coils=(ur5.coils[1],),
+                                  origins=(1,), changes=("",), audit=Audit.of(model, ranges, {"realised": [spring]}, q,
+                                                                                 seed=5, samples=2000))
+    assert any("crosses the line of its pulley's lead" in f for f in flagged.flags())
+    for s in ur5.realised:  # the design's own leads: none crosses (where one must, the design is flagged)
+        assert s.pulley_radius == 0 or np.min(lead_angles(model, s, ur5.q)) > CROSSING or ur5.flags()

@@ -694,8 +694,8 @@ def _best_springs(model, found, q, target, reach, max_springs, iterations, candi
                    else ")"))
     else:
         note = (f"the target ({target:g} of each joint's scale) was not reached with max_springs = {max_springs} "
-                f"springs ({steps}; {how}): the search stopped there; more springs (best_springs' "
-                "max_springs) or larger reaches (--reach) may do better")
+                f"springs ({steps}; {how}): the search stopped there; larger reaches (--reach) may do better, or "
+                "more springs (the library's best_springs(max_springs=...))")
     out = tuple(PointSpring(model.bodies[pairs[p][0]], tuple(x[7 * s + 1:7 * s + 4]), model.bodies[pairs[p][1]],
                             tuple(x[7 * s + 4:7 * s + 7]), float(x[7 * s])) for s, p in enumerate(which) if x[7 * s] > 0)
     return BestSprings(out, float(ratio), target, note)
@@ -1346,7 +1346,11 @@ def _lead_clearance(model: RevoluteChain, spring, dense) -> float:
     ``dense`` (:func:`_dense`), refined by :func:`_compass` within their box from the nearest."""
     q, frames, lo, hi = dense
     angle = lead_angles(model, spring, q, frames)
-    _, value = _compass(lambda t: -lead_angles(model, spring, t), q[int(np.argmin(angle))], lo, hi)
+    nearest = float(np.min(angle))
+    if nearest < 3 * CROSSING:  # it crosses: no need to refine (a far sample may still lead to a crossing)
+        return _sig(nearest)
+    _, value = _compass(lambda t: -lead_angles(model, spring, t), q[int(np.argmin(angle))], lo, hi,
+                        enough=-3 * CROSSING)
     return _sig(-value)
 
 
@@ -1496,6 +1500,10 @@ AUDIT_SAMPLES = 20_000
 """Random poses of the workspace, drawn from their own seed, on which every design's peaks are re-checked
 (:class:`Audit`): ten times the design's own check, independent of it."""
 
+AUDIT_STARTS = 3
+"""From how many of the independent sample's worst poses, per joint and case, the audit's compass search
+starts (the worst it reaches joins the check)."""
+
 AUDIT_STEPS = (0.05, 1e-5)
 """rad: the compass search's first and last step (``_climb``); the peaks it refines are then found to
 about the square of the last step times the torque's curvature, below the tables' printed digits."""
@@ -1547,11 +1555,14 @@ class Audit:
             for j in range(model.n):
                 if not np.max(tau[:, j]) > 0:
                     continue
-                start = q[int(np.argmax(tau[:, j]))]
-                pose, value, broken = _climb(model, springs, start, j, lo, hi)
+                climbed = []
+                for start in q[np.argsort([-_sig(v) for v in tau[:, j]], kind="stable")[:AUDIT_STARTS]]:
+                    pose, value, broken = _climb(model, springs, start, j, lo, hi)
+                    climbed.append((_sig(value), -len(climbed), pose, value))
+                    if broken is not None and not any(u[0] == case for u in undefined):
+                        undefined.append((case, 0, broken[0].tolist(), broken[1]))
+                _, _, pose, value = max(climbed, key=lambda c: c[:2])
                 worst.append(pose)
-                if broken is not None and not any(u[0] == case for u in undefined):
-                    undefined.append((case, 0, broken[0].tolist(), broken[1]))
                 if _sig(value, 3) > _sig(own[j], 3) and value > NEGLIGIBLE * largest:
                     raised.append((case, model.joints[j], float(own[j]), float(value)))
         crossings = []
@@ -1570,7 +1581,7 @@ class Audit:
             f"{joint} ({case}: {own:.3g} -> {value:.3g} N m)" for case, joint, own, value in self.raised)
                  if self.raised else "; it found no peak above the check's, to 3 digits")
         return (f"checked by route 2 on {checked} random poses of the workspace, then re-checked on {self.samples:,} "
-                f"independent ones with a local search from the worst of them per joint and case (the {len(self.worst)} "
+                f"independent ones with a local search from the {AUDIT_STARTS} worst of them per joint and case (the {len(self.worst)} "
                 f"worst poses found join the check, so every peak and share below holds on them){found}")
 
     def as_dict(self) -> dict:
@@ -1600,17 +1611,18 @@ def _climb(model: RevoluteChain, springs, start, j: int, lo, hi) -> tuple[np.nda
     return x, best, broken[0] if broken else None
 
 
-def _compass(value, start, lo, hi, max_steps: int = 400) -> tuple[np.ndarray, float]:
+def _compass(value, start, lo, hi, max_steps: int = 400, enough: float = np.inf) -> tuple[np.ndarray, float]:
     """A compass search for the largest ``value`` (a function of poses (M, n) rad, nan where undefined)
     near the pose ``start`` within the bounds [lo, hi] (rad): each step tries +- the step on every joint
     (one call of 2n poses) and moves to the best trial where it beats the current pose (compared to 9
     significant digits, ties to the first, so that round-off decides nothing), else halves the step,
-    from :data:`AUDIT_STEPS`' first to its last. Returns the pose and its value."""
+    from :data:`AUDIT_STEPS`' first to its last, or until the value reaches ``enough``. Returns the pose
+    and its value."""
     x = np.array(start, dtype=float)
     best = float(value(x[None])[0])
     step, n = AUDIT_STEPS[0], len(x)
     for _ in range(max_steps):
-        if step < AUDIT_STEPS[1]:
+        if step < AUDIT_STEPS[1] or best >= enough:
             break
         trials = np.clip(np.repeat(x[None], 2 * n, axis=0) + step * np.vstack([np.eye(n), -np.eye(n)]), lo, hi)
         values = value(trials)
@@ -1748,6 +1760,9 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     left_out = tuple((origins[m], kinds[m].split("): ", 1)[-1]) for m, r in enumerate(realised) if r is None)
     kept = [m for m, r in enumerate(realised) if r is not None]
     realised, coils, kinds, origins = (tuple(v[m] for m in kept) for v in (realised, coils, kinds, origins))
+    changes = realisation_changes(model, ideal, realised, kinds, origins)
+    audit = Audit.of(model, ranges, {"ideal": ideal, "realised": realised}, check, seed)
+    check = np.vstack([check, audit.worst])  # the notes and tables report on the audit's worst poses too
     gravity = np.max(np.abs(gravity_torques(model, check)), axis=0)
     left = np.max(np.abs(joint_torques(model, ideal, check)), axis=0)
     for i in np.flatnonzero(left > gravity * (1 + 1e-9) + 1e-9 * np.max(gravity)):  # above round-off
@@ -1769,10 +1784,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         notes.append(f"cable springs run over pulleys of radius {1e3 * pulley_radius:g} mm (route 2's cable path); "
                      "their leads (and where those leave more than a tenth of a joint's peak, their rates and ends) "
                      f"were chosen for it on {min(150, fit_poses)} poses the table does not use")
-    changes = realisation_changes(model, ideal, realised, kinds, origins)
-    audit = Audit.of(model, ranges, {"ideal": ideal, "realised": realised}, check, seed)
-    q = np.vstack([check, audit.worst])
-    reported = structure(model, q)  # the same peaks as the torque tables, the audit's worst poses included
+    reported = structure(model, check)  # the same peaks as the torque tables, the audit's worst poses included
     found = reported if reported.loaded == found.loaded else found
-    return ArmDesign(model, found, method, ideal, realised, kinds, coils, q, tuple(notes), origins, changes, audit, tag,
-                     left_out)
+    return ArmDesign(model, found, method, ideal, realised, kinds, coils, check, tuple(notes), origins, changes, audit,
+                     tag, left_out)

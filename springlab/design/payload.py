@@ -94,12 +94,13 @@ class PayloadDial:
                      [(names[i] if names else f"S{i + 1}", end, link, "(" + ", ".join(f"{1e3 * v + 0.0:.2f}" for v in per_kg) + ")",
                        f"{1e3 * float(np.linalg.norm(per_kg)):.2f}") for i, end, link, per_kg in self.moves])
 
-    def as_dict(self) -> dict:
-        """For ``springlab design --json``: lengths in m per kg, in each link's frame."""
+    def as_dict(self, names=None) -> dict:
+        """For ``springlab design --json``: lengths in m per kg, in each link's frame; each move's spring by
+        its place in the list (1, 2, ...) and by its name (``names``, by default S1, S2, ...)."""
         return {"frame": self.frame, "point_m": list(self.point), "exact": self.exact,
                 "left_fraction": self.left, "how": self.how,
-                "moves": [{"spring": i + 1, "end": end, "link": link, "move_m_per_kg": list(map(float, per_kg))}
-                          for i, end, link, per_kg in self.moves]}
+                "moves": [{"spring": i + 1, "name": names[i] if names else f"S{i + 1}", "end": end, "link": link,
+                           "move_m_per_kg": list(map(float, per_kg))} for i, end, link, per_kg in self.moves]}
 
 
 def _moved(spring: PointSpring, end: str, by) -> PointSpring:
@@ -332,9 +333,13 @@ class PayloadStudy:
         rows = []
         for m, mass in enumerate(self.masses):
             for case, peaks in self.peaks.items():
-                if case.endswith(", dial turned") and not self.usable(case.split(",")[0]):
+                which = case.split(",")[0]
+                if case.endswith(", dial turned") and not self.usable(which):
                     continue
-                rows.append((f"{mass:g}", case, *(f"{peaks[m, i]:.3g}" for i in self.loaded)))
+                lo, hi = self.holds.get(which, (-np.inf, np.inf))
+                beyond = case.endswith(", dial turned") and not lo - 1e-9 <= mass <= hi + 1e-9
+                rows.append((f"{mass:g}", case + (" (beyond its slot: an end off its link)" if beyond else ""),
+                             *(f"{peaks[m, i]:.3g}" for i in self.loaded)))
         return Table(["payload (kg)", "springs", *(f"{self.joints[i]} peak (N m)" for i in self.loaded)], rows)
 
     def left(self, case: str = "ideal, dial turned") -> np.ndarray:
@@ -346,8 +351,10 @@ class PayloadStudy:
     def as_dict(self) -> dict:
         """For ``springlab design --json``: the dials and their check at the payloads (N m, kg, m)."""
         return {"frame": self.frame, "point_m": list(self.point), "nominal_kg": self.nominal,
-                "dial": {"ideal": self.dials["ideal"].as_dict(), "realised": self.dials["realised"].as_dict()},
-                "checked_by": "route 2 (direct geometry) over the design's poses",
+                "dial": {which: self.dials[which].as_dict(self.names[which] if self.names else None)
+                         for which in ("ideal", "realised")},
+                "checked_by": "route 2 (direct geometry) over the design's poses (its random poses and the worst its "
+                              "independent check found at the nominal payload; not re-checked at the other payloads)",
                 "dial_holds_kg": {which: list(v) for which, v in self.holds.items()},
                 "dial_usable": {which: self.usable(which) for which in self.holds},
                 "warnings": self.warnings(),
