@@ -1299,7 +1299,7 @@ pulleys the UR5's S2 passed within 1e-6 rad of its line, its elbow torque jumpin
 
 
 LEAD_AXES = 2
-"""How many of the directions that B keeps furthest from (:func:`_clearest_axes`) join a cable spring's
+"""How many of the directions that B keeps furthest from (``_clearest_axes``) join a cable spring's
 candidate leads."""
 
 
@@ -1330,7 +1330,7 @@ def _lead_tier(clearance: float) -> int:
 
 LEAD_SAMPLES = 20_000
 """Random poses of the workspace's box (their own seed) on which a candidate lead's clearance is measured
-(:func:`_lead_clearance`): as many as the audit's, so that the two find the same near crossings."""
+(``_lead_clearance``): as many as the audit's, so that the two find the same near crossings."""
 
 
 def _dense(model: RevoluteChain, q):
