@@ -299,3 +299,21 @@ def test_a_cable_whose_end_crosses_its_lead_line_is_found_and_avoided(ur5):
     assert any("crosses the line of its pulley's lead" in f for f in flagged.flags())
     for s in ur5.realised:  # the design's own leads: none crosses (where one must, the design is flagged)
         assert s.pulley_radius == 0 or np.min(lead_angles(model, s, ur5.q)) > CROSSING or ur5.flags()
+
+
+def test_the_audits_worst_poses_leave_every_case_defined():
+    # a cable undefined near some poses (|B - A| within its pulley's radius) beside springs defined everywhere:
+    # the poses the other cases climb to join the check only where the cable has a line of action too
+    from springlab.design.arms import Audit
+    from springlab.energy.geometry import spring_lengths
+    from springlab.model.revolute import body_frames
+
+    model = load_robot("SO-101")
+    q = model.random_q(200, 4)
+    point = PointSpring("shoulder_link", (0.0, -0.03, -0.05), "lower_arm_link", (0.05, 0.0, 0.0), 100.0)
+    radius = float(np.quantile(spring_lengths(model, [point], *body_frames(model, q))[0], 0.05))
+    cable = dataclasses.replace(point, pulley_radius=radius, lead=(1.0, 0.0, 0.0))
+    audit = Audit.of(model, workspace_ranges(model), {"ideal": [point], "realised": [cable]}, q, seed=3, samples=2000)
+    tau, why = _defined_torques(model, [cable], audit.worst)
+    assert len(audit.worst) and not why and np.all(np.isfinite(tau))
+    assert any(case == "realised" for case, *_ in audit.undefined)  # and the undefined poses are reported

@@ -1551,7 +1551,8 @@ class Audit:
             if np.any(bad):
                 undefined.append((case, int(np.sum(bad)), q[int(np.argmax(bad))].tolist(), why))
             tau = np.abs(np.where(bad[:, None], 0.0, tau))
-            own = np.max(np.abs(joint_torques(model, springs, check)), axis=0)
+            mine = np.abs(_defined_torques(model, springs, check)[0])
+            own = np.max(np.where(np.isnan(mine), 0.0, mine), axis=0)
             largest = float(np.max(tau)) if largest is None else largest  # gravity's, the first case
             for j in range(model.n):
                 if not np.max(tau[:, j]) > 0:
@@ -1574,7 +1575,14 @@ class Audit:
                 if -value < CROSSING / 3:
                     crossings.append((m, float(-value), pose.tolist()))
         unique = np.unique(np.array(worst).reshape(-1, model.n), axis=0)
-        return cls(samples, seed, unique, tuple(raised), tuple(undefined), tuple(crossings))
+        keep = np.ones(len(unique), dtype=bool)  # a pose one case climbed to may leave another's spring undefined
+        for case, springs in dict(cases).items():
+            tau, why = _defined_torques(model, springs, unique)
+            bad = np.isnan(tau[:, 0]) if len(unique) else np.zeros(0, dtype=bool)
+            if np.any(bad) and not any(u[0] == case for u in undefined):
+                undefined.append((case, 0, unique[int(np.argmax(bad))].tolist(), why))
+            keep &= ~bad
+        return cls(samples, seed, unique[keep], tuple(raised), tuple(undefined), tuple(crossings))
 
     def note(self, checked: int) -> str:
         """The sample, in words, for the design's output."""
