@@ -98,9 +98,10 @@ def _check_arguments(args) -> None:
         _checks.count("--max-configurations", args.max_configurations, least=1)
     _checks.count("--seed", args.seed)
     _checks.positive("--time-limit", args.time_limit, unit="s")
-    from springlab.model.armfile import parse_quantity as _quantity
+    from springlab.model.armfile import parse_quantity
 
-    args.pulley_radius = _checks.positive("--pulley-radius", _quantity(args.pulley_radius, "length", "--pulley-radius"),
+    args.pulley_radius = _checks.positive("--pulley-radius", parse_quantity(args.pulley_radius, "length",
+                                                                            "--pulley-radius"),
                                           allow_zero=True, unit="m") + 0.0
     if args.payload is not None:
         from springlab.design.payload import MAX_PAYLOAD_RANGE
