@@ -17,7 +17,7 @@ from springlab.design import arms
 from springlab.design.arms import (
     AUDIT_SAMPLES,
     ArmDesign,
-    _defined_torques,
+    defined_torques,
     design_model,
     workspace_ranges,
 )
@@ -161,12 +161,12 @@ def test_poses_without_a_line_of_action_are_found_not_fatal():
     length = spring_lengths(model, [point], *body_frames(model, q))[0]
     radius = float(np.median(length))
     cable = dataclasses.replace(point, pulley_radius=radius, lead=(1.0, 0.0, 0.0))
-    tau, why = _defined_torques(model, [point, cable], q)
+    tau, why = defined_torques(model, [point, cable], q)
     assert np.array_equal(np.isnan(tau[:, 0]), length <= radius) and 0 < np.sum(length <= radius) < 64
     assert why.startswith("spring 2 (shoulder_link-lower_arm_link): the cable's end B comes within")
     fine = ~np.isnan(tau[:, 0])
     assert np.array_equal(tau[fine], joint_torques(model, [point, cable], q[fine]))
-    tau, why = _defined_torques(model, [point], q)  # the control: defined everywhere
+    tau, why = defined_torques(model, [point], q)  # the control: defined everywhere
     assert not why and np.all(np.isfinite(tau))
 
 
@@ -314,6 +314,6 @@ def test_the_audits_worst_poses_leave_every_case_defined():
     radius = float(np.quantile(spring_lengths(model, [point], *body_frames(model, q))[0], 0.05))
     cable = dataclasses.replace(point, pulley_radius=radius, lead=(1.0, 0.0, 0.0))
     audit = Audit.of(model, workspace_ranges(model), {"ideal": [point], "realised": [cable]}, q, seed=3, samples=2000)
-    tau, why = _defined_torques(model, [cable], audit.worst)
+    tau, why = defined_torques(model, [cable], audit.worst)
     assert len(audit.worst) and not why and np.all(np.isfinite(tau))
     assert any(case == "realised" for case, *_ in audit.undefined)  # and the undefined poses are reported

@@ -1546,12 +1546,12 @@ class Audit:
         lo, hi = ranges[:, 0], ranges[:, 1]
         worst, raised, undefined, largest = [], [], [], None
         for case, springs in ({"gravity alone": ()} | dict(cases)).items():
-            tau, why = _defined_torques(model, springs, q)
+            tau, why = defined_torques(model, springs, q)
             bad = np.isnan(tau[:, 0])
             if np.any(bad):
                 undefined.append((case, int(np.sum(bad)), q[int(np.argmax(bad))].tolist(), why))
             tau = np.abs(np.where(bad[:, None], 0.0, tau))
-            mine = np.abs(_defined_torques(model, springs, check)[0])
+            mine = np.abs(defined_torques(model, springs, check)[0])
             own = np.max(np.where(np.isnan(mine), 0.0, mine), axis=0)
             largest = float(np.max(tau)) if largest is None else largest  # gravity's, the first case
             for j in range(model.n):
@@ -1577,7 +1577,7 @@ class Audit:
         unique = np.unique(np.array(worst).reshape(-1, model.n), axis=0)
         keep = np.ones(len(unique), dtype=bool)  # a pose one case climbed to may leave another's spring undefined
         for case, springs in dict(cases).items():
-            tau, why = _defined_torques(model, springs, unique)
+            tau, why = defined_torques(model, springs, unique)
             bad = np.isnan(tau[:, 0]) if len(unique) else np.zeros(0, dtype=bool)
             if np.any(bad) and not any(u[0] == case for u in undefined):
                 undefined.append((case, 0, unique[int(np.argmax(bad))].tolist(), why))
@@ -1611,7 +1611,7 @@ def _climb(model: RevoluteChain, springs, start, j: int, lo, hi) -> tuple[np.nda
     broken = []
 
     def value(trials):
-        tau, why = _defined_torques(model, springs, trials)
+        tau, why = defined_torques(model, springs, trials)
         if why and not broken:
             broken.append((trials[int(np.argmax(np.isnan(tau[:, j])))], why))
         return np.abs(tau[:, j])  # nan where undefined: never chosen
@@ -1668,7 +1668,7 @@ search towards the line) is taken to be crossed, and avoided; the audit flags a 
 comes within a third of it (its own sample and search: a margin)."""
 
 
-def _defined_torques(model: RevoluteChain, springs, q) -> tuple[np.ndarray, str]:
+def defined_torques(model: RevoluteChain, springs, q) -> tuple[np.ndarray, str]:
     """Route 2's holding torques (N m, (N, n)) at the poses ``q``, nan at the poses where a spring has no
     line of action (route 2 raises GeometryError there: a cable's end within its pulley's radius, a
     spring's ends coinciding), found by halving the batch; and the first such reason ('' for none)."""
@@ -1680,7 +1680,7 @@ def _defined_torques(model: RevoluteChain, springs, q) -> tuple[np.ndarray, str]
             return (np.full((1, model.n), np.nan),
                     f"spring {m + 1} ({springs[m].label}): " + str(err).split(" at pose ")[0])
         half = len(q) // 2
-        (first, why_1), (second, why_2) = _defined_torques(model, springs, q[:half]), _defined_torques(model, springs, q[half:])
+        (first, why_1), (second, why_2) = defined_torques(model, springs, q[:half]), defined_torques(model, springs, q[half:])
         return np.vstack([first, second]), why_1 or why_2
 
 

@@ -231,8 +231,25 @@ def payload_torques(model: RevoluteChain, springs, q, frame: str, masses, *, nom
     for m in masses:
         carried = model.with_point_mass(frame, point, float(m) - nominal)
         used = springs if dial is None else dial.turned(springs, float(m) - nominal)
-        out.append(np.max(np.abs(joint_torques(carried, used, q)), axis=0))
+        out.append(np.max(np.abs(_defined(carried, used, q)), axis=0))
     return np.array(out)
+
+
+def _defined(model, springs, q) -> np.ndarray:
+    """Route 2's holding torques (N m) at the poses where every spring has a line of action (a dial
+    turned far can bring a cable's end within its pulley's radius: those poses count as 0 here, and
+    :func:`payload_study` names them)."""
+    from springlab.design.arms import defined_torques
+
+    tau = defined_torques(model, springs, q)[0]
+    return np.where(np.isnan(tau), 0.0, tau)
+
+
+def _undefined(model, springs, q) -> int:
+    """How many of the poses ``q`` leave a spring of ``springs`` without a line of action."""
+    from springlab.design.arms import defined_torques
+
+    return int(np.sum(np.isnan(defined_torques(model, springs, q)[0][:, 0])))
 
 
 @dataclass(frozen=True)
@@ -254,6 +271,10 @@ class PayloadStudy:
         (:meth:`usable` False), the dial cannot be turned at all
     :ivar stretch: per payload, the longest (m) a realised spring, its dial turned, is stretched
         beyond the longest its coil was wound for (0: within it), and the spring ('' for none)
+    :ivar names: per dial, its springs' names
+    :ivar undefined: (dial, payload kg, how many poses) where the dial turned for that payload leaves a
+        spring without a line of action (a cable's end within its pulley's radius): those poses are left
+        out of its peaks
     """
 
     frame: str
@@ -268,6 +289,7 @@ class PayloadStudy:
     holds: dict
     stretch: tuple
     names: dict | None = None
+    undefined: tuple = ()
 
     def usable(self, which: str) -> bool:
         """Whether the ``which`` ('ideal' or 'realised') springs' dial is worth turning: the payloads it
@@ -316,6 +338,9 @@ class PayloadStudy:
             out.append(f"turned for {self.masses[worst]:g} kg, the built spring {self.stretch[worst][1]} is stretched "
                        f"{1e3 * self.stretch[worst][0]:.0f} mm past the longest its coil was wound for: wind the coils "
                        "for the dial's whole stroke")
+        for which, mass, count in self.undefined:
+            out.append(f"turned for {mass:g} kg, the {which} springs' dial brings a cable's end within its pulley's "
+                       f"radius at {count} of the poses (left out of its peaks): it cannot be turned that far")
         loaded = list(self.loaded)
         for which in [w for w in ("ideal", "realised") if self.usable(w)]:
             turned, unchanged = self.peaks[f"{which}, dial turned"][:, loaded], self.peaks[which][:, loaded]
@@ -397,9 +422,12 @@ def payload_study(design, frame: str, masses, *, nominal: float = 0.0, point=(0.
 
     frames = body_frames(model, q)
     stretch = tuple(_stretch(design, realised.turned(design.realised, float(m) - nominal), *frames) for m in masses)
+    undefined = tuple((which, float(m), count) for which, dial in (("ideal", ideal), ("realised", realised))
+                      for m in masses
+                      if (count := _undefined(model, dial.turned(getattr(design, which), float(m) - nominal), q)))
     return PayloadStudy(frame, tuple(float(v) for v in point), float(nominal), masses, {"ideal": ideal, "realised": realised},
                         peaks, outside, tuple(design.structure.loaded), tuple(model.joints), holds, stretch,
-                        {"ideal": design.names, "realised": design.realised_names})
+                        {"ideal": design.names, "realised": design.realised_names}, undefined)
 
 
 def _holds(nominal: float, travel) -> tuple[float, float]:
@@ -438,10 +466,14 @@ def _stretch(design, turned, R, o) -> tuple[float, str]:
     """How far (m) the longest of the turned realised springs is stretched (over the design's poses,
     whose body frames are R, o) beyond the longest length its coil was wound for, and which spring."""
     from springlab.energy.geometry import spring_lengths
+    from springlab.errors import GeometryError
 
-    lengths = spring_lengths(design.model, list(turned), R, o)
     worst = (0.0, "")
-    for n, length, (_, span) in zip(design.realised_names, lengths, design.coils, strict=True):
+    for n, spring, (_, span) in zip(design.realised_names, turned, design.coils, strict=True):
+        try:
+            length = spring_lengths(design.model, [spring], R, o)[0]
+        except GeometryError:  # its cable meets its pulley at some pose: named in the study's warnings
+            continue
         excess = float(np.max(length)) - float(span[1])
         if excess > max(worst[0], 1e-9 * span[1]):
             worst = (excess, n)
