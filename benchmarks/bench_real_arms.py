@@ -30,7 +30,13 @@ from springlab.design.arms import design_model, lead_angles
 from springlab.energy import geometry, simulation
 from springlab.model.mjcf import to_mjcf
 from springlab.model.robots import OTHER_ARMS, ROBOTS, load_robot, robot_urdf
-from springlab.workbench.real_arms import LEAD_BAND, PULLEY, RATED_PAYLOADS, outline_difference, payload_study
+from springlab.workbench.real_arms import (
+    LEAD_BAND,
+    PULLEY,
+    RATED_PAYLOADS,
+    outline_difference,
+    payload_study,
+)
 from springlab.workbench.references import mujoco_holding_torques, pinocchio_gravity
 
 
