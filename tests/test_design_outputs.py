@@ -317,3 +317,19 @@ def test_the_audits_worst_poses_leave_every_case_defined():
     tau, why = defined_torques(model, [cable], audit.worst)
     assert len(audit.worst) and not why and np.all(np.isfinite(tau))
     assert any(case == "realised" for case, *_ in audit.undefined)  # and the undefined poses are reported
+
+
+def test_payload_peaks_skip_poses_where_a_cable_has_no_line_of_action():
+    from springlab.design.payload import payload_torques
+    from springlab.energy.geometry import spring_lengths
+    from springlab.model.revolute import body_frames
+
+    model = load_robot("SO-101", payload=0.0)
+    q = model.random_q(100, 6)
+    point = PointSpring("shoulder_link", (0.0, -0.03, -0.05), "lower_arm_link", (0.05, 0.0, 0.0), 100.0)
+    length = spring_lengths(model, [point], *body_frames(model, q))[0]
+    cable = dataclasses.replace(point, pulley_radius=float(np.median(length)), lead=(1.0, 0.0, 0.0))
+    peaks = payload_torques(model, [cable], q, ROBOTS["SO-101"].tip, [0.0, 0.5])  # raised GeometryError before
+    fine = length > cable.pulley_radius
+    expected = payload_torques(model, [cable], q[fine], ROBOTS["SO-101"].tip, [0.0, 0.5])
+    np.testing.assert_array_equal(peaks, expected)
