@@ -46,8 +46,24 @@ def skip_unused_format_checker() -> None:
     sys.modules.setdefault("rfc3987_syntax", None)  # None: 'import rfc3987_syntax' raises ImportError
 
 
+def _ipc_kernel_manager():
+    """jupyter_client's kernel manager with the kernel's sockets on local IPC files (beside its connection
+    file, in Jupyter's runtime folder) instead of TCP ports: nothing listens on the network, and the
+    kernel has no reason to warn that its TCP traffic is unencrypted."""
+    from jupyter_client.manager import AsyncKernelManager
+    from traitlets import default
+
+    class IPCKernelManager(AsyncKernelManager):
+        @default("transport")
+        def _transport_default(self):
+            return "ipc"
+
+    return IPCKernelManager
+
+
 def run_notebook(path, out_path, parameters: dict | None = None):
-    """Execute one notebook with papermill in its own folder; returns the executed notebook."""
+    """Execute one notebook with papermill in its own folder, its kernel on IPC sockets
+    (``_ipc_kernel_manager``); returns the executed notebook."""
     skip_unused_format_checker()
     import papermill as pm
 
@@ -57,6 +73,7 @@ def run_notebook(path, out_path, parameters: dict | None = None):
     return pm.execute_notebook(
         str(path), str(out_path), parameters=parameters or {}, cwd=str(path.parent),
         kernel_name="python3", progress_bar=False, log_output=False,
+        kernel_manager_class=_ipc_kernel_manager(),
     )
 
 
