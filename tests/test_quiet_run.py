@@ -29,3 +29,16 @@ def test_a_notebook_run_prints_no_warning_or_error(tmp_path):
     assert run.returncode == 0, run.stderr[-2000:]
     assert _loud(run.stdout + run.stderr) == []
     assert not list(tmp_path.glob("kernel-*"))  # the IPC sockets live in Jupyter's runtime folder, not here
+
+
+def test_kernels_side_by_side_have_sockets_of_their_own():
+    from springlab.workbench.notebooks import _ipc_kernel_manager
+
+    managers = [_ipc_kernel_manager()(kernel_name="python3") for _ in range(2)]
+    assert {m.transport for m in managers} == {"ipc"}
+    assert managers[0].ip != managers[1].ip  # jupyter_client's own default, 'kernel-ipc', is one path for all
+    import asyncio
+
+    for m in managers:  # the shutdown nbclient awaits removes each kernel's folder
+        asyncio.run(m._async_cleanup_resources())
+        assert not Path(m.ip).parent.exists()

@@ -47,9 +47,14 @@ def skip_unused_format_checker() -> None:
 
 
 def _ipc_kernel_manager():
-    """jupyter_client's kernel manager with the kernel's sockets on local IPC files (beside its connection
-    file, in Jupyter's runtime folder) instead of TCP ports: nothing listens on the network, and the
-    kernel has no reason to warn that its TCP traffic is unencrypted."""
+    """jupyter_client's kernel manager with the kernel's sockets on local IPC files instead of TCP ports:
+    nothing listens on the network, and the kernel has no reason to warn that its TCP traffic is
+    unencrypted. Each kernel's sockets get a folder of their own (jupyter_client's default path,
+    'kernel-ipc-N', is shared by kernels started side by side, whose messages then cross), removed
+    with the kernel."""
+    import shutil
+    import tempfile
+
     from jupyter_client.manager import AsyncKernelManager
     from traitlets import default
 
@@ -57,6 +62,16 @@ def _ipc_kernel_manager():
         @default("transport")
         def _transport_default(self):
             return "ipc"
+
+        @default("ip")
+        def _ip_default(self):
+            self._ipc_folder = tempfile.mkdtemp(prefix="springlab-kernel-")
+            return str(Path(self._ipc_folder) / "kernel")
+
+        async def _async_cleanup_resources(self, restart: bool = False) -> None:
+            await super()._async_cleanup_resources(restart=restart)
+            if not restart and getattr(self, "_ipc_folder", None):
+                shutil.rmtree(self._ipc_folder, ignore_errors=True)
 
     return IPCKernelManager
 
