@@ -26,7 +26,7 @@ import time
 
 import numpy as np
 
-from springlab.design.arms import design_model, lead_angles
+from springlab.design.arms import design_model
 from springlab.energy import geometry, simulation
 from springlab.model.mjcf import to_mjcf
 from springlab.model.robots import OTHER_ARMS, ROBOTS, load_robot, robot_urdf
@@ -34,6 +34,7 @@ from springlab.workbench.real_arms import (
     LEAD_BAND,
     PULLEY,
     RATED_PAYLOADS,
+    away_from_lead_lines,
     outline_difference,
     payload_study,
 )
@@ -108,10 +109,7 @@ def main() -> None:
         held = [mujoco_holding_torques(text, design.model, design.q) for text in files]
         seconds = time.perf_counter() - start
         scale = float(np.max(np.abs(geometry.gravity_torques(design.model, design.q))))
-        away = np.ones(len(design.q), dtype=bool)  # where no realised cable's end lies on its lead's line
-        for s in design.realised:
-            if s.pulley_radius > 0:
-                away &= lead_angles(design.model, s, design.q) >= LEAD_BAND
+        away = away_from_lead_lines(design)  # where no realised cable's end lies on its lead's line
         diff = max(float(np.max(np.abs(h - geometry.joint_torques(design.model, springs, design.q))[away])) / scale
                    for h, springs in zip(held, (design.ideal, design.realised), strict=True))
         print(f"{label:8s} {seconds:5.2f} s (target 5 s), max |MuJoCo - route 2| / max |gravity| = {diff:.1e}"

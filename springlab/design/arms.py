@@ -1308,12 +1308,7 @@ def _clearest_axes(model: RevoluteChain, spring, q, count: int = LEAD_AXES, dire
     """The ``count`` lines through A (unit vectors in body a's frame, (count, 3)) that the direction from A
     to the spring's end B keeps furthest from, in angle, over the poses ``q``: the best of ``directions``
     spread evenly over a hemisphere (a line and its opposite are one)."""
-    from springlab.model.revolute import world_points
-
-    R, o = body_frames(model, q)
-    a, pa = model.locate(spring.link_a, spring.point_a)
-    d = np.einsum("pji,pj->pi", R[:, a], world_points(R, o, *model.locate(spring.link_b, spring.point_b))
-                  - world_points(R, o, a, pa))
+    d = _span(model, spring, *body_frames(model, q))
     d /= np.maximum(np.linalg.norm(d, axis=1), 1e-300)[:, None]
     k = np.arange(directions) + 0.5  # a Fibonacci lattice on the upper hemisphere
     z, phi = k / directions, np.pi * (1 + 5 ** 0.5) * k
@@ -1342,17 +1337,23 @@ def _dense(model: RevoluteChain, q):
     return dense, body_frames(model, dense), lo, hi
 
 
-def _lead_clearance(model: RevoluteChain, spring, dense) -> float:
-    """rad: how near B comes to a cable spring's lead line (:func:`lead_angles`) over the poses of
-    ``dense`` (:func:`_dense`), refined by :func:`_compass` within their box from the nearest."""
-    q, frames, lo, hi = dense
+def _nearest_approach(model: RevoluteChain, spring, q, lo, hi, frames=None, enough: float = 0.0):
+    """The pose (rad) and angle (rad) where B comes nearest a cable spring's lead line
+    (:func:`lead_angles`): the nearest of the poses ``q`` (``frames``: their body frames, where already
+    computed), refined by :func:`_compass` within [lo, hi] until the angle is below ``enough``."""
     angle = lead_angles(model, spring, q, frames)
-    nearest = float(np.min(angle))
-    if nearest < CROSSING:  # it crosses: no need to refine (a far sample may still lead to a crossing)
-        return _sig(nearest)
-    _, value = _compass(lambda t: -lead_angles(model, spring, t), q[int(np.argmin(angle))], lo, hi,
-                        enough=-CROSSING)
-    return _sig(-value)
+    start = q[int(np.argmin(angle))]
+    if angle.min() < enough:  # already near enough: no need to refine
+        return start, float(angle.min())
+    pose, value = _compass(lambda t: -lead_angles(model, spring, t), start, lo, hi, enough=-enough)
+    return pose, -value
+
+
+def _lead_clearance(model: RevoluteChain, spring, dense) -> float:
+    """rad: how near B comes to a cable spring's lead line over the poses of ``dense`` (:func:`_dense`),
+    refined towards it (:func:`_nearest_approach`) until it is taken to cross (:data:`CROSSING`)."""
+    q, frames, lo, hi = dense
+    return _sig(_nearest_approach(model, spring, q, lo, hi, frames, enough=CROSSING)[1])
 
 
 def _leads(model: RevoluteChain, springs, cable, q, radius: float, scale, clear_q=None) -> list:
@@ -1363,7 +1364,6 @@ def _leads(model: RevoluteChain, springs, cable, q, radius: float, scale, clear_
     whose line B keeps :data:`LEAD_CLEAR` from (:func:`_lead_clearance` over the poses ``clear_q``,
     default ``q``) where any does, else among those it does not cross (:func:`_lead_tier`); the
     candidates include the lines B keeps furthest from (:func:`_clearest_axes`)."""
-    from springlab.model.revolute import world_points
 
     clear_q = q if clear_q is None else clear_q
     R, o = body_frames(model, q)
@@ -1371,9 +1371,8 @@ def _leads(model: RevoluteChain, springs, cable, q, radius: float, scale, clear_
     candidates = {}
     for i in cable:
         s = springs[i]
-        a, pa = model.locate(s.link_a, s.point_a)
-        A, B = world_points(R, o, a, pa), world_points(R, o, *model.locate(s.link_b, s.point_b))
-        towards = np.einsum("pji,pj->i", R[:, a], B - A)  # summed over the poses, in body a's frame
+        pa = model.locate(s.link_a, s.point_a)[1]
+        towards = np.sum(_span(model, s, R, o), axis=0)  # summed over the poses, in body a's frame
         own = np.asarray(model.locate(s.link_a, (0.0, 0.0, 0.0))[1])  # link_a's origin in body a's frame
         found = [*np.eye(3), *-np.eye(3), towards, -towards, np.asarray(pa) - own]
         rotation = model.rotation(s.link_a)  # link_a -> body
@@ -1570,10 +1569,9 @@ class Audit:
         crossings = []
         for m, spring in enumerate(dict(cases).get("realised", ())):
             if spring.pulley_radius > 0:
-                angle = lead_angles(model, spring, q)
-                pose, value = _compass(lambda t, s=spring: -lead_angles(model, s, t), q[int(np.argmin(angle))], lo, hi)
-                if -value < CROSSING / 3:
-                    crossings.append((m, float(-value), pose.tolist()))
+                pose, angle = _nearest_approach(model, spring, q, lo, hi)
+                if angle < CROSSING / 3:
+                    crossings.append((m, float(angle), pose.tolist()))
         unique = np.unique(np.array(worst).reshape(-1, model.n), axis=0)
         keep = np.ones(len(unique), dtype=bool)  # a pose one case climbed to may leave another's spring undefined
         for case, springs in dict(cases).items():
@@ -1644,6 +1642,15 @@ def _compass(value, start, lo, hi, max_steps: int = 400, enough: float = np.inf)
     return x, best
 
 
+def _span(model: RevoluteChain, spring, R, o) -> np.ndarray:
+    """B - A (m), (N, 3), in body a's frame at the poses whose body frames are ``R``, ``o``."""
+    from springlab.model.revolute import world_points
+
+    a, pa = model.locate(spring.link_a, spring.point_a)
+    B = world_points(R, o, *model.locate(spring.link_b, spring.point_b))
+    return np.einsum("pji,pj->pi", R[:, a], B - world_points(R, o, a, pa))
+
+
 def lead_angles(model: RevoluteChain, spring, q, frames=None) -> np.ndarray:
     """rad, (N,): at each pose ``q``, how far the direction from a cable spring's pulley (at A) to its
     end B lies from the line of its lead, either way: min(alpha, pi - alpha), alpha the angle between
@@ -1651,13 +1658,9 @@ def lead_angles(model: RevoluteChain, spring, q, frames=None) -> np.ndarray:
     must turn half a turn at once, and the cable's line of action jumps (route 2's
     :func:`springlab.energy.geometry.cable_geometry` is discontinuous there). ``frames``: the poses'
     body frames (:func:`springlab.model.revolute.body_frames`), where already computed."""
-    from springlab.model.revolute import world_points
-
-    R, o = body_frames(model, q) if frames is None else frames
-    a, pa = model.locate(spring.link_a, spring.point_a)
-    d = world_points(R, o, *model.locate(spring.link_b, spring.point_b)) - world_points(R, o, a, pa)
-    u = np.einsum("pij,j->pi", R[:, a], model.direction(spring.link_a, spring.lead)[1])
-    along = np.abs(np.einsum("pi,pi->p", d, u))
+    d = _span(model, spring, *(body_frames(model, q) if frames is None else frames))
+    u = np.asarray(model.direction(spring.link_a, spring.lead)[1])
+    along = np.abs(d @ u)
     across = np.linalg.norm(np.cross(d, u), axis=1)
     return np.arctan2(across, along)  # accurate near the line, where arccos of the cosine loses half the digits
 

@@ -98,6 +98,18 @@ MuJoCo's comparison with route 2: route 2's swivelling pulley flips there (the d
 it) and MuJoCo's side sites part from it within 1e-5 rad (:mod:`springlab.model.mjcf`)."""
 
 
+def away_from_lead_lines(design: ArmDesign) -> np.ndarray:
+    """Per pose of the design's check, (N,) bool: no realised cable's end lies within :data:`LEAD_BAND`
+    of its lead's line (:func:`springlab.design.arms.lead_angles`), where MuJoCo is compared with route 2."""
+    from springlab.design.arms import lead_angles
+
+    away = np.ones(len(design.q), dtype=bool)
+    for s in design.realised:
+        if s.pulley_radius > 0:
+            away &= lead_angles(design.model, s, design.q) >= LEAD_BAND
+    return away
+
+
 def study(label: str, *, samples: int = 2000, fit_poses: int = 300, sim_poses: int = 3, seed: int = 1,
           payload: float | None = None, pulley_radius: float = PULLEY) -> ArmStudy:
     """Design springs for a robot of :data:`~springlab.model.robots.ROBOTS` (the realised ones over
@@ -121,12 +133,7 @@ def study(label: str, *, samples: int = 2000, fit_poses: int = 300, sim_poses: i
                      for springs in (design.ideal, [s.scaled(CONTROL) for s in design.ideal]))
     held_realised = mujoco_holding_torques(to_mjcf(model, design.realised), model, design.q)
     gravity = geometry.gravity_torques(model, design.q)
-    from springlab.design.arms import lead_angles
-
-    away = np.ones(len(design.q), dtype=bool)  # poses where no cable's end is on its lead's line
-    for s in design.realised:
-        if s.pulley_radius > 0:
-            away &= lead_angles(model, s, design.q) >= LEAD_BAND
+    away = away_from_lead_lines(design)
     mujoco_realised = float(np.max(np.abs(held_realised - geometry.joint_torques(model, design.realised, design.q))[away])
                             / np.max(np.abs(gravity)))
     peak = np.max(np.abs(gravity), axis=0)
