@@ -51,7 +51,7 @@ def _ipc_kernel_manager():
     nothing listens on the network, and the kernel has no reason to warn that its TCP traffic is
     unencrypted. Each kernel's sockets get a folder of their own (jupyter_client's default path,
     'kernel-ipc-N', is shared by kernels started side by side, whose messages then cross), removed
-    with the kernel."""
+    with the kernel. A kernel is shut down by request alone, without jupyter_client's SIGINT first."""
     import shutil
     import tempfile
 
@@ -67,6 +67,14 @@ def _ipc_kernel_manager():
         def _ip_default(self):
             self._ipc_folder = tempfile.mkdtemp(prefix="springlab-kernel-")
             return str(Path(self._ipc_folder) / "kernel")
+
+        async def _async_interrupt_kernel(self) -> None:
+            # jupyter_client sends SIGINT before every shutdown request, for a kernel still busy. nbclient
+            # shuts a kernel down only once its cells have finished (a timed-out cell is interrupted
+            # on its own, before), so here the signal can only land in whatever handler the kernel is
+            # closing, which then logs 'ERROR | KeyboardInterrupt caught in kernel.' on a good run.
+            if not self.shutting_down:
+                await super()._async_interrupt_kernel()
 
         async def _async_cleanup_resources(self, restart: bool = False) -> None:
             await super()._async_cleanup_resources(restart=restart)
