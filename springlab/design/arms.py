@@ -37,7 +37,7 @@ round-off, which differs from one CPU to another, decides none of its choices.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -490,12 +490,15 @@ def clearance(model: RevoluteChain, springs, q, *, names=None) -> Table:
 
 def torque_table(model: RevoluteChain, q, cases: dict, *, unloaded=()) -> Table:
     """Per joint: peak and RMS gravity torque (N m), the same with each set of springs in ``cases``
-    (name -> springs), and the percentage of the peak each removes (blank for the ``unloaded``
-    joints, whose gravity torque is zero or negligible)."""
+    (name -> springs, or -> (springs, the arm that carries them): the arm with the springs' own mass), and
+    the percentage of gravity's peak each removes (blank for the ``unloaded`` joints, whose gravity
+    torque is zero or negligible)."""
     q = model.check_q(q)
     gravity = gravity_torques(model, q)
     rows = []
-    with_springs = {name: joint_torques(model, springs, q) for name, springs in cases.items()}
+    carried = lambda v: isinstance(v, tuple) and len(v) == 2 and isinstance(v[1], RevoluteChain)  # noqa: E731
+    with_springs = {name: joint_torques(value[1], value[0], q) if carried(value) else joint_torques(model, value, q)
+                    for name, value in cases.items()}
     for i, name in enumerate(model.joints):
         peak, rms = np.max(np.abs(gravity[:, i])), np.sqrt(np.mean(gravity[:, i] ** 2))
         row = [name, f"{peak:.4g}", f"{rms:.4g}"]
@@ -902,6 +905,11 @@ class ArmDesign:
     :ivar left_out: the ideal springs the realisation leaves out, (index, why) each
     :ivar tag: the letter its springs are named by (S: S1, S2, ...), so that two designs of one arm
         shown side by side have distinct names
+    :ivar clearance: each realised spring's nearest approach to a link over :attr:`q`, on the URDF's own
+        shapes (:class:`~springlab.design.hardware.SpringClearance`), or None for an arm without them
+    :ivar massed: the arm carrying its realised springs' own mass
+        (:func:`~springlab.design.hardware.with_spring_mass`), or None
+    :ivar workspace: what the workspace is (:class:`~springlab.design.collision.Sampler`'s note)
     """
 
     model: RevoluteChain
@@ -918,6 +926,9 @@ class ArmDesign:
     audit: Audit | None = None
     tag: str = "S"
     left_out: tuple = ()
+    clearance: object = None
+    massed: RevoluteChain | None = None
+    workspace: str = ""
 
     @property
     def names(self) -> tuple:
@@ -937,8 +948,10 @@ class ArmDesign:
     def table(self) -> Table:
         """Per joint: peak and RMS torque (N m) of gravity alone, with the ideal and with the realised
         springs, and the percentage of the peak removed."""
-        return torque_table(self.model, self.q, {"ideal": self.ideal, "realised": self.realised},
-                            unloaded=self.structure.unloaded)
+        cases = {"ideal": self.ideal, "realised": self.realised}
+        if self.massed is not None:
+            cases["realised, springs' mass carried"] = (self.realised, self.massed)
+        return torque_table(self.model, self.q, cases, unloaded=self.structure.unloaded)
 
     def springs_table(self, which: str = "realised") -> Table:
         """Each spring (S1, S2, ...) as a shop builds it (``which='ideal'``: as designed): its ends (link, point in mm
@@ -1054,6 +1067,11 @@ class ArmDesign:
                        f"(within {np.degrees(angle):.1g} deg, at {np.round(np.degrees(pose), 1).tolist()} deg): its pulley "
                        "must swivel half a turn there at once, and its pull jumps, so the torques near that pose are not "
                        "what the tables show; give it another lead or other ends")
+        for spring, piece, link, pose, gap in (self.clearance.failing() if self.clearance is not None else ()):
+            depth = (f"runs {1e3 * -gap:.0f} mm into {link}" if gap < 0 else
+                     f"comes within {1e3 * gap:.1f} mm of {link}, less than the {1e3 * self.clearance.margin:g} mm margin")
+            out.append(f"the realised spring {spring}'s {piece} {depth} (at {np.round(np.degrees(self.q[pose]), 1).tolist()} "
+                       "deg): it cannot be mounted as drawn")
         gravity = np.max(np.abs(gravity_torques(self.model, self.q)), axis=0)
         floor = 1e-9 * max(float(np.max(gravity)), 1e-300)
         for which in ("ideal", "realised"):
@@ -1092,6 +1110,8 @@ class ArmDesign:
         gravity = gravity_torques(self.model, self.q)
         torques = {"ideal": joint_torques(self.model, self.ideal, self.q),
                    "realised": joint_torques(self.model, self.realised, self.q)}
+        if self.massed is not None:
+            torques["realised_with_spring_mass"] = joint_torques(self.massed, self.realised, self.q)
         rows = []
         for i, name in enumerate(self.model.joints):
             row = {"joint": name, "loaded": i not in self.structure.unloaded,
@@ -1104,6 +1124,11 @@ class ArmDesign:
         flags = self.flags()
         origins = self.origins or tuple(range(len(self.realised)))
         changes = self.changes or ("",) * len(self.realised)
+        near = {r[0]: r for r in (self.clearance.rows if self.clearance is not None else ())}
+        hardware = [{"mass_kg": coil.mass, "coil_outer_diameter": coil.outer_diameter}
+                    | ({"clearance_m": near[n][4], "nearest_link": near[n][2], "nearest_piece": near[n][1],
+                        "nearest_pose": self.q[near[n][3]].tolist()} if n in near else {})
+                    for n, (coil, _) in zip(self.realised_names, self.coils, strict=True)]
         return {"arm": self.model.name, "method": self.method,
                 "status": {"verdict": "flagged" if flags else "passed", "flags": list(flags)},
                 "joints": list(self.model.joints),
@@ -1112,10 +1137,15 @@ class ArmDesign:
                 "audit": None if self.audit is None else self.audit.as_dict(),
                 "ideal": [{"name": name} | s.as_dict() for name, s in zip(self.names, self.ideal, strict=True)],
                 "realised": [{"name": name, "realises": self.names[i], "changed": why} | s.as_dict()
-                             | _coil_fields(kind, coil, span)
-                             for name, i, why, s, kind, (coil, span) in zip(
+                             | _coil_fields(kind, coil, span) | extra
+                             for name, i, why, s, kind, (coil, span), extra in zip(
                                  self.realised_names, origins, changes, self.realised, self.kinds, self.coils,
-                                 strict=True)],
+                                 hardware, strict=True)],
+                "workspace": self.workspace,
+                "clearance": None if self.clearance is None else {
+                    "margin_m": self.clearance.margin, "poses": self.clearance.poses,
+                    "clears": not self.clearance.failing()},
+                "spring_mass_kg": float(sum(h["mass_kg"] for h in hardware)),
                 "left_out": [{"realises": self.names[i], "why": why} for i, why in self.left_out],
                 "torques": rows, "notes": list(self.notes)}
 
@@ -1537,11 +1567,15 @@ class Audit:
     crossings: tuple = ()
 
     @classmethod
-    def of(cls, model: RevoluteChain, ranges, cases: dict, check, seed: int, samples: int = AUDIT_SAMPLES) -> Audit:
+    def of(cls, model: RevoluteChain, ranges, cases: dict, check, seed: int, samples: int = AUDIT_SAMPLES,
+           sampler=None) -> Audit:
         """The audit of the springs ``cases`` (name -> springs; gravity alone is added) over the workspace
-        ``ranges`` (n, 2) rad, beside the design's own ``check`` poses."""
+        ``ranges`` (n, 2) rad, beside the design's own ``check`` poses. With a ``sampler``
+        (:class:`~springlab.design.collision.Sampler`) its poses are the workspace's free ones, and a
+        climb that ends in a collision keeps the free pose it started from."""
         rng = np.random.default_rng([seed, samples])
-        q = rng.uniform(ranges[:, 0], ranges[:, 1], (samples, model.n))
+        q = (rng.uniform(ranges[:, 0], ranges[:, 1], (samples, model.n)) if sampler is None
+             else sampler.draw(samples, rng))
         lo, hi = ranges[:, 0], ranges[:, 1]
         worst, raised, undefined, largest = [], [], [], None
         for case, springs in ({"gravity alone": ()} | dict(cases)).items():
@@ -1559,6 +1593,9 @@ class Audit:
                 climbed = []
                 for start in q[np.argsort([-_sig(v) for v in tau[:, j]], kind="stable")[:AUDIT_STARTS]]:
                     pose, value, broken = _climb(model, springs, start, j, lo, hi)
+                    if sampler is not None and not sampler.free(pose[None])[0]:
+                        pose, value = start, float(np.abs(defined_torques(model, springs, start[None])[0][0, j]))
+                        value = 0.0 if np.isnan(value) else value
                     climbed.append((_sig(value), -len(climbed), pose, value))
                     if broken is not None and not any(u[0] == case for u in undefined):
                         undefined.append((case, 0, broken[0].tolist(), broken[1]))
@@ -1735,13 +1772,25 @@ def realisation_changes(model: RevoluteChain, ideal, realised, kinds, origins) -
 def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, fit_poses: int = 300, seed: int = 1,
                  target: float = 0.1, reach: float | None = None, max_springs: int = 8,
                  max_stiffness: float = MAX_STIFFNESS, material: str = "music wire",
-                 pulley_radius: float = 0.0, tag: str = "S") -> ArmDesign:
+                 pulley_radius: float = 0.0, tag: str = "S", margin: float | None = None,
+                 collisions: bool = True) -> ArmDesign:
     """Springs for an arm of the general model over its workspace (:func:`workspace_ranges`): its
     structure (:func:`structure`); the exact planar springs where its loaded joints form a planar
     chain (:func:`planar_springs`), else the best springs (:func:`best_springs`, fitted on
     ``fit_poses`` poses); their realisation (:func:`realise_springs`); all checked by route 2 on
     ``samples`` other random poses of the workspace, then re-checked on an independent sample
-    (:class:`Audit`). Its springs are named ``tag`` and a number (S1, S2, ...)."""
+    (:class:`Audit`). Its springs are named ``tag`` and a number (S1, S2, ...).
+
+    An arm with collision geometry (a URDF read with its shapes) is designed over its free workspace
+    (:class:`~springlab.design.collision.Sampler`: no two links in collision, none below the mounting
+    plane; ``collisions=False``: the ranges' box), its realised springs' clearance from the links is
+    measured against ``margin`` (m, default :data:`~springlab.design.collision.MARGIN`) on the check
+    poses, and the arm carrying the springs' own mass is kept beside it
+    (:mod:`springlab.design.hardware`)."""
+    from springlab.design.collision import MARGIN, Sampler, has_geometry
+    from springlab.design.hardware import spring_clearance, with_spring_mass
+
+    margin = MARGIN if margin is None else _checks.positive("margin", margin, allow_zero=True, unit="m")
     _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
     if not (isinstance(tag, str) and tag.isalpha() and tag.isupper()):
         raise SpringlabError(f"tag = {tag!r}: give capital letters, e.g. 'S' (springs S1, S2, ...) or 'P'")
@@ -1749,9 +1798,18 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     _check_pulley(model, pulley_radius)
     ranges = workspace_ranges(model, workspace)
     rng = np.random.default_rng(seed)
-    check = rng.uniform(ranges[:, 0], ranges[:, 1], (samples, model.n))
+    sampler = Sampler(model, ranges, np.random.default_rng([seed, 17])) if collisions and has_geometry(model) else None
+
+    def draw(count):
+        if sampler is None:
+            return rng.uniform(ranges[:, 0], ranges[:, 1], (count, model.n))
+        return sampler.draw(count, rng)
+
+    check = draw(samples)
     found = structure(model, check)  # the poses every table reports on
     notes = list(model.notes)
+    if sampler is not None:
+        notes += sampler.notes
     if not found.loaded:
         return ArmDesign(model, found, "nothing to balance", (), (), (), (), check,
                          (*notes, "gravity loads no joint of this arm over its workspace: nothing to balance"), tag=tag)
@@ -1760,14 +1818,14 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         ideal, method = planar_springs(model, found, reach=reach), "exact: planar chain"
         notes.append(f"exact: {found.why}")
     else:
-        fit = best_springs(model, found, rng.uniform(ranges[:, 0], ranges[:, 1], (fit_poses, model.n)),
+        fit = best_springs(model, found, draw(fit_poses),
                            target=target, reach=reach, max_springs=max_springs, max_stiffness=max_stiffness)
         ideal, method = fit.springs, "best springs"
         notes.append(f"not exact: {found.why}; springlab's exact construction needs a planar chain, so the "
                      f"best springs were searched: {fit.note}")
     realised, kinds, coils, origins = _realise(
         model, ideal, check, material=material, pulley_radius=pulley_radius, reach=reach,
-        fit=rng.uniform(ranges[:, 0], ranges[:, 1], (min(150, fit_poses), model.n)), max_stiffness=max_stiffness)
+        fit=draw(min(150, fit_poses)), max_stiffness=max_stiffness)
     for kind in kinds:
         if kind.startswith("not realised"):
             notes.append(f"{kind}: the realised design leaves it out")
@@ -1775,7 +1833,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     kept = [m for m, r in enumerate(realised) if r is not None]
     realised, coils, kinds, origins = (tuple(v[m] for m in kept) for v in (realised, coils, kinds, origins))
     changes = realisation_changes(model, ideal, realised, kinds, origins)
-    audit = Audit.of(model, ranges, {"ideal": ideal, "realised": realised}, check, seed)
+    audit = Audit.of(model, ranges, {"ideal": ideal, "realised": realised}, check, seed, sampler=sampler)
     check = np.vstack([check, audit.worst])  # the notes and tables report on the audit's worst poses too
     gravity = np.max(np.abs(gravity_torques(model, check)), axis=0)
     left = np.max(np.abs(joint_torques(model, ideal, check)), axis=0)
@@ -1800,5 +1858,13 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                      f"were chosen for it on {min(150, fit_poses)} poses the table does not use")
     reported = structure(model, check)  # the same peaks as the torque tables, the audit's worst poses included
     found = reported if reported.loaded == found.loaded else found
-    return ArmDesign(model, found, method, ideal, realised, kinds, coils, check, tuple(notes), origins, changes, audit,
-                     tag, left_out)
+    design = ArmDesign(model, found, method, ideal, realised, kinds, coils, check, tuple(notes), origins, changes, audit,
+                       tag, left_out)
+    if not realised:
+        return design
+    clearance = None
+    if sampler is not None:
+        clearance = spring_clearance(model, realised, kinds, coils, design.realised_names, check, margin=margin)
+    massed = with_spring_mass(model, realised, kinds, coils, check)
+    workspace = sampler.note() if sampler is not None else "the joint ranges' box (the arm has no collision geometry)"
+    return replace(design, clearance=clearance, massed=massed, workspace=workspace)

@@ -59,6 +59,10 @@ from springlab.model.chain import Chain
 from springlab.model.springs import Spring, check_springs
 from springlab.tables import Table
 
+STEEL_DENSITY = 7800.0
+"""kg/m^3: spring steel (Shigley, Table A-5: carbon steel's unit weight 76.5 kN/m^3, stainless steel's 76.0,
+so 7800 and 7750 kg/m^3; music wire and stainless alike to within 1 %)."""
+
 INDEX_RANGE = (4.0, 12.0)
 """Spring indices C = D / d a maker winds without trouble (Shigley, Section 10-2)."""
 
@@ -211,6 +215,12 @@ class ExtensionSpring:
     @property
     def outer_diameter(self) -> float:
         return self.mean_diameter + self.wire
+
+    @property
+    def mass(self) -> float:
+        """The spring's mass (kg): its wire, pi d^2 / 4 times its length pi D (N_b + 2) (the body coils and a
+        full loop for each machine hook), at :data:`STEEL_DENSITY`."""
+        return STEEL_DENSITY * np.pi * self.wire**2 / 4 * np.pi * self.mean_diameter * (self.body_coils + 2)
 
     def force(self, length):
         """F_i + k (l - L_0) (N) at lengths ``length`` (m) >= L_0."""

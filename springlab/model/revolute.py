@@ -69,6 +69,9 @@ class RevoluteChain:
     :ivar outline: () when the shapes are unknown, else per body the points (m, body frame, (k, 3),
         k = 0 for a body without geometry) whose convex hull bounds it (a URDF's collision shapes:
         :mod:`springlab.model.shapes`); where a spring may be attached
+    :ivar solids: () when the shapes are unknown, else per body its collision shapes
+        (:class:`~springlab.model.shapes.Solid`, each in the body's frame): what springs must clear
+        (:mod:`springlab.design.collision`)
     """
 
     name: str
@@ -84,6 +87,7 @@ class RevoluteChain:
     notes: tuple = field(default=(), compare=False)
     fixed: dict = field(default_factory=dict, compare=False)
     outline: tuple = field(default=(), compare=False)
+    solids: tuple = field(default=(), compare=False)
 
     def __post_init__(self):
         bodies, joints = tuple(self.bodies), tuple(self.joints)
@@ -149,6 +153,10 @@ class RevoluteChain:
             outline = tuple(_array(f"outline of body {bodies[i]!r}", p, (len(np.atleast_2d(p)), 3))
                             if np.size(p) else np.zeros((0, 3)) for i, p in enumerate(outline))
         object.__setattr__(self, "outline", outline)
+        solids = tuple(tuple(s) for s in self.solids)
+        if solids and len(solids) != n + 1:
+            raise SpringlabError(f"solids must hold one tuple of shapes per body ({n + 1}), got {len(solids)}")
+        object.__setattr__(self, "solids", solids)
         for name, value in (("bodies", bodies), ("joints", joints), ("placements", placements), ("axes", axes),
                             ("mass", mass), ("com", com), ("inertia", inertia), ("gravity", gravity),
                             ("limits", limits), ("notes", tuple(self.notes))):

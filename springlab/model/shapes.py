@@ -32,7 +32,7 @@ import math
 import os
 import posixpath
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -212,13 +212,12 @@ def _mesh_points(path: Path, scale, notes: list | None = None) -> np.ndarray:
     return points
 
 
-@functools.lru_cache(maxsize=256)
-def _hull_of(path: str, mtime_ns: int, size: int, scale: tuple) -> tuple[np.ndarray, str | None]:
-    """A mesh file's hull points (m, read-only) and the unit it was converted from (None: metres),
-    read once per file version (path, modification time, size) and scale: an arm's meshes are read
-    again each time the arm is (the SO-101's take about a second)."""
+@functools.lru_cache(maxsize=64)
+def _mesh_of(path: str, mtime_ns: int, size: int, scale: tuple) -> tuple[np.ndarray, np.ndarray, str | None]:
+    """A mesh file's vertices (m, scaled, read-only), triangles (vertex indices, read-only) and the unit
+    it was converted from (None: metres), read once per file version (path, modification time, size)
+    and scale."""
     import trimesh
-    from scipy.spatial import ConvexHull, QhullError
 
     if path.lower().endswith(".dae"):
         _check_collada_unit(path)
@@ -233,6 +232,20 @@ def _hull_of(path: str, mtime_ns: int, size: int, scale: tuple) -> tuple[np.ndar
         raise MeshError(f"{path}: no vertices (an empty or unreadable mesh)", filename=path)
     if not np.all(np.isfinite(v)):
         raise MeshError(f"{path}: vertices that are not finite numbers", filename=path)
+    faces = np.asarray(mesh.faces, dtype=np.int64).reshape(-1, 3)
+    for a in (v, faces):
+        a.setflags(write=False)
+    return v, faces, units
+
+
+@functools.lru_cache(maxsize=256)
+def _hull_of(path: str, mtime_ns: int, size: int, scale: tuple) -> tuple[np.ndarray, str | None]:
+    """A mesh file's hull points (m, read-only) and the unit it was converted from (None: metres),
+    read once per file version (path, modification time, size) and scale: an arm's meshes are read
+    again each time the arm is (the SO-101's take about a second)."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    v, _, units = _mesh_of(path, mtime_ns, size, scale)
     if len(v) > 100_000:  # a scan's unmerged vertices: the hull needs each point once
         v = np.unique(v, axis=0)
     try:
@@ -308,3 +321,43 @@ def shape_points(shape: Shape, folder: Path | None = None, package_dirs=(), note
         except Exception as err:  # trimesh raises many kinds on a file it cannot read
             raise MeshError(f"{path}: {err}", filename=str(path)) from None
     return local @ shape.origin[:3, :3].T + shape.origin[:3, 3]
+
+
+@dataclass(frozen=True)
+class Solid:
+    """One collision shape of a body, as the collision check reads it (:mod:`springlab.design.collision`).
+
+    :ivar link: the URDF link it belongs to
+    :ivar kind: 'box', 'cylinder', 'sphere', 'capsule' or 'mesh'
+    :ivar frame: (4, 4) the shape's frame in its body's frame (a cylinder's and a capsule's axis its z)
+    :ivar size: as :class:`Shape`'s (m); () for a mesh
+    :ivar vertices: a mesh's vertices (m, the shape's frame, scale applied), (k, 3); else (0, 3)
+    :ivar faces: a mesh's triangles (indices into ``vertices``), (t, 3); else (0, 3)
+    """
+
+    link: str
+    kind: str
+    frame: np.ndarray
+    size: tuple = ()
+    vertices: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)), repr=False)
+    faces: np.ndarray = field(default_factory=lambda: np.zeros((0, 3), dtype=np.int64), repr=False)
+
+
+def shape_solid(shape: Shape, link: str, T_body: np.ndarray, folder: Path | None = None, package_dirs=()) -> Solid:
+    """The shape as a :class:`Solid` of the body whose frame holds its link at ``T_body`` (4, 4). A mesh
+    is read as :func:`shape_points` reads it (the same file, units and scale; the same errors)."""
+    frame = np.asarray(T_body, dtype=float) @ shape.origin
+    if shape.kind != "mesh":
+        return Solid(link, shape.kind, frame, tuple(float(v) for v in shape.size))
+    path = resolve_mesh(shape.filename, folder, package_dirs)
+    if path is None:
+        raise MeshError(f"mesh {shape.filename!r} not found: give the folder that holds its package",
+                        filename=shape.filename, found=False)
+    try:
+        v, faces, _ = _mesh_of(str(path), path.stat().st_mtime_ns, path.stat().st_size,
+                               tuple(float(x) for x in np.ravel(shape.scale)))
+    except MeshError:
+        raise
+    except Exception as err:  # trimesh raises many kinds on a file it cannot read
+        raise MeshError(f"{path}: {err}", filename=str(path)) from None
+    return Solid(link, "mesh", frame, (), v, faces)

@@ -899,18 +899,18 @@ def read_revolute_chain(text: str, *, source: str = "arm.urdf", up=None, tip: st
     fixed = {link: (body, np.linalg.solve(frames[body], pose[link])) for link, body in owner.items()
              if link != sel.root and link not in (j.child for j in movers)}
     up_unit = sel.up / np.linalg.norm(sel.up)
-    outline = ()
+    outline, solids = (), ()
     if shapes:
         T_body = {link: np.linalg.solve(frames[body], pose[link]) for link, body in owner.items()}
         names = (sel.root, *(j.child for j in movers))
         length = float(np.sum(np.linalg.norm(np.array(placements)[:, :3, 3], axis=1)))
-        outline, said = _outlines(text, owner, T_body, names, folder, package_dirs, length, source)
+        outline, solids, said = _outlines(text, owner, T_body, names, folder, package_dirs, length, source)
         notes += said
     return RevoluteChain(sel.name, (sel.root, *(j.child for j in movers)), tuple(j.name for j in movers),
                          np.array(placements), np.array([j.axis for j in movers]),
                          np.array([b.mass for b in bodies]), np.array([b.com for b in bodies]),
                          np.array([(b.inertia + b.inertia.T) / 2 for b in bodies]), -g * up_unit,
-                         np.array(limits, dtype=float), tuple(notes), fixed, outline)
+                         np.array(limits, dtype=float), tuple(notes), fixed, outline, solids)
 
 
 def _hull(points: np.ndarray) -> np.ndarray:
@@ -929,20 +929,22 @@ scale or size) or over 5 times the arm's length (at least 2 m: a mesh in millime
 a misplaced scale)."""
 
 
-def _outlines(text, owner, T_body, names, folder, package_dirs, length, source) -> tuple[tuple, list]:
-    """Each body's outline (points, m, body frame) from its links' shapes (collision, else visual:
+def _outlines(text, owner, T_body, names, folder, package_dirs, length, source) -> tuple[tuple, tuple, list]:
+    """Each body's outline (points, m, body frame) and solids (:class:`~springlab.model.shapes.Solid`, what
+    the collision check reads) from its links' shapes (collision, else visual:
     also where no collision shape of a link could be read), and notes on what was read and what was
     not (a mesh not found or unreadable, an outline out of proportion, a body with no geometry). A
     mesh that would give a false outline (:class:`~springlab.model.shapes.RefusedMeshError`) is
     refused, with its link named."""
-    from springlab.model.shapes import RefusedMeshError, link_shapes, shape_points
+    from springlab.model.shapes import RefusedMeshError, link_shapes, shape_points, shape_solid
 
     found, notes = link_shapes(text)
     points = [[] for _ in names]
+    solids = [[] for _ in names]
     missing, unreadable, read = {}, {}, 0
     for link, body in owner.items():
         for shapes in found.get(link, ((), ())):
-            placed = []
+            placed, kept = [], []
             for shape in shapes:
                 try:
                     local = shape_points(shape, folder, package_dirs, notes)
@@ -956,8 +958,10 @@ def _outlines(text, owner, T_body, names, folder, package_dirs, length, source) 
                     continue
                 T = T_body[link]
                 placed.append(local @ T[:3, :3].T + T[:3, 3])
+                kept.append(shape_solid(shape, link, T, folder, package_dirs))
             if placed:  # the collision shapes read, else the visual ones
                 points[body] += placed
+                solids[body] += kept
                 read += len(placed)
                 break
     if missing:
@@ -972,7 +976,7 @@ def _outlines(text, owner, T_body, names, folder, package_dirs, length, source) 
         notes.append(f"{_plural(len(unreadable), 'mesh', 'meshes')} could not be read ({next(iter(unreadable))}): "
                      "left out")
     if not read:
-        return (), notes
+        return (), (), notes
     small, large = OUTLINE_LIMITS[0], max(2.0, OUTLINE_LIMITS[1] * length)
     outline = []
     for i, p in enumerate(points):
@@ -984,14 +988,15 @@ def _outlines(text, owner, T_body, names, folder, package_dirs, length, source) 
                 "other units, or a wrong scale?")
             notes.append(f"the geometry of {names[i]!r} is {why}: ignored, the default reach there")
             hull = np.zeros((0, 3))
+            solids[i] = []
         outline.append(hull)
     empty = [repr(names[i]) for i, p in enumerate(outline) if len(p) == 0]
     if len(empty) == len(outline):
-        return (), notes
+        return (), (), notes
     notes.append(f"the bodies' outlines (where springs attach) come from {_plural(read, 'shape', 'shapes')} of the "
                  "file's geometry" + (f"; {', '.join(empty)} {'has' if len(empty) == 1 else 'have'} none (the default "
                                       "reach there)" if empty else ""))
-    return tuple(outline), notes
+    return tuple(outline), tuple(tuple(s) for s in solids), notes
 
 
 def _plural(n: int, one: str, many: str) -> str:

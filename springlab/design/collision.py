@@ -1,0 +1,512 @@
+"""What a spring must clear on a real arm, on the arm's own collision geometry, with coal.
+
+coal (the collision library Pinocchio is built on, which the ``pin`` package brings) measures the
+signed distance between a spring's pieces and each link's shapes as the URDF gives them
+(:attr:`~springlab.model.revolute.RevoluteChain.solids`: boxes, cylinders, spheres, capsules and
+meshes, not their bounding boxes), placed by the model's own frames
+(:func:`~springlab.model.revolute.body_frames`). A spring's piece (its coil, its cable) is a capsule:
+the segment between its ends thickened by its radius.
+
+A mesh is measured twice: against its convex hull, which holds it (a piece farther than the margin
+from the hull is clear of the mesh), and, where the hull is nearer, against its triangles (coal's
+bounding-volume tree), which give the true distance outside the mesh. A piece inside the hull that
+touches no triangle is either in a hollow of the mesh (clear, by the triangles' distance) or inside
+the solid; the winding number of the mesh about the piece's middle decides (Jacobson et al., 2013),
+and inside, the depth is the hull's. So a clearance is never larger than the truth, and a negative
+one is a depth (m) the piece runs into the link.
+
+The same geometry defines the arm's **workspace** (:func:`free_poses`): poses within the limits where
+no two links collide but those that touch by construction, which an SRDF would disable as MoveIt's
+setup assistant does (adjacent links; pairs in collision at the zero pose; pairs in collision at
+nearly every pose), and no link passes below the mounting plane (the lowest point of the base's
+geometry, across the up direction), bodies that sit on it by construction aside.
+
+Lengths in m.
+
+References
+----------
+Jacobson, A., Kavan, L., Sorkine-Hornung, O. Robust inside-outside segmentation using generalized
+winding numbers. ACM Transactions on Graphics 32(4), 2013.
+"""
+
+from __future__ import annotations
+
+import functools
+import weakref
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab.errors import SpringlabError
+from springlab.model.revolute import RevoluteChain, body_frames
+
+MARGIN = 0.005
+"""m: the clearance every spring, cable and hook keeps from every link by default."""
+
+ALWAYS = 0.95
+"""A pair of links (or a link and the mounting plane) in collision at more than this share of the
+limits' poses touches by construction (a shell around a motor, a base on its plate) and is not checked,
+as MoveIt's setup assistant disables 'always in collision' pairs."""
+
+_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _coal():
+    try:
+        import coal
+    except ImportError:
+        raise SpringlabError("coal (the collision library the 'pin' package brings) is not installed: "
+                             "pip install pin") from None
+    return coal
+
+
+@dataclass(frozen=True, eq=False)
+class _Item:
+    body: int
+    link: str
+    frame: np.ndarray  # (4, 4) in the body's frame
+    convex: object  # coal geometry: the shape itself, or a mesh's hull
+    mesh: object | None  # a mesh's triangles (coal BVH), else None
+    triangles: np.ndarray | None  # a mesh's triangles' corners (t, 3, 3), for the winding number
+    points: np.ndarray  # (k, 3) points in the item's frame whose hull holds it (its lowest point is theirs)
+    centre: np.ndarray  # (3,) a sphere that holds it, in the item's frame
+    radius: float
+
+    @functools.cached_property
+    def capsule(self) -> tuple[np.ndarray, np.ndarray, float]:
+        """A capsule that holds the item (its ends, in the item's frame, and radius): along the points'
+        principal axis, from their least to their largest reach along it."""
+        p = self.points
+        c = p.mean(axis=0)
+        axis = np.linalg.svd(p - c, full_matrices=False)[2][0] if len(p) > 1 else np.array([0.0, 0.0, 1.0])
+        t = (p - c) @ axis
+        r = float(np.max(np.linalg.norm((p - c) - np.outer(t, axis), axis=1))) if len(p) else 0.0
+        return c + t.min() * axis, c + t.max() * axis, r
+
+
+def _items(model: RevoluteChain) -> tuple:
+    """The model's solids as coal geometries, built once per model."""
+    try:
+        return _CACHE[model]
+    except (KeyError, TypeError):
+        pass
+    coal = _coal()
+    out = []
+    for body, solids in enumerate(model.solids):
+        for s in solids:
+            if s.kind == "box":
+                geom = coal.Box(*s.size)
+            elif s.kind == "cylinder":
+                geom = coal.Cylinder(*s.size)
+            elif s.kind == "capsule":
+                geom = coal.Capsule(*s.size)
+            elif s.kind == "sphere":
+                geom = coal.Sphere(s.size[0])
+            else:
+                out.append(_mesh_item(coal, body, s))
+                continue
+            out.append(_Item(body, s.link, np.asarray(s.frame), geom, None, None, *_bounds(s.kind, s.size)))
+    items = tuple(i for i in out if i is not None)
+    try:
+        _CACHE[model] = items
+    except TypeError:
+        pass
+    return items
+
+
+def _mesh_item(coal, body, s):
+    v, f = np.asarray(s.vertices, dtype=float), np.asarray(s.faces, dtype=np.int64)
+    if len(v) < 4 or len(f) == 0:
+        return None
+    bvh = coal.BVHModelOBBRSS()
+    bvh.beginModel(len(f), len(v))
+    bvh.addVertices(v)
+    bvh.addTriangles(f)
+    bvh.endModel()
+    try:
+        bvh.buildConvexHull(False, "Qt")
+        hull = bvh.convex
+    except Exception:  # a flat mesh has no hull of volume: its triangles alone bound it
+        hull = bvh
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        points = v[ConvexHull(v).vertices]
+    except (QhullError, ValueError):
+        points = v
+    centre = (points.min(axis=0) + points.max(axis=0)) / 2
+    return _Item(body, s.link, np.asarray(s.frame), hull, bvh, v[f], points, centre,
+                 float(np.max(np.linalg.norm(points - centre, axis=1))))
+
+
+def _bounds(kind: str, size) -> tuple[np.ndarray, np.ndarray, float]:
+    """A primitive's outer points (their hull holds it: a round rim's polygon circumscribes it), the
+    centre and radius of a sphere that holds it, in its own frame."""
+    if kind == "box":
+        h = np.asarray(size, dtype=float) / 2
+        points = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * h
+        return points, np.zeros(3), float(np.linalg.norm(h))
+    t = np.linspace(0.0, 2 * np.pi, 32, endpoint=False)
+    ring = np.column_stack([np.cos(t), np.sin(t), np.zeros_like(t)]) / np.cos(np.pi / 32)
+    if kind == "sphere":
+        r = float(size[0])
+        points = np.vstack([ring * r, ring[:, [0, 2, 1]] * r, ring[:, [2, 0, 1]] * r, [[0, 0, r], [0, 0, -r]]])
+        return points * np.sqrt(3), np.zeros(3), r  # the three rings' hull holds the ball once scaled by sqrt 3
+    r, length = (float(v) for v in size)
+    h = length / 2 + (r if kind == "capsule" else 0.0)
+    points = np.vstack([ring * r + [0, 0, -h], ring * r + [0, 0, h]])
+    return points, np.zeros(3), float(np.hypot(r, length / 2) if kind == "cylinder" else length / 2 + r)
+
+
+def has_geometry(model: RevoluteChain) -> bool:
+    """True when the model carries collision shapes (a URDF read with its meshes)."""
+    return bool(model.solids) and any(len(s) for s in model.solids)
+
+
+def _transform(coal, R, t):
+    return coal.Transform3s(np.ascontiguousarray(R, dtype=float), np.ascontiguousarray(t, dtype=float))
+
+
+def _placed(R, o, item: _Item, p: int):
+    """The item's rotation and translation in the base frame at pose p."""
+    Rb, ob = R[p, item.body], o[p, item.body]
+    return Rb @ item.frame[:3, :3], Rb @ item.frame[:3, 3] + ob
+
+
+def _winding(triangles: np.ndarray, point: np.ndarray) -> float:
+    """The generalised winding number of a triangle mesh about a point: 1 inside a closed mesh, 0
+    outside (Jacobson et al. 2013, Eq. (6): the sum of the triangles' solid angles over 4 pi)."""
+    a, b, c = (triangles[:, k] - point for k in range(3))
+    la, lb, lc = (np.linalg.norm(x, axis=1) for x in (a, b, c))
+    det = np.einsum("ij,ij->i", a, np.cross(b, c))
+    div = la * lb * lc + np.einsum("ij,ij->i", a, b) * lc + np.einsum("ij,ij->i", b, c) * la \
+        + np.einsum("ij,ij->i", c, a) * lb
+    return float(np.sum(2.0 * np.arctan2(det, div)) / (4.0 * np.pi))
+
+
+def _segment_gap(P0, P1, Q0, Q1) -> np.ndarray:
+    """The distance (m) between segments P0-P1 and Q0-Q1, row by row ((N, 3) each)."""
+    from springlab.design.clearance import segment_distance
+
+    return segment_distance(P0, P1, Q0, Q1)
+
+
+def _world_capsule(item, Ri, ti):
+    a, b, r = item.capsule
+    return np.einsum("pij,j->pi", Ri, a) + ti, np.einsum("pij,j->pi", Ri, b) + ti, r
+
+
+def _capsules(coal, P0, P1, radius):
+    """Capsules from P0 to P1 ((N, 3) each) of the radius: per row, its coal shape, rotation and centre."""
+    d = P1 - P0
+    length = np.linalg.norm(d, axis=1)
+    z = d / np.maximum(length, 1e-12)[:, None]
+    x = np.cross(z, np.where(np.abs(z[:, :1]) < 0.9, [[1.0, 0.0, 0.0]], [[0.0, 1.0, 0.0]]))
+    x /= np.maximum(np.linalg.norm(x, axis=1), 1e-12)[:, None]
+    frames = np.stack([x, np.cross(z, x), z], axis=2)
+    centres = (P0 + P1) / 2
+    r = max(radius, 1e-6)
+    return [(coal.Capsule(r, float(L)) if L >= 1e-9 else coal.Sphere(r), frames[p], centres[p])
+            for p, L in enumerate(length)]
+
+
+def _piece_capsules(coal, a, b, radius, trim=None) -> list:
+    """A piece's capsules at each pose; ``trim`` (end 'a' or 'b', allowance m): without the allowance at
+    that end (None at a pose where nothing is left)."""
+    if trim is None:
+        return _capsules(coal, a, b, radius)
+    end, allowance = trim
+    d = b - a
+    length = np.linalg.norm(d, axis=1)
+    u = d / np.maximum(length, 1e-12)[:, None]
+    lo, hi = (a + allowance * u, b) if end == "a" else (a, b - allowance * u)
+    return [None if length[i] <= allowance else c for i, c in enumerate(_capsules(coal, lo, hi, radius))]
+
+
+def _signed(coal, item: _Item, Ti, shape, Ts, centre, margin: float) -> float:
+    """The signed distance (m) from the shape to the item, never larger than the truth (see the module
+    docstring); exact where it is below ``margin``."""
+    request = coal.DistanceRequest()
+    hull = coal.distance(item.convex, Ti, shape, Ts, request, coal.DistanceResult())
+    if item.mesh is None or hull >= margin:
+        return float(hull)
+    tris = coal.distance(item.mesh, Ti, shape, Ts, request, coal.DistanceResult())
+    if tris <= 0.0:  # it touches the mesh: its depth into the hull, at least as deep as into the mesh
+        return float(min(hull, tris))
+    if hull >= 0.0:  # outside the hull, where the triangles give the true distance
+        return float(tris)
+    R, t = Ti.getRotation(), Ti.getTranslation()
+    local = R.T @ (np.asarray(centre) - t)
+    return float(hull) if _winding(item.triangles, local) > 0.5 else float(tris)
+
+
+@dataclass(frozen=True)
+class Piece:
+    """A part of a spring that must clear the links: a capsule from ``a`` to ``b`` (m, base frame,
+    (N, 3) over the poses) of ``radius`` (m). ``bodies`` are the bodies it is fixed to, each with the
+    length (m) at that end within which it may touch its own body (its hook and bracket): the piece is
+    checked against its own body only beyond it."""
+
+    name: str
+    a: np.ndarray
+    b: np.ndarray
+    radius: float
+    bodies: tuple = ()  # ((body index, end 'a' or 'b', allowance m), ...)
+
+
+@dataclass(frozen=True)
+class Clearances:
+    """The clearance (m) of each piece from each body at each pose, (pieces, N, n + 1); +inf where a body
+    has no geometry or is not checked."""
+
+    pieces: tuple
+    gaps: np.ndarray
+    links: tuple  # the bodies' names
+
+    def worst(self, piece: int) -> tuple[float, int, int]:
+        """A piece's smallest clearance (m), the body and the pose index where it occurs."""
+        g = self.gaps[piece]
+        p, b = np.unravel_index(int(np.argmin(g)), g.shape)
+        return float(g[p, b]), int(b), int(p)
+
+    def failures(self, margin: float = MARGIN) -> list[tuple[str, str, int, float]]:
+        """(piece, link, pose index, clearance m) for each piece nearer than ``margin`` to a link."""
+        out = []
+        for i, piece in enumerate(self.pieces):
+            gap, body, pose = self.worst(i)
+            if gap < margin:
+                out.append((piece.name, self.links[body], pose, gap))
+        return out
+
+
+def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Clearances:
+    """Each piece's clearance from each of the model's bodies at the poses ``q`` (N, n) rad: exact where it
+    is below ``margin``; above it, a lower bound (spheres that hold the piece and the shape screen the
+    poses in numpy before coal measures the near ones)."""
+    coal = _coal()
+    q = model.check_q(q)
+    pieces = tuple(pieces)
+    items = _items(model)
+    R, o = body_frames(model, q)
+    gaps = np.full((len(pieces), q.shape[0], model.n + 1), np.inf)
+    placed = []
+    for item in items:
+        Ri = R[:, item.body] @ item.frame[:3, :3]
+        ti = np.einsum("pij,j->pi", R[:, item.body], item.frame[:3, 3]) + o[:, item.body]
+        placed.append((Ri, ti, np.einsum("pij,j->pi", Ri, item.centre) + ti))
+    for k, piece in enumerate(pieces):
+        own = {body: (end, allowance) for body, end, allowance in piece.bodies}
+        a, b = np.asarray(piece.a, dtype=float), np.asarray(piece.b, dtype=float)
+        shapes = {}  # (body or None) -> per pose its capsule, trimmed for its own bodies
+        for item, (Ri, ti, _) in zip(items, placed, strict=True):
+            Q0, Q1, r = _world_capsule(item, Ri, ti)
+            gap = _segment_gap(a, b, Q0, Q1) - piece.radius - r  # a lower bound
+            for p in np.flatnonzero(gap < margin):
+                key = item.body if item.body in own else None
+                if key not in shapes:
+                    shapes[key] = _piece_capsules(coal, a, b, piece.radius, own.get(key))
+                found = shapes[key][p]
+                if found is None:
+                    gap[p] = np.inf
+                    continue
+                solid, Rs, c = found
+                gap[p] = _signed(coal, item, _transform(coal, Ri[p], ti[p]), solid, _transform(coal, Rs, c), c, margin)
+            gaps[k, :, item.body] = np.minimum(gaps[k, :, item.body], gap)
+    return Clearances(pieces, gaps, tuple(model.bodies))
+
+
+@dataclass(frozen=True)
+class Workspace:
+    """Where the arm may go (:func:`free_poses`): the poses kept, the share of the limits' poses that are
+    free, and what was left unchecked by construction (a note each)."""
+
+    q: np.ndarray
+    share: float
+    notes: tuple
+
+
+def _pairs(model: RevoluteChain) -> list[tuple[int, int]]:
+    """The pairs of bodies checked against each other: all but adjacent ones (a joint between them)."""
+    bodies = sorted({i.body for i in _items(model)})
+    return [(a, b) for ai, a in enumerate(bodies) for b in bodies[ai + 1:] if b - a > 1]
+
+
+def mounting_plane(model: RevoluteChain) -> float:
+    """The height (m, along up, in the base frame) of the base's lowest point: its geometry's, or the
+    base frame's origin when it has none."""
+    coal = _coal()
+    base = [i for i in _items(model) if i.body == 0]
+    return min((_lowest(coal, item, model.up) for item in base), default=0.0)
+
+
+def _lowest(coal, item: _Item, up) -> float:
+    if item.triangles is not None:
+        points = item.triangles.reshape(-1, 3) @ item.frame[:3, :3].T + item.frame[:3, 3]
+        return float(np.min(points @ up))
+    T = item.frame
+    hs = coal.Halfspace(np.asarray(up, dtype=float), -1e3)  # far below: the distance is the lowest point's height
+    d = coal.distance(hs, coal.Transform3s(), item.convex, _transform(coal, T[:3, :3], T[:3, 3]),
+                      coal.DistanceRequest(), coal.DistanceResult())
+    return float(d - 1e3)
+
+
+def collision_masks(model: RevoluteChain, q, *, pairs=None, below=None, first: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Per pose, whether each checked pair of bodies collides, (N, len(pairs)), and whether each body
+    passes below the mounting plane, (N, n + 1) (the base never does). The poses are screened in
+    numpy (each shape's lowest point; capsules that hold the shapes), coal decides the rest. With
+    ``first``, a pose is left once it fails (below the plane, or one pair in collision): the masks then
+    say only whether each pose is free."""
+    coal = _coal()
+    q = model.check_q(q)
+    items = _items(model)
+    pairs = _pairs(model) if pairs is None else list(pairs)
+    R, o = body_frames(model, q)
+    up = model.up
+    plane = mounting_plane(model)
+    N = q.shape[0]
+    low = np.zeros((N, model.n + 1), dtype=bool)
+    Rw, tw = [], []
+    for item in items:
+        Ri = R[:, item.body] @ item.frame[:3, :3]
+        ti = np.einsum("pij,j->pi", R[:, item.body], item.frame[:3, 3]) + o[:, item.body]
+        Rw.append(Ri)
+        tw.append(ti)
+        if item.body and (below is None or item.body in below):
+            heights = np.einsum("pij,i->pj", Ri, up) @ item.points.T + (ti @ up)[:, None]
+            low[:, item.body] |= heights.min(axis=1) < plane
+    capsules = [_world_capsule(it, Rw[k], tw[k]) for k, it in enumerate(items)]
+    by_body: dict = {}
+    for k, item in enumerate(items):
+        by_body.setdefault(item.body, []).append(k)
+    hit = np.zeros((N, len(pairs)), dtype=bool)
+    request = coal.CollisionRequest()
+    for c, (a, b) in enumerate(pairs):
+        for ka in by_body.get(a, ()):
+            for kb in by_body.get(b, ()):
+                (A0, A1, ra), (B0, B1, rb) = capsules[ka], capsules[kb]
+                near = _segment_gap(A0, A1, B0, B1) < ra + rb
+                if first:
+                    near &= ~hit.any(axis=1) & ~low.any(axis=1)
+                for p in np.flatnonzero(near & ~hit[:, c]):
+                    hit[p, c] = _collide(coal, items[ka], _transform(coal, Rw[ka][p], tw[ka][p]),
+                                         items[kb], _transform(coal, Rw[kb][p], tw[kb][p]), request)
+    return hit, low
+
+
+def _collide(coal, ia: _Item, Ta, ib: _Item, Tb, request) -> bool:
+    """Whether two items overlap: their hulls first, then the meshes' triangles (a hollow's inside, where
+    one mesh lies within the other without touching, is counted by the winding number)."""
+    if not coal.collide(ia.convex, Ta, ib.convex, Tb, request, coal.CollisionResult()):
+        return False
+    if ia.mesh is None and ib.mesh is None:
+        return True
+    ga = ia.mesh if ia.mesh is not None else ia.convex
+    gb = ib.mesh if ib.mesh is not None else ib.convex
+    if coal.collide(ga, Ta, gb, Tb, request, coal.CollisionResult()):
+        return True
+    for inner, Ti, outer, To in ((ia, Ta, ib, Tb), (ib, Tb, ia, Ta)):  # one wholly inside the other
+        if outer.triangles is None:
+            continue
+        point = Ti.getTranslation() if inner.triangles is None else \
+            Ti.getRotation() @ inner.triangles[0, 0] + Ti.getTranslation()
+        if coal.distance(outer.convex, To, coal.Sphere(1e-6), _transform(coal, np.eye(3), point),
+                         coal.DistanceRequest(), coal.DistanceResult()) > 0:
+            continue  # outside the outer mesh's hull, so outside the mesh
+        local = To.getRotation().T @ (point - To.getTranslation())
+        if _winding(outer.triangles, local) > 0.5:
+            return True
+    return False
+
+
+def _default_pose(ranges: np.ndarray) -> np.ndarray:
+    """The zero pose, each angle clipped into its range (the URDF's home, as far as the limits allow)."""
+    return np.clip(0.0, ranges[:, 0], ranges[:, 1])
+
+
+class Sampler:
+    """Random poses of the arm's workspace (see the module docstring): within ``ranges`` ((n, 2) rad), no
+    two links in collision but pairs that touch by construction (found on ``calibration`` poses of the
+    ranges and named in :attr:`notes`), no link below the mounting plane. An arm without collision
+    geometry samples the ranges' box.
+
+    :ivar share: the share of the ranges' poses found free so far
+    """
+
+    def __init__(self, model: RevoluteChain, ranges, rng, *, calibration: int = 400):
+        self.model, self.ranges = model, np.asarray(ranges, dtype=float)
+        self.checked = has_geometry(model)
+        self.drawn = self.kept = 0
+        notes = []
+        if not self.checked:
+            notes.append("the arm has no collision geometry: the workspace is the joint ranges' box, unchecked for "
+                         "self-collision")
+            self.pairs, self.below, self.notes = [], set(), tuple(notes)
+            return
+        pairs, names = _pairs(model), model.bodies
+        trial = np.vstack([_default_pose(self.ranges),
+                           rng.uniform(self.ranges[:, 0], self.ranges[:, 1], (calibration, model.n))])
+        hit, low = collision_masks(model, trial, pairs=pairs)
+        self.pairs = []
+        for k, (a, b) in enumerate(pairs):
+            if hit[0, k] or hit[1:, k].mean() > ALWAYS:
+                why = "at the zero pose" if hit[0, k] else f"at {100 * hit[1:, k].mean():.0f} % of the poses"
+                notes.append(f"links {names[a]} and {names[b]} touch {why}: by construction, not checked")
+            else:
+                self.pairs.append((a, b))
+        self.below = set()
+        for b in range(1, model.n + 1):
+            if low[1:, b].mean() > ALWAYS:
+                notes.append(f"link {names[b]} reaches below the mounting plane at nearly every pose: it sits on the "
+                             "mount by construction, not checked against it")
+            else:
+                self.below.add(b)
+        self.notes = tuple(notes)
+
+    @property
+    def share(self) -> float:
+        return self.kept / self.drawn if self.drawn else 1.0
+
+    def free(self, q) -> np.ndarray:
+        """Whether each pose (N, n) rad is in the workspace, (N,) (limits aside)."""
+        q = self.model.check_q(q)
+        if not self.checked:
+            return np.ones(q.shape[0], dtype=bool)
+        hit, low = collision_masks(self.model, q, pairs=self.pairs, below=self.below, first=True)
+        return ~hit.any(axis=1) & ~low.any(axis=1)
+
+    def draw(self, count: int, rng) -> np.ndarray:
+        """``count`` random poses of the workspace, (count, n) rad.
+
+        :raises SpringlabError: when no pose of the ranges is free (every one collides)
+        """
+        out, found = [], 0
+        while found < count:
+            if self.drawn >= 50 * count and not self.kept:
+                raise SpringlabError(f"no pose of the workspace is free: each of {self.drawn} random poses within the "
+                                     "joint ranges has two links in collision or a link below the mounting plane; give "
+                                     "a --workspace the arm can move in")
+            size = max(64, int(1.2 * (count - found) / max(self.share, 0.05)))
+            poses = self.ranges[:, 0] + (self.ranges[:, 1] - self.ranges[:, 0]) * rng.random((size, self.model.n))
+            free = self.free(poses)
+            out.append(poses[free])
+            self.drawn += size
+            self.kept += int(free.sum())
+            found += int(free.sum())
+        return np.vstack(out)[:count]
+
+    def note(self) -> str:
+        if not self.checked:
+            return self.notes[0]
+        return (f"the workspace: poses within the joint ranges where no two links collide and none passes below the "
+                f"mounting plane, {100 * self.share:.0f} % of the ranges' poses ({self.drawn} drawn)")
+
+
+def free_poses(model: RevoluteChain, ranges, count: int, rng, *, calibration: int = 400) -> Workspace:
+    """``count`` random poses of the workspace (:class:`Sampler`), the share of the ranges' poses that are
+    free, and the notes.
+
+    :raises SpringlabError: when no pose of the ranges is free (every one collides)
+    """
+    sampler = Sampler(model, ranges, rng, calibration=calibration)
+    q = sampler.draw(count, rng)
+    return Workspace(q, sampler.share, (*sampler.notes, sampler.note()))
