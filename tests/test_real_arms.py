@@ -100,10 +100,14 @@ def test_workspace_ranges_stay_within_the_limits():
 
 def test_the_cli_writes_the_json_contract(tmp_path, capsys):
     out = tmp_path / "ur5.json"
-    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--quiet", "--pulley-radius", "0"]) == 0
+    # flagged (exit 3): the realised springs run through the links, which the JSON says, spring by spring
+    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--quiet", "--pulley-radius", "0"]) == 3
     printed = capsys.readouterr().out
     assert "exact: planar chain" in printed and "negative control" in printed
     data = json.loads(out.read_text())
+    assert data["clearance"]["margin_m"] == 0.005 and not data["clearance"]["clears"]
+    assert all(s["clearance_m"] < 0 and s["mass_kg"] > 0 for s in data["realised"])
+    assert any("cannot be mounted as drawn" in f for f in data["status"]["flags"])
     fields = {"link_a", "point_a", "link_b", "point_b", "k", "free_length", "initial_tension"}
     for case in ("ideal", "realised"):
         assert data[case] and all(fields <= set(s) for s in data[case])

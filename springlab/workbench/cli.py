@@ -103,6 +103,9 @@ def _check_arguments(args) -> None:
     args.pulley_radius = _checks.positive("--pulley-radius", parse_quantity(args.pulley_radius, "length",
                                                                             "--pulley-radius"),
                                           allow_zero=True, unit="m") + 0.0
+    if args.margin is not None:
+        args.margin = _checks.positive("--margin", parse_quantity(args.margin, "length", "--margin"),
+                                       allow_zero=True, unit="m") + 0.0
     if args.payload is not None:
         from springlab.design.payload import MAX_PAYLOAD_RANGE
         from springlab.model.armfile import parse_quantity
@@ -157,9 +160,9 @@ def _design(args) -> int:
         if not folder.strip() or not Path(folder).is_dir():
             raise SpringlabError(f"--package-dir = {folder!r} is not a folder: give the folder that holds the "
                                  "URDF's mesh packages")
-    if (args.reach is not None or args.package_dir) and path.suffix != ".urdf":
-        raise SpringlabError("--reach and --package-dir apply to URDF files (an arm file bounds its attachments "
-                             "with limits: max_attachment)")
+    if (args.reach is not None or args.package_dir or args.margin is not None) and path.suffix != ".urdf":
+        raise SpringlabError("--reach, --package-dir and --margin apply to URDF files (an arm file bounds its "
+                             "attachments with limits: max_attachment, and has no link shapes to clear)")
     if args.workspace is not None and path.suffix != ".urdf":
         raise SpringlabError(f"--workspace = {args.workspace!r} applies to URDF files (an arm file gives each "
                              "joint's range in its links' 'range')")
@@ -167,7 +170,7 @@ def _design(args) -> int:
         raise SpringlabError(f"--payload-range = {args.payload_range!r} applies to URDF files, designed on the general "
                              "model with a payload dial (an arm file's payload is its [payload] table)")
     if path.suffix == ".urdf" and (args.workspace is not None or args.reach is not None or args.package_dir
-                                   or args.payload_range is not None):
+                                   or args.payload_range is not None or args.margin is not None):
         return _design_general(args, path, data, "")  # ranges, reaches and outlines: the general model's
     try:
         spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up), tip=args.tip, base=args.base,
@@ -262,7 +265,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     reach = None if args.reach is None else _checks.positive(
         "--reach", parse_quantity(args.reach, "length", "--reach"), allow_zero=True, unit="m") + 0.0
     design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material, reach=reach,
-                          pulley_radius=args.pulley_radius)
+                          pulley_radius=args.pulley_radius, margin=args.margin)
     seconds = time.perf_counter() - started
     tip = (f"the tip {args.tip!r} (fixed to {model.bodies[-1]!r}, the last body a joint moves)"
            if args.tip and args.tip != model.bodies[-1] else repr(model.bodies[-1]))
@@ -292,7 +295,11 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     print(design.springs_table())
     print("\nwhat the realisation changed, per spring (a realised spring keeps the name of the ideal one it realises):")
     print(design.changes_table())
-    if design.realised and model.outline:
+    if design.realised and design.clearance is not None:
+        print(f"\nclearance of the realised springs (coil, cable) from the links' own shapes (coal), over the "
+              f"{design.clearance.poses:,} check poses; {design.workspace}:")
+        print(design.clearance.table(design.q))
+    elif design.realised and model.outline:
         print(f"\nclearance of the realised springs from the bodies (their outlines), over "
               f"{min(len(design.q), 100)} workspace poses:")
         print(design.clearance_table())
@@ -567,6 +574,9 @@ def main(argv=None) -> int:
                    help="also write the built springs' spec sheet beside the JSON (.sheet.csv, .sheet.md)")
     p.add_argument("--material", default="music wire", choices=("music wire", "stainless 302"),
                    help="spring wire for --sheet (default music wire)")
+    p.add_argument("--margin", default=None,
+                   help="the clearance every realised spring's coil and cable keeps from the URDF's links, e.g. '5 mm' "
+                        "(a bare number is in m; default 0.005); a spring nearer than it is flagged")
     p.add_argument("--pulley-radius", default="0.005",
                    help="the pulley of a spring realised as a cable over a pulley, e.g. '5 mm' (a URDF arm's realised "
                         "springs, and --sheet; a bare number is in m; default 0.005, a 10 mm wheel; 0 for a point)")

@@ -1,0 +1,87 @@
+"""Clearance on a real arm's own shapes (coal), the workspace free of self-collision, and the springs'
+own mass: each with a negative control that must fail."""
+
+import json
+
+import numpy as np
+import pytest
+
+pytest.importorskip("coal")
+
+
+from springlab.design.arms import workspace_ranges  # noqa: E402
+from springlab.design.collision import MARGIN, Piece, Sampler, clearances, collision_masks  # noqa: E402
+from springlab.model.revolute import body_frames, world_points  # noqa: E402
+from springlab.model.robots import load_robot, robot_urdf  # noqa: E402
+from springlab.workbench.cli import main  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def ur5():
+    return load_robot("UR5")
+
+
+def _through(model, q, link, offset):
+    """A cable across the named link's middle (0.3 m long), moved ``offset`` m along the base's y axis."""
+    R, o = body_frames(model, q)
+    body = model.bodies.index(link)
+    centre = np.mean([s.frame[:3, 3] for s in model.solids[body]], axis=0) + [0.0, 0.0, 0.2]
+    middle = world_points(R, o, body, centre) + [0.0, offset, 0.0]
+    return Piece("S9 cable", middle - [0.0, 0.0, 0.15], middle + [0.0, 0.0, 0.15], 0.0006)
+
+
+def test_a_cable_moved_through_a_link_is_caught(ur5):
+    q = np.zeros((3, ur5.n))  # the UR5 stretched out level: its upper arm along the base's y axis
+    found = clearances(ur5, [_through(ur5, q, "upper_arm_link", 0.0), _through(ur5, q, "upper_arm_link", 0.5)], q)
+    gap, body, _ = found.worst(0)
+    assert ur5.bodies[body] == "upper_arm_link" and gap < -0.02  # through the link: a depth in m
+    assert found.failures() == [("S9 cable", "upper_arm_link", 0, gap)]
+    assert found.worst(1)[0] > MARGIN  # the control: the same cable half a metre aside clears
+
+
+def test_a_piece_wholly_inside_a_mesh_is_caught_although_it_touches_no_triangle(ur5):
+    q = np.zeros((1, ur5.n))
+    R, o = body_frames(ur5, q)
+    body = ur5.bodies.index("upper_arm_link")
+    mesh = next(s for s in ur5.solids[body] if s.kind == "mesh")
+    inside = world_points(R, o, body, mesh.frame[:3, :3] @ mesh.vertices.mean(axis=0) + mesh.frame[:3, 3])
+    tiny = Piece("S9 coil", inside, inside + [0.0, 0.0, 0.002], 0.001)
+    assert clearances(ur5, [tiny], q).worst(0)[0] < 0
+
+
+def test_the_workspace_leaves_out_poses_in_collision_and_below_the_mount(ur5):
+    ranges = workspace_ranges(ur5)
+    rng = np.random.default_rng(3)
+    sampler = Sampler(ur5, ranges, rng)
+    q = sampler.draw(300, rng)
+    assert np.all(sampler.free(q)) and 0.2 < sampler.share < 0.6  # the UR5: about a third of its limits' box
+    folded = np.zeros((1, ur5.n))
+    folded[0, 1], folded[0, 2] = -np.pi / 2, np.pi  # the forearm folded back down onto the upper arm's side
+    down = np.zeros((1, ur5.n))
+    down[0, 1] = np.pi / 2  # the upper arm pointing down, through the mounting plane
+    hit, low = collision_masks(ur5, np.vstack([folded, down]), pairs=sampler.pairs, below=sampler.below)
+    assert hit[0].any() and not low[0].any() and not sampler.free(folded)[0]  # links in collision
+    assert low[1].any() and not sampler.free(down)[0]  # below the mount
+    raised = np.zeros((1, ur5.n))
+    raised[0, 1] = -np.pi / 4  # the control: the arm raised, clear of itself and of the mount
+    assert sampler.free(raised)[0]
+    assert not sampler.free(np.zeros((1, ur5.n)))[0]  # stretched out level, its wrist hangs just below the base
+
+
+def test_the_springs_own_mass_is_carried_and_costs_balance(tmp_path):
+    out = tmp_path / "ur5.json"
+    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--quiet"]) == 3  # flagged: it does not clear
+    data = json.loads(out.read_text())
+    shoulder = data["torques"][1]
+    assert data["spring_mass_kg"] == pytest.approx(sum(s["mass_kg"] for s in data["realised"]))
+    assert data["spring_mass_kg"] > 1.0
+    # carrying the steel leaves more on the shoulder than the springs alone: a design that left it out would
+    # overstate its balance
+    assert shoulder["realised_with_spring_mass_peak_Nm"] > 2 * shoulder["realised_peak_Nm"]
+
+
+@pytest.mark.parametrize("margin", ["-1 mm", "nan", "3 kg"])
+def test_a_bad_margin_is_refused_and_nothing_written(tmp_path, capsys, margin):
+    out = tmp_path / "d.json"
+    assert main(["design", str(robot_urdf("UR5")), "--margin", margin, "--json", str(out), "--quiet"]) == 2
+    assert "--margin" in capsys.readouterr().err and not out.exists()
