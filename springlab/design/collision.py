@@ -426,10 +426,12 @@ def _default_pose(ranges: np.ndarray) -> np.ndarray:
 class Sampler:
     """Random poses of the arm's workspace (see the module docstring): within ``ranges`` ((n, 2) rad), no
     two links in collision but pairs that touch by construction (found on ``calibration`` poses of the
-    ranges and named in :attr:`notes`), no link below the mounting plane. An arm without collision
+    ranges and named in its ``notes``), no link below the mounting plane. An arm without collision
     geometry samples the ranges' box.
 
-    :ivar share: the share of the ranges' poses found free so far
+    :ivar notes: the pairs and links left unchecked because they touch by construction, a line each
+    :ivar pairs: the pairs of bodies checked against each other (indices)
+    :ivar below: the bodies checked against the mounting plane
     """
 
     def __init__(self, model: RevoluteChain, ranges, rng, *, calibration: int = 400):
@@ -464,6 +466,7 @@ class Sampler:
 
     @property
     def share(self) -> float:
+        """The share of the ranges' poses found free so far."""
         return self.kept / self.drawn if self.drawn else 1.0
 
     def free(self, q) -> np.ndarray:
