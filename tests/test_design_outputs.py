@@ -21,12 +21,12 @@ from springlab.design.arms import (
     design_model,
     workspace_ranges,
 )
+from springlab.design.collision import Sampler
 from springlab.design.payload import payload_study
 from springlab.energy.geometry import gravity_torques, joint_torques
 from springlab.errors import SpringlabError
 from springlab.model.robots import ROBOTS, load_robot, robot_urdf
 from springlab.model.springs import PointSpring
-from springlab.design.collision import Sampler
 from springlab.workbench.cli import EXIT_FLAGGED, main
 
 TWO_LINKS = """<robot name="two_links">

@@ -185,9 +185,10 @@ def test_the_cli_takes_package_dirs_and_refuses_a_missing_one(tmp_path, capsys):
     out = tmp_path / "ur5.json"
     share = robots_folder().parent.parent
     assert main(["design", str(robot_urdf("UR5")), "--tip", "wrist_3_link", "--package-dir", str(share),
-                 "--reach", "0", "--json", str(out), "--quiet", "--pulley-radius", "0"]) == 0
+                 "--reach", "0", "--json", str(out), "--quiet", "--pulley-radius", "0"]) == 3  # flagged: not clear
     data = json.loads(out.read_text())
     assert data["inputs"]["package_dirs"] == [str(share)] and data["inputs"]["reach_m"] == 0.0
+    assert all("cannot be mounted" in f for f in data["status"]["flags"])  # the meshes found: clearance measured
     assert "outline (the bounding box of its URDF geometry) and 0 cm beyond it" in capsys.readouterr().out
     out.unlink()
     code = main(["design", str(robot_urdf("UR5")), "--tip", "wrist_3_link", "--package-dir",
@@ -242,8 +243,10 @@ def test_reach_or_package_dir_designs_a_line_chain_urdf_on_the_general_model(tmp
     out = tmp_path / "two.json"
     assert main(["design", str(path), "--json", str(out), "--quiet", "--max-designs", "1"]) == 0
     assert "general model" not in capsys.readouterr().out and "ideal" not in json.loads(out.read_text())
-    assert main(["design", str(path), "--reach", "0", "--json", str(out), "--quiet", "--pulley-radius", "0"]) == 0
+    # flagged (exit 3) where the springs on the outlines' faces run through the other link's mesh
+    assert main(["design", str(path), "--reach", "0", "--json", str(out), "--quiet", "--pulley-radius", "0"]) in (0, 3)
     data = json.loads(out.read_text())
+    assert all("cannot be mounted" in f for f in data["status"]["flags"])
     assert data["inputs"]["reach_m"] == 0.0 and data["ideal"]
     model = read_revolute_chain(path.read_text(), source="two.urdf", folder=tmp_path)
     springs = [PointSpring(**{key: s[key] for key in ("link_a", "point_a", "link_b", "point_b", "k")})

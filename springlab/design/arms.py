@@ -1571,8 +1571,8 @@ class Audit:
            sampler=None) -> Audit:
         """The audit of the springs ``cases`` (name -> springs; gravity alone is added) over the workspace
         ``ranges`` (n, 2) rad, beside the design's own ``check`` poses. With a ``sampler``
-        (:class:`~springlab.design.collision.Sampler`) its poses are the workspace's free ones, and a
-        climb that ends in a collision keeps the free pose it started from."""
+        (:class:`~springlab.design.collision.Sampler`) its poses are the workspace's free ones, and each
+        climb moves through free poses only."""
         rng = np.random.default_rng([seed, samples])
         q = (rng.uniform(ranges[:, 0], ranges[:, 1], (samples, model.n)) if sampler is None
              else sampler.draw(samples, rng))
@@ -1592,10 +1592,8 @@ class Audit:
                     continue
                 climbed = []
                 for start in q[np.argsort([-_sig(v) for v in tau[:, j]], kind="stable")[:AUDIT_STARTS]]:
-                    pose, value, broken = _climb(model, springs, start, j, lo, hi)
-                    if sampler is not None and not sampler.free(pose[None])[0]:
-                        pose, value = start, float(np.abs(defined_torques(model, springs, start[None])[0][0, j]))
-                        value = 0.0 if np.isnan(value) else value
+                    pose, value, broken = _climb(model, springs, start, j, lo, hi,
+                                                 None if sampler is None else sampler.free)
                     climbed.append((_sig(value), -len(climbed), pose, value))
                     if broken is not None and not any(u[0] == case for u in undefined):
                         undefined.append((case, 0, broken[0].tolist(), broken[1]))
@@ -1639,10 +1637,11 @@ class Audit:
                            for case, joint, own, value in self.raised]}
 
 
-def _climb(model: RevoluteChain, springs, start, j: int, lo, hi) -> tuple[np.ndarray, float, tuple | None]:
+def _climb(model: RevoluteChain, springs, start, j: int, lo, hi, allowed=None) -> tuple[np.ndarray, float, tuple | None]:
     """The largest |holding torque| (N m) of joint ``j`` near the pose ``start`` within the bounds [lo, hi]
-    (rad), by :func:`_compass` on route 2's torques. Returns the pose, its |torque|, and the first trial
-    pose where a spring had no line of action with the reason (None where every trial had one)."""
+    (rad), by :func:`_compass` on route 2's torques, moving only to poses ``allowed`` (a function of poses
+    (M, n) -> (M,) bool; None: all). Returns the pose, its |torque|, and the first trial pose where a
+    spring had no line of action with the reason (None where every trial had one)."""
     broken = []
 
     def value(trials):
@@ -1651,17 +1650,19 @@ def _climb(model: RevoluteChain, springs, start, j: int, lo, hi) -> tuple[np.nda
             broken.append((trials[int(np.argmax(np.isnan(tau[:, j])))], why))
         return np.abs(tau[:, j])  # nan where undefined: never chosen
 
-    x, best = _compass(value, start, lo, hi)
+    x, best = _compass(value, start, lo, hi, allowed=allowed)
     return x, best, broken[0] if broken else None
 
 
-def _compass(value, start, lo, hi, max_steps: int = 400, enough: float = np.inf) -> tuple[np.ndarray, float]:
+def _compass(value, start, lo, hi, max_steps: int = 400, enough: float = np.inf,
+             allowed=None) -> tuple[np.ndarray, float]:
     """A compass search for the largest ``value`` (a function of poses (M, n) rad, nan where undefined)
     near the pose ``start`` within the bounds [lo, hi] (rad): each step tries +- the step on every joint
     (one call of 2n poses) and moves to the best trial where it beats the current pose (compared to 9
     significant digits, ties to the first, so that round-off decides nothing), else halves the step,
-    from :data:`AUDIT_STEPS`' first to its last, or until the value reaches ``enough``. Returns the pose
-    and its value."""
+    from :data:`AUDIT_STEPS`' first to its last, or until the value reaches ``enough``. With ``allowed`` (a
+    function of poses (M, n) -> (M,) bool) it moves to the best better trial that is allowed. Returns the
+    pose and its value."""
     x = np.array(start, dtype=float)
     best = float(value(x[None])[0])
     step, n = AUDIT_STEPS[0], len(x)
@@ -1671,9 +1672,13 @@ def _compass(value, start, lo, hi, max_steps: int = 400, enough: float = np.inf)
         trials = np.clip(np.repeat(x[None], 2 * n, axis=0) + step * np.vstack([np.eye(n), -np.eye(n)]), lo, hi)
         values = value(trials)
         keys = [_sig(v) if np.isfinite(v) else -np.inf for v in values]
-        k = int(np.argmax(keys))
-        if keys[k] > (_sig(best) if np.isfinite(best) else -np.inf):
-            x, best = trials[k], float(values[k])
+        floor = _sig(best) if np.isfinite(best) else -np.inf
+        better = [k for k in np.argsort([-v for v in keys], kind="stable") if keys[k] > floor]
+        if allowed is not None:
+            better = [next((k for k in better if allowed(trials[k][None])[0]), None)]
+            better = [k for k in better if k is not None]
+        if better:
+            x, best = trials[better[0]], float(values[better[0]])
         else:
             step /= 2
     return x, best

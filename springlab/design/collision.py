@@ -175,7 +175,7 @@ def _placed(R, o, item: _Item, p: int):
 
 def _winding(triangles: np.ndarray, point: np.ndarray) -> float:
     """The generalised winding number of a triangle mesh about a point: 1 inside a closed mesh, 0
-    outside (Jacobson et al. 2013, Eq. (6): the sum of the triangles' solid angles over 4 pi)."""
+    outside (Jacobson et al. 2013, their equation 6: the sum of the triangles' solid angles over 4 pi)."""
     a, b, c = (triangles[:, k] - point for k in range(3))
     la, lb, lc = (np.linalg.norm(x, axis=1) for x in (a, b, c))
     det = np.einsum("ij,ij->i", a, np.cross(b, c))
