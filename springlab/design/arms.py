@@ -1650,7 +1650,9 @@ def _climb(model: RevoluteChain, springs, start, j: int, lo, hi, allowed=None) -
             broken.append((trials[int(np.argmax(np.isnan(tau[:, j])))], why))
         return np.abs(tau[:, j])  # nan where undefined: never chosen
 
-    x, best = _compass(value, start, lo, hi, allowed=allowed)
+    x, best = _compass(value, start, lo, hi)
+    if allowed is not None and not allowed(x[None])[0]:  # it climbed out of the workspace: again, within it
+        x, best = _compass(value, start, lo, hi, allowed=allowed)
     return x, best, broken[0] if broken else None
 
 

@@ -185,10 +185,19 @@ def _winding(triangles: np.ndarray, point: np.ndarray) -> float:
 
 
 def _segment_gap(P0, P1, Q0, Q1) -> np.ndarray:
-    """The distance (m) between segments P0-P1 and Q0-Q1, row by row ((N, 3) each)."""
-    from springlab.design.clearance import segment_distance
-
-    return segment_distance(P0, P1, Q0, Q1)
+    """The distance (m) between segments P0-P1 and Q0-Q1, row by row ((N, 3) each): the clamped solution
+    of the 2 x 2 normal equations, each parameter re-clamped given the other (as
+    :func:`springlab.design.clearance.segment_distance`, without its argument checks: a screen run
+    thousands of times on arrays built here)."""
+    u, v, w = P1 - P0, Q1 - Q0, P0 - Q0
+    a, b, c = (u * u).sum(1), (u * v).sum(1), (v * v).sum(1)
+    d, e = (u * w).sum(1), (v * w).sum(1)
+    den = a * c - b * b
+    tiny = 1e-300
+    s = np.clip(np.where(den > 1e-14 * np.maximum(a * c, tiny), (b * e - c * d) / np.maximum(den, tiny), 0.0), 0.0, 1.0)
+    t = np.clip(np.where(c > tiny, (b * s + e) / np.maximum(c, tiny), 0.0), 0.0, 1.0)
+    s = np.where(a > tiny, np.clip((b * t - d) / np.maximum(a, tiny), 0.0, 1.0), 0.0)
+    return np.linalg.norm(w + s[:, None] * u - t[:, None] * v, axis=1)
 
 
 def _world_capsule(item, Ri, ti):
@@ -331,12 +340,18 @@ def _pairs(model: RevoluteChain) -> list[tuple[int, int]]:
     return [(a, b) for ai, a in enumerate(bodies) for b in bodies[ai + 1:] if b - a > 1]
 
 
+_PLANES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
 def mounting_plane(model: RevoluteChain) -> float:
     """The height (m, along up, in the base frame) of the base's lowest point: its geometry's, or the
     base frame's origin when it has none."""
+    if model in _PLANES:
+        return _PLANES[model]
     coal = _coal()
     base = [i for i in _items(model) if i.body == 0]
-    return min((_lowest(coal, item, model.up) for item in base), default=0.0)
+    _PLANES[model] = plane = min((_lowest(coal, item, model.up) for item in base), default=0.0)
+    return plane
 
 
 def _lowest(coal, item: _Item, up) -> float:
@@ -367,29 +382,44 @@ def collision_masks(model: RevoluteChain, q, *, pairs=None, below=None, first: b
     low = np.zeros((N, model.n + 1), dtype=bool)
     Rw, tw = [], []
     for item in items:
-        Ri = R[:, item.body] @ item.frame[:3, :3]
-        ti = np.einsum("pij,j->pi", R[:, item.body], item.frame[:3, 3]) + o[:, item.body]
-        Rw.append(Ri)
-        tw.append(ti)
-        if item.body and (below is None or item.body in below):
-            heights = np.einsum("pij,i->pj", Ri, up) @ item.points.T + (ti @ up)[:, None]
-            low[:, item.body] |= heights.min(axis=1) < plane
+        Rw.append(R[:, item.body] @ item.frame[:3, :3])
+        tw.append(np.einsum("pij,j->pi", R[:, item.body], item.frame[:3, 3]) + o[:, item.body])
     capsules = [_world_capsule(it, Rw[k], tw[k]) for k, it in enumerate(items)]
+    for k, item in enumerate(items):
+        if item.body and (below is None or item.body in below):
+            Q0, Q1, r = capsules[k]
+            maybe = np.flatnonzero(np.minimum(Q0 @ up, Q1 @ up) - r < plane)  # the capsule that holds it dips
+            heights = np.einsum("pij,i->pj", Rw[k][maybe], up) @ item.points.T + (tw[k][maybe] @ up)[:, None]
+            low[maybe, item.body] |= heights.min(axis=1) < plane
     by_body: dict = {}
     for k, item in enumerate(items):
         by_body.setdefault(item.body, []).append(k)
     hit = np.zeros((N, len(pairs)), dtype=bool)
+    combos = [(c, ka, kb) for c, (a, b) in enumerate(pairs) for ka in by_body.get(a, ()) for kb in by_body.get(b, ())]
+    if not combos:
+        return hit, low
+    C, KA, KB = (np.array(v) for v in zip(*combos, strict=True))
+    ends = [np.stack([cap[e] for cap in capsules], axis=1) for e in (0, 1)]  # (N, items, 3) each
+    radius = np.array([cap[2] for cap in capsules])
+    K = len(C)
+    gap = _segment_gap(ends[0][:, KA].reshape(-1, 3), ends[1][:, KA].reshape(-1, 3),
+                       ends[0][:, KB].reshape(-1, 3), ends[1][:, KB].reshape(-1, 3)).reshape(N, K)
     request = coal.CollisionRequest()
-    for c, (a, b) in enumerate(pairs):
-        for ka in by_body.get(a, ()):
-            for kb in by_body.get(b, ()):
-                (A0, A1, ra), (B0, B1, rb) = capsules[ka], capsules[kb]
-                near = _segment_gap(A0, A1, B0, B1) < ra + rb
-                if first:
-                    near &= ~hit.any(axis=1) & ~low.any(axis=1)
-                for p in np.flatnonzero(near & ~hit[:, c]):
-                    hit[p, c] = _collide(coal, items[ka], _transform(coal, Rw[ka][p], tw[ka][p]),
-                                         items[kb], _transform(coal, Rw[kb][p], tw[kb][p]), request)
+    dead = low.any(axis=1).tolist() if first else [False] * N  # poses already failed (with ``first``)
+    found = set()  # (pose, pair) in collision
+    C, KA, KB = C.tolist(), KA.tolist(), KB.tolist()
+    near_p, near_k = np.nonzero(gap < radius[KA] + radius[KB])
+    for p, kk in zip(near_p.tolist(), near_k.tolist(), strict=True):  # pose by pose, in order
+        c = C[kk]
+        if dead[p] or (p, c) in found:
+            continue
+        ka, kb = KA[kk], KB[kk]
+        if _collide(coal, items[ka], _transform(coal, Rw[ka][p], tw[ka][p]),
+                    items[kb], _transform(coal, Rw[kb][p], tw[kb][p]), request):
+            found.add((p, c))
+            dead[p] = first
+    for p, c in found:
+        hit[p, c] = True
     return hit, low
 
 
