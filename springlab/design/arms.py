@@ -1135,9 +1135,10 @@ class ArmDesign:
                 "loaded_joints": [self.model.joints[i] for i in self.structure.loaded],
                 "structure": self.structure.why, "poses_checked": int(self.q.shape[0]),
                 "audit": None if self.audit is None else self.audit.as_dict(),
-                "ideal": [{"name": name} | s.as_dict() for name, s in zip(self.names, self.ideal, strict=True)],
+                "ideal": [{"name": name} | s.as_dict() | belt_frames(self.model, s)
+                          for name, s in zip(self.names, self.ideal, strict=True)],
                 "realised": [{"name": name, "realises": self.names[i], "changed": why} | s.as_dict()
-                             | _coil_fields(kind, coil, span) | extra
+                             | belt_frames(self.model, s) | _coil_fields(kind, coil, span) | extra
                              for name, i, why, s, kind, (coil, span), extra in zip(
                                  self.realised_names, origins, changes, self.realised, self.kinds, self.coils,
                                  hardware, strict=True)],
@@ -1148,6 +1149,18 @@ class ArmDesign:
                 "spring_mass_kg": float(sum(h["mass_kg"] for h in hardware)),
                 "left_out": [{"realises": self.names[i], "why": why} for i, why in self.left_out],
                 "torques": rows, "notes": list(self.notes)}
+
+
+def belt_frames(model: RevoluteChain, spring) -> dict:
+    """For --json, each end a belt carries (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`):
+    ``frame_a`` (or ``frame_b``) = {"at_joint": the joint, "axes_of": the level link}, meaning that
+    ``point_a`` is given from that joint's origin in the axes of that link, which the belt keeps."""
+    out = {}
+    for end, link in (("a", spring.link_a), ("b", spring.link_b)):
+        belt = next((b for b in model.belts if b.name == link), None)
+        if belt is not None:
+            out[f"frame_{end}"] = {"at_joint": model.joints[belt.joint], "axes_of": model.bodies[belt.level]}
+    return out
 
 
 def _coil_fields(kind: str, coil, span) -> dict:

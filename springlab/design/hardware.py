@@ -30,6 +30,7 @@ import numpy as np
 
 from springlab.design.collision import MARGIN, Piece, clearances
 from springlab.energy.geometry import cable_geometry
+from springlab.errors import SpringlabError
 from springlab.model.revolute import RevoluteChain, body_frames, world_points
 from springlab.tables import Table
 
@@ -125,9 +126,16 @@ def with_spring_mass(model: RevoluteChain, realised, kinds, coils, q) -> Revolut
     for s, kind, (coil, span) in zip(realised, kinds, coils, strict=True):
         m = float(coil.mass)
         if not kind.startswith("cable"):
-            out = out.with_point_mass(s.link_a, s.point_a, m / 2).with_point_mass(s.link_b, s.point_b, m / 2)
+            for link, point in ((s.link_a, s.point_a), (s.link_b, s.point_b)):
+                body, local = model.locate(link, point)
+                if body > model.n:  # a belt's frame: its post turns about the joint, carried at the joint's origin
+                    link, point = model.bodies[model.belts[body - model.n - 1].joint + 1], (0.0, 0.0, 0.0)
+                out = out.with_point_mass(link, point, m / 2)
             continue
         (ia, pa), (ib, pb) = model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)
+        if ia > model.n:
+            raise SpringlabError(f"{s.label}: a cable spring's coil rides on link_a, here a belt's frame; give the "
+                                 "belt's end as link_b")
         u = _lead(model, s, R, o, ia, world_points(R, o, ia, pa), world_points(R, o, ib, pb))
         offset = coil.free_length - coil.initial_tension / coil.rate
         mid = (min(span) + max(span)) / 2 + offset  # the coil's length at mid-stroke

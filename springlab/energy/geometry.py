@@ -285,19 +285,25 @@ def _loads(model: RevoluteChain, springs, q, *, gravity: bool = True):
     spring at a time recomputes that spring alone, and the sums are the same, term by term."""
     springs = check_point_springs(model, springs)
     R, o = body_frames(model, q)
-    N = R.shape[0]
-    F = np.zeros((N, model.n + 1, 3))
-    M = np.zeros((N, model.n + 1, 3))
+    N, n1 = R.shape[0], model.n + 1
+    F = np.zeros((N, R.shape[1], 3))  # the bodies, then the belts' frames (springlab.model.revolute.Belt)
+    M = np.zeros((N, R.shape[1], 3))
     if gravity:
-        F[:, 1:] = model.mass[1:, None] * model.gravity  # the base's weight is the ground's
-        M[:, 1:] = np.cross(centres_of_mass(model, R, o)[:, 1:], F[:, 1:])
+        F[:, 1:n1] = model.mass[1:, None] * model.gravity  # the base's weight is the ground's
+        M[:, 1:n1] = np.cross(centres_of_mass(model, R, o)[:, 1:], F[:, 1:n1])
     for s in springs:
         ia, ib, f_b, m_b, m_a = _spring_load(model, s, R, o)
         F[:, ib] += f_b
         M[:, ib] += m_b
         F[:, ia] -= f_b
         M[:, ia] -= m_a
-    return F, M, o, joint_axes(model, R)
+    for j, belt in enumerate(model.belts):  # a belt's frame: its pulley turns on the joint's parent body about
+        at = o[:, belt.joint + 1]  # the joint's origin, and the belt holds it to the level body: the force on the
+        f = F[:, n1 + j]  # frame goes to the parent at the joint's origin, its moment about there to the level body
+        F[:, belt.joint] += f
+        M[:, belt.joint] += np.cross(at, f)
+        M[:, belt.level] += M[:, n1 + j] - np.cross(at, f)
+    return F[:, :n1], M[:, :n1], o[:, :n1], joint_axes(model, R)
 
 
 def _spring_load(model: RevoluteChain, s, R, o):

@@ -420,6 +420,10 @@ def build_locked_model(model: RevoluteChain, springs, q, *, settings: SimSetting
             raise SpringlabError(f"{spring.label} runs as a cable over a pulley of radius {spring.pulley_radius:g} m, which "
                                  "exudyn's springs cannot model: check it with route 2 and MuJoCo "
                                  "(springlab.model.mjcf), or give its point-pulley equivalent (pulley_radius 0)")
+    if model.belts:
+        raise SpringlabError(f"the arm carries belt frames ({', '.join(b.name for b in model.belts)}), which this "
+                             "exudyn model has no pulley and belt for: check it with route 2 and MuJoCo "
+                             "(springlab.model.mjcf writes the belts)")
     q = model.check_q(q)
     if q.shape[0] != 1:
         raise SpringlabError(f"build_locked_model takes one pose, got {q.shape[0]}")

@@ -113,7 +113,18 @@ def to_mjcf(model: RevoluteChain, springs=(), *, name: str | None = None) -> str
         parents.append(body)
     for b in range(model.n + 1):
         _shape(model, b, parents[b], asset, names)
-    tendons = ET.SubElement(root, "tendon") if springs else None
+    belts = _belts(model, parents, names)
+    tendons = ET.SubElement(root, "tendon") if springs or belts else None
+    if belts:
+        equality = ET.SubElement(root, "equality")
+        for belt, hinge, between in belts:
+            fixed = ET.SubElement(tendons, "fixed", name=names.take(f"{belt.name} turns"))
+            _comment(tendons, f"'{fixed.get('name')}': the belt holds hinge '{hinge}' at minus the sum of the joints "
+                              "between (signed): the pulley keeps the level body's axes")
+            ET.SubElement(fixed, "joint", joint=hinge, coef="1")
+            for joint, sign in between:
+                ET.SubElement(fixed, "joint", joint=joint, coef=repr(float(sign)))
+            ET.SubElement(equality, "tendon", name=names.take(f"{belt.name} holds"), tendon1=fixed.get("name"))
     if springs:
         _comment(tendons, "each spring's tendons pull k (l - springlength), springlength = L0 - Fi/k (free length less "
                           "initial tension over rate); a cable's over its pulley also counts the constant run from its "
@@ -140,6 +151,33 @@ def to_mjcf(model: RevoluteChain, springs=(), *, name: str | None = None) -> str
         ET.SubElement(tendon, "site", site=site_b)
     ET.indent(root)
     return ET.tostring(root, encoding="unicode") + "\n"
+
+
+def _belts(model: RevoluteChain, parents: list, names) -> list:
+    """A body per belt's frame (:attr:`~springlab.model.revolute.RevoluteChain.belts`): on its joint's parent
+    body at the joint's origin, turning on a hinge about the joint's axis, its axes the level body's at
+    zero angles; appended to ``parents`` (a spring's site on the belt's frame goes there). Returns, per
+    belt, the belt, its hinge's name and the joints between with their signs (the hinge's angle is minus
+    their signed sum: :meth:`~springlab.model.revolute.RevoluteChain.belt_turns`)."""
+    out = []
+    if not model.belts:
+        return out
+    R0, _ = body_frames(model, np.zeros(model.n))
+    for belt in model.belts:
+        axis, signs = model.belt_turns(belt)
+        P = model.placements[belt.joint]
+        body = ET.SubElement(parents[belt.joint], "body", name=names.take(belt.name), pos=_vec(P[:3, 3]),
+                             quat=_vec(_quat(R0[0, belt.joint].T @ R0[0, belt.level])))
+        _comment(body, f"belt frame '{belt.name}': a pulley on joint {model.joints[belt.joint]}'s axis, held by a 1:1 "
+                       f"belt to {model.bodies[belt.level]}'s axes (set its hinge to minus the signed sum of the joints "
+                       "between, or let the equality below hold it)")
+        hinge = names.take(f"{belt.name} hinge")
+        ET.SubElement(body, "joint", name=hinge, type="hinge", axis=_vec(axis))
+        _inertial(body, 0.0, np.zeros(3), np.zeros((3, 3)))
+        parents.append(body)
+        out.append((belt, hinge, [(model.joints[t], s) for t, s in zip(range(belt.level, belt.joint), signs,
+                                                                        strict=True)]))
+    return out
 
 
 LEAD_RUN = 0.05

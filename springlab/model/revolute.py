@@ -48,6 +48,21 @@ def _array(name: str, value, shape) -> np.ndarray:
     return out
 
 
+BELT_PARALLEL = 1e-6
+"""|sin| of the angle between two axes below which a belt may run across them (a URDF's rounded angles are
+good to about 1e-6 rad)."""
+
+
+@dataclass(frozen=True)
+class Belt:
+    """A frame a 1:1 belt carries (:meth:`RevoluteChain.with_belt`): at the origin of joint ``joint``
+    (0-based; its child body's origin), with the axes of body ``level`` (an index, at most ``joint``)."""
+
+    name: str
+    joint: int
+    level: int
+
+
 @dataclass(frozen=True, eq=False)
 class RevoluteChain:
     """A serial chain of n revolute joints carrying n + 1 rigid bodies (body 0 the base).
@@ -69,6 +84,10 @@ class RevoluteChain:
     :ivar outline: () when the shapes are unknown, else per body the points (m, body frame, (k, 3),
         k = 0 for a body without geometry) whose convex hull bounds it (a URDF's collision shapes:
         :mod:`springlab.model.shapes`); where a spring may be attached
+    :ivar belts: frames a 1:1 belt carries (:class:`Belt`, :meth:`with_belt`): each at a joint's origin,
+        its axes those of a body before it (a level reference carried to that joint); a spring may
+        attach to one by its name (:meth:`locate`), and :func:`body_frames` gives their frames after the
+        bodies'
     :ivar solids: () when the shapes are unknown, else per body its collision shapes
         (:class:`~springlab.model.shapes.Solid`, each in the body's frame): what springs must clear
         (:mod:`springlab.design.collision`)
@@ -88,6 +107,7 @@ class RevoluteChain:
     fixed: dict = field(default_factory=dict, compare=False)
     outline: tuple = field(default=(), compare=False)
     solids: tuple = field(default=(), compare=False)
+    belts: tuple = ()
 
     def __post_init__(self):
         bodies, joints = tuple(self.bodies), tuple(self.joints)
@@ -157,6 +177,11 @@ class RevoluteChain:
         if solids and len(solids) != n + 1:
             raise SpringlabError(f"solids must hold one tuple of shapes per body ({n + 1}), got {len(solids)}")
         object.__setattr__(self, "solids", solids)
+        belts = tuple(self.belts)
+        for b in belts:
+            if not isinstance(b, Belt) or not 0 <= b.joint < n or not 0 <= b.level <= b.joint:
+                raise SpringlabError(f"belt {b!r}: give a Belt at a joint (0..{n - 1}) whose axes are a body's before it")
+        object.__setattr__(self, "belts", belts)
         for name, value in (("bodies", bodies), ("joints", joints), ("placements", placements), ("axes", axes),
                             ("mass", mass), ("com", com), ("inertia", inertia), ("gravity", gravity),
                             ("limits", limits), ("notes", tuple(self.notes))):
@@ -179,12 +204,55 @@ class RevoluteChain:
 
     @property
     def frame_names(self) -> tuple:
-        """Every name a spring may attach to: the bodies, then the fixed frames."""
-        return self.bodies + tuple(self.fixed)
+        """Every name a spring may attach to: the bodies, the fixed frames, then the belts' frames."""
+        return self.bodies + tuple(self.fixed) + tuple(b.name for b in self.belts)
+
+    def with_belt(self, joint: str, level: str, name: str | None = None) -> RevoluteChain:
+        """The same chain with a frame a 1:1 belt carries to ``joint``'s origin, its axes those of body
+        ``level`` (a body before the joint): a pulley on the joint's axis, turning on the joint's parent
+        body, tied by belts (one per joint between) to a pulley fixed to ``level``. Named ``name``
+        (default '<joint> belt'). Every joint between ``level`` and ``joint`` must turn about an axis
+        parallel to the joint's: only then can a belt keep the frame's axes those of ``level``.
+
+        :raises SpringlabError: naming the joint, the body or the axis that prevents it
+        """
+        if joint not in self.joints:
+            raise SpringlabError(f"joint = {joint!r} is not a joint of {self.name!r}: give one of {', '.join(self.joints)}")
+        if level not in self.bodies:
+            raise SpringlabError(f"level = {level!r} is not a body of {self.name!r}: give one of {', '.join(self.bodies)}")
+        i, L = self.joints.index(joint), self.bodies.index(level)
+        if L > i:
+            raise SpringlabError(f"level = {level!r} lies beyond joint {joint!r}: a belt carries the axes of a body "
+                                 f"before the joint (one of {', '.join(self.bodies[:i + 1])})")
+        R, _ = body_frames(self, np.zeros(self.n))
+        w = R[0, i + 1] @ self.axes[i]
+        for t in range(L, i):
+            u = R[0, t + 1] @ self.axes[t]
+            if np.linalg.norm(np.cross(u, w)) > BELT_PARALLEL:
+                raise SpringlabError(f"joint {self.joints[t]!r} between {level!r} and {joint!r} turns about an axis "
+                                     f"not parallel to {joint!r}'s: no belt keeps {level!r}'s axes across it; choose "
+                                     "a level body after it")
+        name = f"{joint} belt" if name is None else name
+        if name in self.frame_names:
+            raise SpringlabError(f"name = {name!r} is already a frame of {self.name!r}: give the belt another name")
+        return replace(self, belts=(*self.belts, Belt(name, i, L)))
+
+    def belt_turns(self, belt: Belt) -> tuple[np.ndarray, np.ndarray]:
+        """How a belt's pulley turns on its joint's parent body: its axis (unit, in the level body's frame)
+        and, per joint between the level body and the belt's joint, the sign s_t (+1 or -1) such that the
+        pulley's angle about that axis, relative to the parent body, is -sum_t s_t q_t (the joints' axes
+        are parallel to it, along or against)."""
+        R, _ = body_frames(self, np.zeros(self.n))
+        w = R[0, belt.joint + 1] @ self.axes[belt.joint]
+        signs = np.array([np.sign((R[0, t + 1] @ self.axes[t]) @ w) for t in range(belt.level, belt.joint)])
+        return R[0, belt.level].T @ w, signs
 
     def locate(self, name, point) -> tuple[int, np.ndarray]:
-        """A point (m) given in a named frame (a body or a fixed frame) as (body index, the point in
-        that body's frame)."""
+        """A point (m) given in a named frame (a body, a fixed frame or a belt's frame) as (body index, the
+        point in that body's frame); a belt's frame has the index n + 1 + its place in :attr:`belts`."""
+        for j, b in enumerate(self.belts):
+            if b.name == name:
+                return self.n + 1 + j, np.asarray(point, dtype=float)
         if name in self.fixed:
             body, T = self.fixed[name]
             return body, T[:3, :3] @ np.asarray(point, dtype=float) + T[:3, 3]
@@ -266,7 +334,9 @@ class RevoluteChain:
 
 def body_frames(model: RevoluteChain, q) -> tuple[np.ndarray, np.ndarray]:
     """Every body's frame in the base frame at each pose: rotations (N, n+1, 3, 3) and origins
-    (N, n+1, 3) (m); body 0 (the base) is the identity at the origin.
+    (N, n+1, 3) (m); body 0 (the base) is the identity at the origin. A model with belts
+    (:attr:`RevoluteChain.belts`) has their frames after the bodies' (N, n+1+b, ...): each at its
+    joint's origin, with its level body's axes.
 
     T_i = T_{i-1} @ placement_i @ Rot(axis_i, q_i) (see the module docstring).
 
@@ -284,13 +354,15 @@ def body_frames(model: RevoluteChain, q) -> tuple[np.ndarray, np.ndarray]:
         if kept is not None and kept.model is model:  # the model itself kept alive with its frames: an id is not reused
             _FRAMES.move_to_end(key)
             return kept.R, kept.o
-    R = np.empty((N, n + 1, 3, 3))
-    o = np.empty((N, n + 1, 3))
+    R = np.empty((N, n + 1 + len(model.belts), 3, 3))
+    o = np.empty((N, n + 1 + len(model.belts), 3))
     R[:, 0], o[:, 0] = np.eye(3), 0.0
     for i in range(1, n + 1):
         P = model.placements[i - 1]
         o[:, i] = o[:, i - 1] + R[:, i - 1] @ P[:3, 3]
         R[:, i] = (R[:, i - 1] @ P[:3, :3]) @ rot_axis(model.axes[i - 1], q[:, i - 1])
+    for j, b in enumerate(model.belts):  # at joint b.joint's origin (its child body's), level body's axes
+        R[:, n + 1 + j], o[:, n + 1 + j] = R[:, b.level], o[:, b.joint + 1]
     R.setflags(write=False)
     o.setflags(write=False)
     if key is not None:
@@ -366,12 +438,12 @@ def world_points(R: np.ndarray, o: np.ndarray, body: int, point) -> np.ndarray:
 
 def joint_axes(model: RevoluteChain, R: np.ndarray) -> np.ndarray:
     """Each joint's unit axis in the base frame at each pose, (N, n, 3): body i turns about axis i."""
-    return np.einsum("pjab,jb->pja", R[:, 1:], model.axes)
+    return np.einsum("pjab,jb->pja", R[:, 1:model.n + 1], model.axes)
 
 
 def centres_of_mass(model: RevoluteChain, R: np.ndarray, o: np.ndarray) -> np.ndarray:
     """Every body's centre of mass in the base frame (m), (N, n+1, 3)."""
-    return o + np.einsum("pjab,jb->pja", R, model.com)
+    return o[:, :model.n + 1] + np.einsum("pjab,jb->pja", R[:, :model.n + 1], model.com)
 
 
 def check_point_springs(model: RevoluteChain, springs) -> tuple:

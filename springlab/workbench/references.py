@@ -142,7 +142,10 @@ def mujoco_holding_torques(mjcf: str, model, q) -> np.ndarray:
     """MuJoCo's holding torques (N m), (N, n), of an arm written by :func:`springlab.model.mjcf.to_mjcf`
     at joint angles ``q`` (N, n) rad, at rest: ``qfrc_bias - qfrc_passive`` after ``mj_forward`` (gravity
     less the tendons' spring forces), route 2's :func:`springlab.energy.geometry.joint_torques`. The file
-    is taken as written: only the arm's joints are set (its cables' pulleys need no turning).
+    is taken as written: only the arm's joints are set (its cables' pulleys need no turning); a belt's
+    pulley (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`) is set where its belt holds it, and
+    the torque on its hinge, which the belt carries, is passed to the joints between, as the file's
+    equality constraint does (virtual work: the hinge turns by minus their signed sum).
 
     :raises SpringlabError: when MuJoCo is not installed, or the MJCF is not ``model``'s arm
     """
@@ -151,17 +154,25 @@ def mujoco_holding_torques(mjcf: str, model, q) -> np.ndarray:
     mj = mujoco.MjModel.from_xml_string(mjcf)
     data = mujoco.MjData(mj)
     arm = [_joint(mujoco, mj, name) for name in model.joints]
-    if mj.nq != len(arm):
-        raise SpringlabError(f"the MJCF has {mj.nq} joint coordinates, the model {model.n}: not the same arm")
+    belts = [(_joint(mujoco, mj, f"{b.name} hinge"), *model.belt_turns(b), b) for b in model.belts]
+    if mj.nq != len(arm) + len(belts):
+        raise SpringlabError(f"the MJCF has {mj.nq} joint coordinates, the model {model.n} and {len(belts)} belts: "
+                             "not the same arm")
     qpos = [int(mj.jnt_qposadr[j]) for j in arm]
     dof = [int(mj.jnt_dofadr[j]) for j in arm]
     out = np.empty(q.shape)
     for p, angles in enumerate(q):
         data.qpos[:] = mj.qpos0
         data.qpos[qpos] = angles
+        for hinge, _, signs, belt in belts:  # each belt's pulley where its belt holds it
+            data.qpos[mj.jnt_qposadr[hinge]] = -float(signs @ angles[belt.level:belt.joint])
         data.qvel[:] = 0.0
         mujoco.mj_forward(mj, data)
-        out[p] = (data.qfrc_bias - data.qfrc_passive)[dof]
+        held = data.qfrc_bias - data.qfrc_passive
+        tau = held[dof].copy()
+        for hinge, _, signs, belt in belts:  # the belt carries its pulley's torque to the joints between
+            tau[belt.level:belt.joint] -= signs * held[mj.jnt_dofadr[hinge]]
+        out[p] = tau
     return out
 
 
