@@ -184,22 +184,14 @@ def _zero_pose(model):
     return R[0], o[0]
 
 
-def planar_springs(model: RevoluteChain, found: Structure, *, reach: float | None = None) -> tuple[PointSpring, ...]:
-    """Zero-free-length springs that balance a planar loaded chain exactly (module docstring): one
-    per pair of its links (the link before the first loaded joint is the plane's ground) whose
-    coefficient needs one, longest span first.
-
-    Each spring's ends lie in their bodies' boxes (``attachment_boxes``: the body's outline from its URDF
-    geometry, ``reach`` (m) beyond it; without an outline, the link and a bracket). Only the
-    product conj(c_j) c_k of its two offsets is fixed, so the direction of c_k is free: it is
-    chosen, over a 1-degree scan, to make the offsets' lengths' product (the lever) the largest the
-    boxes allow, hence the rate the least. Along the axes each end sits at its box's middle (an
-    offset along the axes adds a constant length only).
-    """
-    _checks.instance("found", found, Structure, "springlab Structure (structure(model))")
-    if not found.planar:
-        raise SpringlabError(f"the loaded joints of {model.name!r} are not a planar chain ({found.why}): "
-                             "use best_springs")
+def planar_moments(model: RevoluteChain, found: Structure) -> dict:
+    """A planar loaded chain in its plane (module docstring), at the zero pose: the loaded axes' direction
+    ``w`` (world), ``h`` and ``up`` (the plane's axes: a turn theta about w multiplies z = x h + y up by
+    e^{i theta}), ``origin`` (the first loaded joint's), ``z`` (a point's complex coordinate), the planar
+    links' bodies (``bodies``: 0 the ground, the body before the first loaded joint; ``m`` links), each
+    link's joint (``joint_at``) and next joint (``next``, world points), the vectors between them
+    (``vec``, complex) and ``G``: each link's first moment (kg m, complex) of what it carries about its
+    joint, the links beyond counted at its next joint."""
     loaded = found.loaded
     first = loaded[0]
     R0, o0 = _zero_pose(model)
@@ -235,6 +227,30 @@ def planar_springs(model: RevoluteChain, found: Structure, *, reach: float | Non
         for t in range(1, k):
             G[t] += model.mass[b] * vec[t]  # counted at joint t+1 on link t
         G[k] += model.mass[b] * (z(com) - z(joint_at[k]))
+    return {"first": first, "bodies": bodies, "m": m, "joint_at": joint_at, "next": nxt, "vec": vec, "G": G,
+            "origin": origin, "h": h, "up": up, "w": w, "R0": R0, "o0": o0, "z": z}
+
+
+def planar_springs(model: RevoluteChain, found: Structure, *, reach: float | None = None) -> tuple[PointSpring, ...]:
+    """Zero-free-length springs that balance a planar loaded chain exactly (module docstring): one
+    per pair of its links (the link before the first loaded joint is the plane's ground) whose
+    coefficient needs one, longest span first.
+
+    Each spring's ends lie in their bodies' boxes (``attachment_boxes``: the body's outline from its URDF
+    geometry, ``reach`` (m) beyond it; without an outline, the link and a bracket). Only the
+    product conj(c_j) c_k of its two offsets is fixed, so the direction of c_k is free: it is
+    chosen, over a 1-degree scan, to make the offsets' lengths' product (the lever) the largest the
+    boxes allow, hence the rate the least. Along the axes each end sits at its box's middle (an
+    offset along the axes adds a constant length only).
+    """
+    _checks.instance("found", found, Structure, "springlab Structure (structure(model))")
+    if not found.planar:
+        raise SpringlabError(f"the loaded joints of {model.name!r} are not a planar chain ({found.why}): "
+                             "use best_springs")
+    plane = planar_moments(model, found)
+    first, bodies, m, joint_at, nxt, vec, G = (plane[k] for k in ("first", "bodies", "m", "joint_at", "next",
+                                                                "vec", "G"))
+    origin, h, up, w, R0, o0, z = (plane[k] for k in ("origin", "h", "up", "w", "R0", "o0", "z"))
     g = model.g
     need = {}
     for k in range(1, m + 1):
@@ -1793,7 +1809,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                  target: float = 0.1, reach: float | None = None, max_springs: int = 8,
                  max_stiffness: float = MAX_STIFFNESS, material: str = "music wire",
                  pulley_radius: float = 0.0, tag: str = "S", margin: float | None = None,
-                 collisions: bool = True) -> ArmDesign:
+                 collisions: bool = True, layout: str = "two-point", share: float | None = None) -> ArmDesign:
     """Springs for an arm of the general model over its workspace (:func:`workspace_ranges`): its
     structure (:func:`structure`); the exact planar springs where its loaded joints form a planar
     chain (:func:`planar_springs`), else the best springs (:func:`best_springs`, fitted on
@@ -1806,7 +1822,16 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     plane; ``collisions=False``: the ranges' box), its realised springs' clearance from the links is
     measured against ``margin`` (m, default :data:`~springlab.design.collision.MARGIN`) on the check
     poses, and the arm carrying the springs' own mass is kept beside it
-    (:mod:`springlab.design.hardware`)."""
+    (:mod:`springlab.design.hardware`).
+
+    ``layout='belts'`` (a planar loaded chain only): one spring per loaded link from a post on a level
+    frame a 1:1 belt carries to the link's joint (:func:`springlab.design.layouts.belt_layout`), its coil
+    along the link, the pulley compensated for; joints below ``share`` of the largest gravity peak
+    (default :data:`springlab.design.layouts.SHARE`) get none. ``'two-point'`` (default): springs between
+    two links' points, exact for a planar chain, else the best springs."""
+    if layout not in ("two-point", "belts"):
+        raise SpringlabError(f"layout = {layout!r}: give 'two-point' (springs between two links) or 'belts' (a "
+                             "level reference carried to each loaded joint)")
     from springlab.design.collision import MARGIN, Sampler, has_geometry
     from springlab.design.hardware import spring_clearance, with_spring_mass
 
@@ -1833,8 +1858,23 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     if not found.loaded:
         return ArmDesign(model, found, "nothing to balance", (), (), (), (), check,
                          (*notes, "gravity loads no joint of this arm over its workspace: nothing to balance"), tag=tag)
-    notes.append(_reach_note(model, reach))
-    if found.planar:
+    if layout == "belts":
+        from springlab.design.layouts import SHARE, belt_layout, realise_layout
+
+        lay = belt_layout(model, found, share=SHARE if share is None else share)
+        model, ideal = lay.model, lay.springs
+        method = "belts: a level reference carried to each loaded joint (paper 001's pseudobases)"
+        notes += [f"belts: {found.why}; one spring per loaded link, from a post on the level frame at its joint "
+                  "to the link, its coil along the link behind a pulley", *lay.notes]
+        realised, kinds, coils, origins = realise_layout(lay, check, material=material, pulley_radius=pulley_radius)
+        if pulley_radius > 0:
+            notes.append(f"the springs run over {1e3 * pulley_radius:g} mm pulleys: each one's lever, post and rate "
+                         "re-fitted for it over a full turn of its link (route 2's cable path)")
+    else:
+        notes.append(_reach_note(model, reach))
+    if layout == "belts":
+        pass
+    elif found.planar:
         ideal, method = planar_springs(model, found, reach=reach), "exact: planar chain"
         notes.append(f"exact: {found.why}")
     else:
@@ -1843,9 +1883,10 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         ideal, method = fit.springs, "best springs"
         notes.append(f"not exact: {found.why}; springlab's exact construction needs a planar chain, so the "
                      f"best springs were searched: {fit.note}")
-    realised, kinds, coils, origins = _realise(
-        model, ideal, check, material=material, pulley_radius=pulley_radius, reach=reach,
-        fit=draw(min(150, fit_poses)), max_stiffness=max_stiffness)
+    if layout == "two-point":
+        realised, kinds, coils, origins = _realise(
+            model, ideal, check, material=material, pulley_radius=pulley_radius, reach=reach,
+            fit=draw(min(150, fit_poses)), max_stiffness=max_stiffness)
     for kind in kinds:
         if kind.startswith("not realised"):
             notes.append(f"{kind}: the realised design leaves it out")
@@ -1868,7 +1909,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                          f"{real[i]:.3g} N m of its {gravity[i]:.3g} N m (the ideal ones {left[i]:.3g}): each pulley adds "
                          "about k rho times the change of its wrap angle, large against this arm's levers and rates; a "
                          "smaller --pulley-radius (or 0, a point) or longer brackets (--reach) do better")
-    cables = any(kind.startswith("cable over a pulley") for kind in kinds)
+    cables = layout == "two-point" and any(kind.startswith("cable over a pulley") for kind in kinds)
     if cables and pulley_radius == 0:
         notes.append("cable springs are modelled with a point pulley (the force k times |B - A|): give a pulley radius "
                      "(--pulley-radius) to model the pulley")

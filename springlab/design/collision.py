@@ -290,8 +290,9 @@ class Clearances:
 
 def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Clearances:
     """Each piece's clearance from each of the model's bodies at the poses ``q`` (N, n) rad: exact where it
-    is below ``margin``; above it, a lower bound (spheres that hold the piece and the shape screen the
-    poses in numpy before coal measures the near ones)."""
+    is below ``margin`` and at each piece's nearest approach (:meth:`Clearances.worst`); elsewhere above the
+    margin, a lower bound (capsules that hold the piece and the shape screen the poses in numpy before
+    coal measures the near ones)."""
     coal = _coal()
     q = model.check_q(q)
     pieces = tuple(pieces)
@@ -307,20 +308,33 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Cl
         own = {body: (end, allowance) for body, end, allowance in piece.bodies}
         a, b = np.asarray(piece.a, dtype=float), np.asarray(piece.b, dtype=float)
         shapes = {}  # (body or None) -> per pose its capsule, trimmed for its own bodies
-        for item, (Ri, ti, _) in zip(items, placed, strict=True):
+
+        def exact(i, p, near, own=own, shapes=shapes, a=a, b=b, radius=piece.radius):
+            key = items[i].body if items[i].body in own else None
+            if key not in shapes:
+                shapes[key] = _piece_capsules(coal, a, b, radius, own.get(key))
+            found = shapes[key][p]
+            if found is None:
+                return np.inf
+            solid, Rs, c = found
+            Ri, ti, _ = placed[i]
+            return _signed(coal, items[i], _transform(coal, Ri[p], ti[p]), solid, _transform(coal, Rs, c), c, near)
+
+        G = np.empty((len(items), q.shape[0]))  # per shape and pose: exact below the margin, else a lower bound
+        known = np.zeros(G.shape, dtype=bool)
+        for i, (item, (Ri, ti, _)) in enumerate(zip(items, placed, strict=True)):
             Q0, Q1, r = _world_capsule(item, Ri, ti)
-            gap = _segment_gap(a, b, Q0, Q1) - piece.radius - r  # a lower bound
-            for p in np.flatnonzero(gap < margin):
-                key = item.body if item.body in own else None
-                if key not in shapes:
-                    shapes[key] = _piece_capsules(coal, a, b, piece.radius, own.get(key))
-                found = shapes[key][p]
-                if found is None:
-                    gap[p] = np.inf
-                    continue
-                solid, Rs, c = found
-                gap[p] = _signed(coal, item, _transform(coal, Ri[p], ti[p]), solid, _transform(coal, Rs, c), c, margin)
-            gaps[k, :, item.body] = np.minimum(gaps[k, :, item.body], gap)
+            G[i] = _segment_gap(a, b, Q0, Q1) - piece.radius - r
+            for p in np.flatnonzero(G[i] < margin):
+                G[i, p] = exact(i, p, margin)
+                known[i, p] = G[i, p] < margin
+        while G.size:  # the smallest made exact: its value, link and pose are the piece's worst
+            i, p = np.unravel_index(int(np.argmin(G)), G.shape)
+            if known[i, p] or not np.isfinite(G[i, p]):
+                break
+            G[i, p], known[i, p] = exact(i, p, np.inf), True
+        for i, item in enumerate(items):
+            gaps[k, :, item.body] = np.minimum(gaps[k, :, item.body], G[i])
     return Clearances(pieces, gaps, tuple(model.bodies))
 
 

@@ -1,0 +1,278 @@
+"""Spring layouts an engineer builds on a real arm, beside the search's two-point springs.
+
+**Belts carrying a level reference** (:func:`belt_layout`; paper 001's pseudobases on a real arm).
+Where the loaded joints form a planar chain (:func:`~springlab.design.arms.structure`), the body
+before the first loaded joint turns about the vertical only: its axes are a level reference. A 1:1
+belt (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`) carries those axes to each later
+loaded joint, and one zero-free-length spring per link, from a post on that level frame at the
+link's joint to a point on the link, cancels the link's gravity term exactly: with the post at p
+above the joint and the point at c on the link, 001 Eq. (16), K l_CA l_CB = mu g sigma, holds
+when the post is along "up" (001 Eq. (13)) and c along the link's first moment sigma (001 Eq. (14)).
+Each spring spans one joint, so it stays as short as its lever: between |p| - |c| and |p| + |c|.
+
+In the plane (complex coordinates, :func:`~springlab.design.arms.planar_moments`) link k's gravity
+energy is g Re(conj(i) e^{i theta_k} G_k) and the spring's k Re(conj(c_0) c_k e^{i theta_k}) with
+c_0 = -p: their sum is constant when k conj(c_0) c_k = -g conj(i) G_k. Only the product is fixed;
+this module takes |c| = :data:`LEVER` of the link's length and |p| = :data:`POST` of it, so that the
+spring's longest length is 0.95 of the link's. Both ends move along the joint's axis together
+(which changes no length's variation) to one side of the links, :data:`AXIAL_GAP` beyond the
+farther of the two links' shapes, so that the spring and its post run beside the links.
+
+A joint whose gravity torque stays below ``share`` of the arm's largest (default :data:`SHARE`) gets
+no spring: the torque it keeps is named.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab import _checks
+from springlab.design.arms import Structure, planar_moments
+from springlab.errors import SpringlabError
+from springlab.model.revolute import RevoluteChain
+from springlab.model.springs import PointSpring
+
+SHARE = 0.02
+"""Joints whose peak gravity torque is below this share of the arm's largest get no spring by default."""
+
+LEVER = 0.6
+"""The spring's point on its link lies this share of the link's length from the link's joint."""
+
+POST = 0.25
+"""The post on the level frame reaches this share of the link's length above the joint."""
+
+AXIAL_GAP = 0.02
+"""m: how far beyond the farther of the two links' shapes, along the joint's axis, the spring runs."""
+
+
+@dataclass(frozen=True)
+class _Plane:
+    """A belt spring's plane: its joint's origin (world, zero pose), the plane's axes h, up and the joint's
+    axis w, the axial offset d (m), the link's body and the level frame (name, and the point its offsets
+    are given from), the zero pose's frames, and g G_k (N m: the link's gravity term, complex)."""
+
+    joint_at: np.ndarray
+    h: np.ndarray
+    up: np.ndarray
+    w: np.ndarray
+    d: float
+    link: int
+    level: str
+    level_origin: np.ndarray
+    level_rotation: np.ndarray
+    R0: np.ndarray
+    o0: np.ndarray
+    gG: complex
+
+    def spring(self, model: RevoluteChain, c: complex, p: complex, k: float) -> PointSpring:
+        """The spring from c on the link to the post p (complex offsets from the joint, in the plane)."""
+        point = self.joint_at + c.real * self.h + c.imag * self.up + self.d * self.w
+        post = self.joint_at + p.real * self.h + p.imag * self.up + self.d * self.w
+        on_link = self.R0[self.link].T @ (point - self.o0[self.link])
+        on_level = self.level_rotation.T @ (post - self.level_origin)
+        return PointSpring(model.bodies[self.link], tuple(float(v) for v in on_link), self.level,
+                           tuple(float(v) for v in on_level), float(k))
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Springs in a layout: the arm with the frames it adds (belts), the springs, and what it left out.
+
+    :ivar model: the arm, with the layout's belts
+    :ivar springs: zero-free-length springs; each one's ``link_a`` is the link it balances (a cable
+        spring's coil rides there), its ``link_b`` the level frame
+    :ivar leads: per spring, the direction (unit, link_a's frame) along the link from the point towards
+        the joint: where the coil lies, behind a pulley at point_a
+    :ivar notes: what was left out and why
+    :ivar outward: per spring, the joint's axis pointing away from the links, in link_a's and in link_b's
+        frames: moving both ends along it by the same length changes no length's variation, so a coil is
+        set off by its own radius there (:func:`realise_layout`)
+    """
+
+    model: RevoluteChain
+    springs: tuple
+    leads: tuple
+    notes: tuple
+    outward: tuple = ()
+    planes: tuple = ()  # per spring, its plane (_Plane): where its complex offsets are placed
+
+
+def _axial_extent(model: RevoluteChain, body: int, R0, o0, origin, w) -> tuple[float, float]:
+    """The least and largest reach (m) of a body's outline along ``w`` from ``origin`` (zero pose)."""
+    pts = model.outline[body] if model.outline and len(model.outline[body]) else np.zeros((1, 3))
+    along = (pts @ R0[body].T + o0[body] - origin) @ w
+    return float(along.min()), float(along.max())
+
+
+def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE) -> Layout:
+    """One spring per loaded link of a planar chain, each on a belt carrying the level reference to its
+    joint (see the module docstring); joints below ``share`` of the largest gravity peak get none.
+
+    :raises SpringlabError: when the loaded joints are not a planar chain (no level reference), or
+        ``share`` is outside [0, 1)
+    """
+    share = _checks.number("share", share)
+    if not 0.0 <= share < 1.0:
+        raise SpringlabError(f"share = {share:g}: give the share of the largest gravity peak below which a joint "
+                             "gets no spring, from 0 to 1 (e.g. 0.02)")
+    if not found.planar:
+        raise SpringlabError(f"the loaded joints of {model.name!r} are not a planar chain ({found.why}): no body "
+                             "carries a level reference to them; use the best springs")
+    plane = planar_moments(model, found)
+    R0, o0, h, up, w, z = (plane[k] for k in ("R0", "o0", "h", "up", "w", "z"))
+    first, bodies, joint_at, nxt, G = (plane[k] for k in ("first", "bodies", "joint_at", "next", "G"))
+    peak = np.asarray(found.peak)
+    largest = float(np.max(peak))
+    out, leads, notes, outward, planes = model, [], [], [], []
+    springs = []
+    for k, joint in enumerate(found.loaded, start=1):
+        if peak[joint] < share * largest:
+            notes.append(f"joint {model.joints[joint]} carries {peak[joint]:.3g} N m at most, "
+                         f"{100 * peak[joint] / largest:.2g} % of the largest ({largest:.3g} N m), below "
+                         f"{100 * share:g} %: no spring, and it keeps that torque")
+            continue
+        W = -model.g * np.conj(1j) * G[k]  # the spring's k conj(c_0) c_k
+        link = bodies[k]
+        far = nxt[k] if nxt[k] is not None else o0[link] + R0[link] @ model.com[link]
+        length = float(np.linalg.norm(np.asarray(far) - joint_at[k]))
+        if length <= 0 or abs(W) == 0:
+            notes.append(f"joint {model.joints[joint]}: its link has no length to lever on: no spring")
+            continue
+        r_b, r_a = LEVER * length, POST * length
+        kappa = abs(W) / (r_a * r_b)
+        p = 1j * r_a  # the post, straight up from the joint
+        c = W / (kappa * np.conj(-p))  # kappa conj(c_0) c_k = W, c_0 = -p
+        lo_p, hi_p = _axial_extent(model, link - 1, R0, o0, joint_at[k], w)
+        lo_c, hi_c = _axial_extent(model, link, R0, o0, joint_at[k], w)
+        hi, lo = max(hi_p, hi_c), min(lo_p, lo_c)
+        side = 1.0 if hi <= -lo else -1.0  # the nearer side of the two links
+        d = hi + AXIAL_GAP if side > 0 else lo - AXIAL_GAP
+        if k == 1:  # the level body itself carries the first link's post
+            level, level_origin = model.bodies[first], o0[first]
+        else:
+            out = out.with_belt(model.joints[joint], model.bodies[first])
+            level, level_origin = out.belts[-1].name, joint_at[k]
+        plane = _Plane(np.asarray(joint_at[k]), h, up, w, float(d), link, level, np.asarray(level_origin), R0[first],
+                       R0, o0, complex(model.g * G[k]))
+        planes.append(plane)
+        springs.append(plane.spring(out, c, p, kappa))
+        towards = R0[link].T @ (-(c.real * h + c.imag * up))
+        leads.append(tuple(towards / np.linalg.norm(towards)))
+        outward.append((R0[link].T @ (side * w), R0[first].T @ (side * w)))
+    return Layout(out, tuple(springs), tuple(leads), tuple(notes), tuple(outward), tuple(planes))
+
+
+LEAD_TILT = np.radians(10.0)
+"""rad: the coil lies along its link towards the joint, tilted this far out of the spring's plane (away
+from the links): the post then never comes onto the lead's line behind the pulley, where the pulley would
+have to swivel half a turn at once (the post sweeps a circle about the joint that the lead's line in the
+plane would cross)."""
+
+REFIT = 0.1
+"""A pulley's compensation moves the lever and the post by at most this share of their lengths (the coil's
+stroke and the spring's proportion stay the layout's)."""
+
+ANGLES = 720
+"""The link's angles (a full turn) a pulley's compensation is fitted on."""
+
+
+def _cable_energy(x, rho: float, theta: np.ndarray, gG: complex) -> np.ndarray:
+    """The link's gravity energy plus its cable spring's (J) at the link's angles ``theta`` (rad): the
+    spring k (x[0]) from a pulley of radius ``rho`` centred at c = x[1] + i x[2] on the link (its cable
+    arriving along the lead, :data:`LEAD_TILT` out of the plane from c's direction: from the coil on the
+    joint's side) to the post p = x[3] + i x[4]; route 2's path over the pulley
+    (:func:`springlab.energy.geometry.cable_geometry`: the angle alpha between the lead and B - A)."""
+    k, c, p = x[0], complex(x[1], x[2]), complex(x[3], x[4])
+    turn = np.exp(1j * theta)
+    A = turn * c
+    D = p - A
+    L = np.abs(D)
+    along = np.cos(LEAD_TILT) * np.real(np.conj(turn * c / abs(c)) * D)  # the lead's part in the plane
+    alpha = np.arccos(np.clip(along / L, -1.0, 1.0))
+    path = rho * (alpha + np.arcsin(np.clip(rho / L, -1, 1))) + np.sqrt(np.maximum(L**2 - rho**2, 0.0))
+    return np.real(np.conj(1j) * turn * gG) + 0.5 * k * path**2
+
+
+def compensate_pulley(plane: _Plane, c: complex, p: complex, k: float, rho: float) -> tuple[complex, complex, float]:
+    """The offsets and rate (c, p, k) that hold the link best with a pulley of radius ``rho`` (m): least
+    squares on the torque dV/dtheta over a full turn of the link's angle (its gravity term and its
+    spring's energy depend on that angle alone), from the point-pulley design, the lever's and the post's
+    lengths within :data:`REFIT` of theirs, their directions and the rate free. Returns them unchanged
+    for rho = 0."""
+    if rho == 0:
+        return c, p, k
+    from scipy.optimize import least_squares
+
+    theta = np.linspace(0.0, 2 * np.pi, ANGLES, endpoint=False)
+    step = 1e-6
+
+    def cartesian(v):  # (k / k0, |c| / |c0|, arg c, |p| / |p0|, arg p)
+        c_, p_ = v[1] * c * np.exp(1j * (v[2] - np.angle(c))), v[3] * p * np.exp(1j * (v[4] - np.angle(p)))
+        return np.array([v[0] * k, c_.real, c_.imag, p_.real, p_.imag])
+
+    def torque(v):
+        x = cartesian(v)
+        return (_cable_energy(x, rho, theta + step, plane.gG) - _cable_energy(x, rho, theta - step, plane.gG)) / (
+            2 * step * abs(plane.gG))
+
+    start = np.array([1.0, 1.0, np.angle(c), 1.0, np.angle(p)])
+    lo = np.array([0.5, 1.0 - REFIT, start[2] - np.pi, 1.0 - REFIT, start[4] - np.pi])
+    hi = np.array([2.0, 1.0 + REFIT, start[2] + np.pi, 1.0 + REFIT, start[4] + np.pi])
+    x = cartesian(least_squares(torque, start, bounds=(lo, hi), xtol=1e-12, ftol=1e-12).x)
+    return complex(x[1], x[2]), complex(x[3], x[4]), float(x[0])
+
+
+def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_radius: float = 0.0) -> tuple:
+    """Each spring of a layout as a coil on its link behind a pulley at its point, the cable running to the
+    post (:func:`springlab.design.buildable.cable_spring`; up to
+    :data:`~springlab.design.arms.MAX_PARALLEL` side by side where one wire is too weak). Returns the
+    realised springs, their kinds, (coil, span) per spring and the index of the layout's spring each
+    realises, as :func:`~springlab.design.arms.realise_springs` does; the coil lies along the link towards
+    the joint (the cable arrives from there). With a pulley (``pulley_radius`` > 0) each spring's lever,
+    post and rate are first re-fitted for it (:func:`compensate_pulley`).
+
+    :raises SpringlabError: naming a spring no stocked wire realises
+    """
+    from springlab.design.arms import MAX_PARALLEL, _length_range
+    from springlab.design.buildable import cable_spring
+    from springlab.model.revolute import body_frames
+
+    model = layout.model
+    q = model.check_q(q)
+    rho = _checks.positive("pulley_radius", pulley_radius, allow_zero=True, unit="m")
+    R, o = body_frames(model, q)
+    realised, kinds, coils, origins = [], [], [], []
+    rows = zip(layout.springs, layout.leads, layout.outward, layout.planes, strict=True)
+    for index, (s, towards, (out_a, out_b), plane) in enumerate(rows):
+        if rho > 0:  # the pulley adds k rho (its wrap's change): c, p and k re-fitted for it
+            point = np.asarray(plane.R0[plane.link]) @ np.asarray(s.point_a) + plane.o0[plane.link] - plane.joint_at
+            post = plane.level_rotation @ np.asarray(s.point_b) + plane.level_origin - plane.joint_at
+            c0, p0 = complex(point @ plane.h, point @ plane.up), complex(post @ plane.h, post @ plane.up)
+            c, p, k = compensate_pulley(plane, c0, p0, s.k, rho)
+            s = plane.spring(model, c, p, k)
+            towards = tuple(plane.R0[plane.link].T @ (-(c.real * plane.h + c.imag * plane.up)) / abs(c))
+        lead = tuple(-np.cos(LEAD_TILT) * np.asarray(towards) - np.sin(LEAD_TILT) * np.asarray(out_a))  # from the
+        # coil, on the joint's side and out of the plane, the cable arrives at the pulley
+        led = PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, pulley_radius=rho,
+                          lead=lead if rho > 0 else None)
+        lengths = _length_range(model, led, R, o)
+        for parallel in range(1, MAX_PARALLEL + 1):
+            coil, why = cable_spring(s.k / parallel, lengths, material)
+            if coil is not None:
+                break
+        if coil is None:
+            raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, even "
+                                 f"{MAX_PARALLEL} side by side ({why})")
+        shift = parallel * coil.outer_diameter  # beside the links by the coils' own width (side by side: all)
+        s = PointSpring(s.link_a, tuple(np.asarray(s.point_a) + shift * out_a), s.link_b,
+                        tuple(np.asarray(s.point_b) + shift * out_b), s.k)
+        k = s.k / parallel
+        for m in range(parallel):
+            realised.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, coil.initial_tension / k,
+                                        coil.initial_tension, rho, lead if rho > 0 else None))
+            kinds.append("cable over a pulley" + (f" ({m + 1} of {parallel} side by side)" if parallel > 1 else ""))
+            coils.append((coil, lengths))
+            origins.append(index)
+    return tuple(realised), tuple(kinds), tuple(coils), tuple(origins)
