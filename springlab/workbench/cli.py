@@ -106,6 +106,15 @@ def _check_arguments(args) -> None:
     if args.margin is not None:
         args.margin = _checks.positive("--margin", parse_quantity(args.margin, "length", "--margin"),
                                        allow_zero=True, unit="m") + 0.0
+    if args.share is not None:
+        args.share = _checks.number("--share", args.share)
+        if not 0.0 <= args.share < 1.0:
+            raise SpringlabError(f"--share = {args.share:g}: give the share of the largest gravity peak below which a "
+                                 "joint gets no spring, from 0 to 1 (e.g. 0.02)")
+        if args.layout != "belts":
+            raise SpringlabError("--share applies to --layout belts (the two-point springs balance every loaded joint)")
+    if args.layout == "belts" and args.payload_range is not None:
+        raise SpringlabError("--payload-range applies to the two-point layout: the belt layout has no payload dial yet")
     if args.payload is not None:
         from springlab.design.payload import MAX_PAYLOAD_RANGE
         from springlab.model.armfile import parse_quantity
@@ -160,9 +169,10 @@ def _design(args) -> int:
         if not folder.strip() or not Path(folder).is_dir():
             raise SpringlabError(f"--package-dir = {folder!r} is not a folder: give the folder that holds the "
                                  "URDF's mesh packages")
-    if (args.reach is not None or args.package_dir or args.margin is not None) and path.suffix != ".urdf":
-        raise SpringlabError("--reach, --package-dir and --margin apply to URDF files (an arm file bounds its "
-                             "attachments with limits: max_attachment, and has no link shapes to clear)")
+    if (args.reach is not None or args.package_dir or args.margin is not None or args.layout != "two-point") \
+            and path.suffix != ".urdf":
+        raise SpringlabError("--reach, --package-dir, --margin and --layout apply to URDF files (an arm file bounds "
+                             "its attachments with limits: max_attachment, and has no link shapes to clear)")
     if args.workspace is not None and path.suffix != ".urdf":
         raise SpringlabError(f"--workspace = {args.workspace!r} applies to URDF files (an arm file gives each "
                              "joint's range in its links' 'range')")
@@ -170,7 +180,8 @@ def _design(args) -> int:
         raise SpringlabError(f"--payload-range = {args.payload_range!r} applies to URDF files, designed on the general "
                              "model with a payload dial (an arm file's payload is its [payload] table)")
     if path.suffix == ".urdf" and (args.workspace is not None or args.reach is not None or args.package_dir
-                                   or args.payload_range is not None or args.margin is not None):
+                                   or args.payload_range is not None or args.margin is not None
+                                   or args.layout != "two-point"):
         return _design_general(args, path, data, "")  # ranges, reaches and outlines: the general model's
     try:
         spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up), tip=args.tip, base=args.base,
@@ -265,7 +276,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     reach = None if args.reach is None else _checks.positive(
         "--reach", parse_quantity(args.reach, "length", "--reach"), allow_zero=True, unit="m") + 0.0
     design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material, reach=reach,
-                          pulley_radius=args.pulley_radius, margin=args.margin)
+                          pulley_radius=args.pulley_radius, margin=args.margin, layout=args.layout, share=args.share)
     seconds = time.perf_counter() - started
     tip = (f"the tip {args.tip!r} (fixed to {model.bodies[-1]!r}, the last body a joint moves)"
            if args.tip and args.tip != model.bodies[-1] else repr(model.bodies[-1]))
@@ -306,7 +317,9 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     print("\nthe balance the built springs leave, with a maker's tolerances on every spring at once (route 2):")
     print(design.tolerance_table())
     study = None
-    if args.tip and design.ideal:
+    if args.tip and design.ideal and design.model.belts:
+        print("\nno payload dial: the belt layout has none yet (its springs' posts ride on the belts' frames)")
+    elif args.tip and design.ideal:
         from springlab.design.payload import payload_study
 
         nominal = payload or 0.0
@@ -319,6 +332,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
               "workspace_deg": {name: [float(np.degrees(lo)), float(np.degrees(hi))]
                                 for name, (lo, hi) in zip(model.joints, workspace_ranges(model, workspace), strict=True)},
               "reach_m": reach, "pulley_radius_m": args.pulley_radius, "package_dirs": list(args.package_dir),
+              "layout": args.layout, "share": args.share, "margin_m": args.margin,
               "seed": args.seed + 1,
               "material": args.material}
     try:
@@ -331,12 +345,13 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     if args.sheet:
         _write_general_sheet(args, path, design, study, out)
     if mjcf:
-        _write_mjcf(mjcf, model, design.ideal, design.realised)
+        _write_mjcf(mjcf, design.model, design.ideal, design.realised)
     flags = design.flags()
     if not flags:
+        clear = ("every spring clear of every link by the margin" if design.clearance is not None else
+                 "the springs' clearance from the links is not among these checks (no link shapes): see its table")
         print("\nstatus: passed (better than its negative control; no joint left worse than gravity alone; every "
-              "spring with a line of action at every pose checked, no cable's end crossing its pulley's lead; the "
-              "springs' clearance from the links is not among these checks: see its table)")
+              f"spring with a line of action at every pose checked, no cable's end crossing its pulley's lead; {clear})")
         return 0
     print(f"\nstatus: flagged, {len(flags)} of the design's own checks fail:")
     for flag in flags:
@@ -574,6 +589,13 @@ def main(argv=None) -> int:
                    help="also write the built springs' spec sheet beside the JSON (.sheet.csv, .sheet.md)")
     p.add_argument("--material", default="music wire", choices=("music wire", "stainless 302"),
                    help="spring wire for --sheet (default music wire)")
+    p.add_argument("--layout", default="two-point", choices=("two-point", "belts"),
+                   help="a URDF arm's springs: 'two-point' (default: between two links' points, exact for a planar "
+                        "chain) or 'belts' (a planar chain: one spring per loaded link, from a post on a level frame a "
+                        "1:1 belt carries to its joint, its coil along the link; paper 001's pseudobases)")
+    p.add_argument("--share", type=float, default=None,
+                   help="with --layout belts: joints whose gravity peak is below this share of the largest get no "
+                        "spring (default 0.02); the torque they keep is named")
     p.add_argument("--margin", default=None,
                    help="the clearance every realised spring's coil and cable keeps from the URDF's links, e.g. '5 mm' "
                         "(a bare number is in m; default 0.005); a spring nearer than it is flagged")

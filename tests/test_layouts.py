@@ -1,0 +1,115 @@
+"""The belt layout on a real arm (springlab.design.layouts): the UR5's two springs clear its links and
+balance it with their own mass carried, checked against Pinocchio's collision geometry and MuJoCo, with
+negative controls that must fail."""
+
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+
+from springlab.design.arms import design_model, structure
+from springlab.design.hardware import spring_clearance
+from springlab.design.layouts import belt_layout
+from springlab.energy.geometry import gravity_torques, joint_torques
+from springlab.errors import SpringlabError
+from springlab.model.robots import load_robot, robot_urdf
+from springlab.workbench.cli import main
+
+
+@pytest.fixture(scope="module")
+def ur5():
+    return design_model(load_robot("UR5"), pulley_radius=0.005, layout="belts", samples=600)
+
+
+def test_the_ur5s_belt_springs_clear_its_links_and_hold_it_with_their_own_weight(ur5):
+    assert len(ur5.realised) == 2 and ur5.flags() == ()
+    assert all(gap >= 0.005 for *_, gap in ur5.clearance.rows)  # m: the margin, on the URDF's own meshes
+    q = ur5.q
+    gravity = np.abs(gravity_torques(ur5.model, q)).max(axis=0)
+    for arm in (ur5.model, ur5.massed):  # as realised over 5 mm pulleys, and carrying the springs' steel
+        left = np.abs(joint_torques(arm, ur5.realised, q)).max(axis=0)
+        assert np.all(1 - left[1:3] / gravity[1:3] >= 0.95)  # the shoulder's and the elbow's peaks
+    assert any("wrist_1_joint carries" in note and "no spring" in note for note in ur5.notes)
+    frames = [s.get("frame_b") for s in ur5.as_dict()["realised"]]
+    assert frames == [None, {"at_joint": "elbow_joint", "axes_of": "shoulder_link"}]
+
+
+def test_the_clearance_is_pinocchios_on_the_same_urdf(ur5):
+    # the nearest approach of each coil and cable, measured again on Pinocchio's own reading of the URDF's
+    # meshes (its GeometryModel, placed by its kinematics): the same distance
+    pin = pytest.importorskip("pinocchio")
+    import coal
+
+    from springlab.design.collision import clearances
+    from springlab.design.hardware import spring_pieces
+
+    pieces = spring_pieces(ur5.model, ur5.realised, ur5.kinds, ur5.coils, ur5.realised_names, ur5.q)
+    ours = clearances(ur5.model, pieces, ur5.q)
+    path = robot_urdf("UR5")
+    full = pin.buildModelFromUrdf(str(path))
+    geom = pin.buildGeomFromUrdf(full, str(path), pin.GeometryType.COLLISION, package_dirs=[str(path.parents[4])])
+    data, gdata = full.createData(), pin.GeometryData(geom)
+    for k, piece in enumerate(pieces):
+        gap, body, pose = ours.worst(k)
+        pin.updateGeometryPlacements(full, data, geom, gdata, ur5.q[pose])
+        a, b = piece.a[pose], piece.b[pose]
+        for own, end, allowance in piece.bodies:  # the piece may touch its own link within its hook's length
+            if own == body:
+                u = (b - a) / np.linalg.norm(b - a)
+                a, b = (a + allowance * u, b) if end == "a" else (a, b - allowance * u)
+        z = (b - a) / np.linalg.norm(b - a)
+        x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
+        x /= np.linalg.norm(x)
+        capsule = coal.Capsule(piece.radius, float(np.linalg.norm(b - a)))
+        placed = coal.Transform3s(np.column_stack([x, np.cross(z, x), z]), (a + b) / 2)
+        theirs = min(coal.distance(obj.geometry, coal.Transform3s(gdata.oMg[i].rotation, gdata.oMg[i].translation),
+                                   capsule, placed, coal.DistanceRequest(), coal.DistanceResult())
+                     for i, obj in enumerate(geom.geometryObjects)
+                     if full.frames[obj.parentFrame].name == ur5.model.bodies[body])
+        assert gap == pytest.approx(theirs, abs=1e-6)
+
+
+def test_springs_in_the_links_plane_are_caught(ur5):
+    # the negative control: the same springs with their ends moved back into the links' plane (no axial
+    # offset, which changes no length's variation and so not the balance) run through the links
+    model = load_robot("UR5")
+    layout = belt_layout(model, structure(model, ur5.q))
+    inside = [dataclasses.replace(plane, d=0.0).spring(layout.model, *_offsets(plane, s), s.k)
+              for plane, s in zip(layout.planes, layout.springs, strict=True)]
+    found = spring_clearance(layout.model, inside, ur5.kinds, ur5.coils, ("S1", "S2"), ur5.q)
+    assert any(gap < 0 for *_, gap in found.rows)
+
+
+def _offsets(plane, s):
+    point = plane.R0[plane.link] @ np.asarray(s.point_a) + plane.o0[plane.link] - plane.joint_at
+    post = plane.level_rotation @ np.asarray(s.point_b) + plane.level_origin - plane.joint_at
+    return complex(point @ plane.h, point @ plane.up), complex(post @ plane.h, post @ plane.up)
+
+
+def test_mujoco_holds_the_realised_belt_springs_as_route_2_does(ur5):
+    pytest.importorskip("mujoco")
+    from springlab.model.mjcf import to_mjcf
+    from springlab.workbench.references import mujoco_holding_torques
+
+    q = ur5.q[:200]
+    ours = joint_torques(ur5.model, ur5.realised, q)
+    theirs = mujoco_holding_torques(to_mjcf(ur5.model, ur5.realised), ur5.model, q)
+    assert np.max(np.abs(theirs - ours)) < 1e-9 * np.max(np.abs(gravity_torques(ur5.model, q)))
+
+
+def test_the_cli_designs_belts_and_refuses_what_it_cannot(tmp_path, capsys):
+    out = tmp_path / "ur5.json"
+    assert main(["design", str(robot_urdf("UR5")), "--layout", "belts", "--json", str(out), "--quiet"]) == 0
+    data = json.loads(out.read_text())
+    assert data["status"]["verdict"] == "passed" and data["inputs"]["layout"] == "belts"
+    assert data["clearance"]["clears"] and data["spring_mass_kg"] < 0.1 * 16.99  # under a tenth of the arm
+    for bad in (["--share", "1.5"], ["--share", "0.1"]):  # out of range; and without --layout belts
+        args = ["design", str(robot_urdf("UR5")), *bad, "--json", str(tmp_path / "x.json"), "--quiet"]
+        if bad[1] == "1.5":
+            args += ["--layout", "belts"]
+        assert main(args) == 2 and "--share" in capsys.readouterr().err
+    assert not (tmp_path / "x.json").exists()
+    panda = load_robot("Panda")  # its loaded joints are no planar chain: no level reference to carry
+    with pytest.raises(SpringlabError, match="not a planar chain"):
+        belt_layout(panda, structure(panda))
