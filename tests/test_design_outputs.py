@@ -57,7 +57,8 @@ def so101():
     out, printed = folder / "so101.design.json", io.StringIO()
     started = time.perf_counter()
     with contextlib.redirect_stdout(printed):
-        code = main(["design", str(robot_urdf("SO-101")), "--tip", ROBOTS["SO-101"].tip, "--json", str(out),
+        code = main(["design", str(robot_urdf("SO-101")), "--layout", "two-point", "--tip", ROBOTS["SO-101"].tip,
+                     "--json", str(out),
                      "--pulley-radius", "0.005", "--quiet"])
     return code, printed.getvalue(), json.loads(out.read_text()), time.perf_counter() - started
 

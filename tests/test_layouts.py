@@ -100,14 +100,13 @@ def test_mujoco_holds_the_realised_belt_springs_as_route_2_does(ur5):
 
 def test_the_cli_designs_belts_and_refuses_what_it_cannot(tmp_path, capsys):
     out = tmp_path / "ur5.json"
-    assert main(["design", str(robot_urdf("UR5")), "--layout", "belts", "--json", str(out), "--quiet"]) == 0
+    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--quiet"]) == 0  # the default: auto
     data = json.loads(out.read_text())
-    assert data["status"]["verdict"] == "passed" and data["inputs"]["layout"] == "belts"
+    assert data["status"]["verdict"] == "passed" and data["inputs"]["layout"] == "auto"
+    assert data["method"].startswith("belts") and len(data["realised"]) == 2
     assert data["clearance"]["clears"] and data["spring_mass_kg"] < 0.1 * 16.99  # under a tenth of the arm
-    for bad in (["--share", "1.5"], ["--share", "0.1"]):  # out of range; and without --layout belts
+    for bad in (["--share", "1.5"], ["--share", "0.1", "--layout", "two-point"]):  # out of range; not for two-point
         args = ["design", str(robot_urdf("UR5")), *bad, "--json", str(tmp_path / "x.json"), "--quiet"]
-        if bad[1] == "1.5":
-            args += ["--layout", "belts"]
         assert main(args) == 2 and "--share" in capsys.readouterr().err
     assert not (tmp_path / "x.json").exists()
     panda = load_robot("Panda")  # its loaded joints are no planar chain: no level reference to carry

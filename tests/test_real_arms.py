@@ -101,7 +101,8 @@ def test_workspace_ranges_stay_within_the_limits():
 def test_the_cli_writes_the_json_contract(tmp_path, capsys):
     out = tmp_path / "ur5.json"
     # flagged (exit 3): the realised springs run through the links, which the JSON says, spring by spring
-    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--quiet", "--pulley-radius", "0"]) == 3
+    assert main(["design", str(robot_urdf("UR5")), "--layout", "two-point", "--json", str(out), "--quiet",
+                 "--pulley-radius", "0"]) == 3
     printed = capsys.readouterr().out
     assert "exact: planar chain" in printed and "negative control" in printed
     data = json.loads(out.read_text())

@@ -150,11 +150,13 @@ def structure(model: RevoluteChain, q=None, *, samples: int = 512, rng=0) -> Str
                               f"{ROUND_OFF:g} of the largest at {q.shape[0]} random poses, so it vanishes identically")
         all_vertical_before = all_vertical_before and bool(vertical[i])
     loaded = tuple(i for i in range(model.n) if i not in unloaded)
-    planar, why = _planar(model, loaded, w, vertical, up)
+    planar, why = planar_chain(model, loaded, w, vertical, up)
     return Structure(model, tuple(unloaded), reasons, loaded, planar, why, tuple(float(p) for p in peak))
 
 
-def _planar(model, loaded, w, vertical, up) -> tuple[bool, str]:
+def planar_chain(model, loaded, w, vertical, up) -> tuple[bool, str]:
+    """Whether the ``loaded`` joints (indices) form a planar chain (module docstring), and why: from their axes
+    ``w`` (N, n, 3) over sample poses, which joints stay ``vertical`` (n,) and the ``up`` direction."""
     names = [model.joints[i] for i in loaded]
     if not loaded:
         return False, "gravity loads no joint: nothing to balance"
@@ -1231,7 +1233,7 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
     R, o = body_frames(model, q)
     kinds = []
     for s in springs:
-        lengths = _length_range(model, s, R, o)
+        lengths = length_range(model, s, R, o)
         coil, why = zero_length_spring(s.k, lengths, material)
         kinds.append(("zero-length spring", coil, lengths) if coil is not None else ("cable", None, why))
     cable = [i for i, (kind, _, _) in enumerate(kinds) if kind == "cable"]
@@ -1239,8 +1241,8 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
     if pulley_radius > 0:  # a cable whose ends come within the pulley's radius cannot run over it
         fit = q[:150] if fit is None else model.check_q(fit)
         Rf, of = body_frames(model, fit)
-        near = [i for i in cable if min(_length_range(model, springs[i], R, o)[0],
-                                        _length_range(model, springs[i], Rf, of)[0]) <= 2 * pulley_radius]
+        near = [i for i in cable if min(length_range(model, springs[i], R, o)[0],
+                                        length_range(model, springs[i], Rf, of)[0]) <= 2 * pulley_radius]
         cable = [i for i in cable if i not in near]
     else:
         near = []
@@ -1253,7 +1255,7 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
             built = _rebalance(model, led, cable, fit, reach, max_stiffness, scale)
         def windable(spring):  # None: its cable comes within the pulley's radius of A at a pose of ``q``
             try:  # a stocked wire carries it alone or up to MAX_PARALLEL side by side, as the realisation winds it
-                span = _length_range(model, spring, R, o)
+                span = length_range(model, spring, R, o)
                 return any(cable_spring(spring.k / m, span, material)[0] is not None for m in range(1, MAX_PARALLEL + 1))
             except GeometryError:
                 return None
@@ -1290,7 +1292,7 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
             out.append(None)
             coils.append(None)
             continue
-        lengths = _length_range(model, s, R, o)
+        lengths = length_range(model, s, R, o)
         coil, why_cable = cable_spring(s.k, lengths, material)
         parallel = 1
         while coil is None and parallel < MAX_PARALLEL:  # too strong for one wire: side by side, k / m each
@@ -1332,7 +1334,7 @@ MAX_PARALLEL = 3
 wire carries its force alone."""
 
 
-def _length_range(model: RevoluteChain, spring, R, o) -> tuple[float, float]:
+def length_range(model: RevoluteChain, spring, R, o) -> tuple[float, float]:
     """The shortest and longest length (m) of a spring (its cable's path over a pulley) at the poses."""
     from springlab.energy.geometry import spring_lengths
 
@@ -1824,14 +1826,16 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     poses, and the arm carrying the springs' own mass is kept beside it
     (:mod:`springlab.design.hardware`).
 
+    ``layout='auto'`` takes the belts where the loaded joints (the light ones left out) form a planar
+    chain and the arm has collision geometry, else the two-point springs.
     ``layout='belts'`` (a planar loaded chain only): one spring per loaded link from a post on a level
     frame a 1:1 belt carries to the link's joint (:func:`springlab.design.layouts.belt_layout`), its coil
     along the link, the pulley compensated for; joints below ``share`` of the largest gravity peak
     (default :data:`springlab.design.layouts.SHARE`) get none. ``'two-point'`` (default): springs between
     two links' points, exact for a planar chain, else the best springs."""
-    if layout not in ("two-point", "belts"):
-        raise SpringlabError(f"layout = {layout!r}: give 'two-point' (springs between two links) or 'belts' (a "
-                             "level reference carried to each loaded joint)")
+    if layout not in ("two-point", "belts", "auto"):
+        raise SpringlabError(f"layout = {layout!r}: give 'two-point' (springs between two links), 'belts' (a level "
+                             "reference carried to each loaded joint) or 'auto' (belts where the arm allows them)")
     from springlab.design.collision import MARGIN, Sampler, has_geometry
     from springlab.design.hardware import spring_clearance, with_spring_mass
 
@@ -1858,10 +1862,18 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     if not found.loaded:
         return ArmDesign(model, found, "nothing to balance", (), (), (), (), check,
                          (*notes, "gravity loads no joint of this arm over its workspace: nothing to balance"), tag=tag)
+    if layout == "auto":
+        from springlab.design.layouts import SHARE, without_light
+
+        trimmed = without_light(model, found, SHARE if share is None else share, check)
+        layout = "belts" if trimmed.planar and has_geometry(model) else "two-point"
+        notes.append("layout: " + ("belts, the loaded joints (the light ones left out) forming a planar chain" if
+                                   layout == "belts" else "two-point springs (no planar chain to carry a level "
+                                   "reference to, or no link shapes to clear)"))
     if layout == "belts":
         from springlab.design.layouts import SHARE, belt_layout, realise_layout
 
-        lay = belt_layout(model, found, share=SHARE if share is None else share)
+        lay = belt_layout(model, found, share=SHARE if share is None else share, q=check)
         model, ideal = lay.model, lay.springs
         method = "belts: a level reference carried to each loaded joint (paper 001's pseudobases)"
         notes += [f"belts: {found.why}; one spring per loaded link, from a post on the level frame at its joint "

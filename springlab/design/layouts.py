@@ -20,10 +20,16 @@ farther of the two links' shapes, so that the spring and its post run beside the
 
 A joint whose gravity torque stays below ``share`` of the arm's largest (default :data:`SHARE`) gets
 no spring: the torque it keeps is named.
+
+References
+----------
+Lin, P.-Y., Shieh, W.-B., Chen, D.-Z. (2010). Design of a gravity-balanced general spatial
+serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10.1115/1.4001816
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -106,9 +112,35 @@ def _axial_extent(model: RevoluteChain, body: int, R0, o0, origin, w) -> tuple[f
     return float(along.min()), float(along.max())
 
 
-def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE) -> Layout:
+def without_light(model: RevoluteChain, found: Structure, share: float, q) -> Structure:
+    """The structure with the loaded joints below ``share`` of the largest gravity peak counted as unloaded
+    (named, with the torque they keep), its planar chain judged again on the poses ``q`` (N, n) rad: the
+    SO-101's wrist roll, 0.3 % of its shoulder's peak, keeps its three lifting joints from being a planar
+    chain otherwise. What the light joints' masses do to the heavier ones is then left to the check."""
+    from springlab.design.arms import planar_chain
+    from springlab.model.revolute import body_frames, joint_axes
+
+    peak = np.asarray(found.peak)
+    largest = float(np.max(peak))
+    light = [i for i in found.loaded if peak[i] < share * largest]
+    if not light:
+        return found
+    R, _ = body_frames(model, model.check_q(q))
+    w = joint_axes(model, R)
+    vertical = np.all(np.linalg.norm(np.cross(w, model.up), axis=-1) <= 1e-5, axis=0)
+    loaded = tuple(i for i in found.loaded if i not in light)
+    planar, why = planar_chain(model, loaded, w, vertical, model.up)
+    reasons = dict(found.reasons) | {i: f"light: at most {peak[i]:.3g} N m, {100 * peak[i] / largest:.2g} % of the "
+                                        f"largest, below {100 * share:g} %: no spring, it keeps that torque"
+                                     for i in light}
+    return dataclasses.replace(found, unloaded=tuple(sorted((*found.unloaded, *light))), reasons=reasons,
+                               loaded=loaded, planar=planar, why=why)
+
+
+def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE, q=None) -> Layout:
     """One spring per loaded link of a planar chain, each on a belt carrying the level reference to its
-    joint (see the module docstring); joints below ``share`` of the largest gravity peak get none.
+    joint (see the module docstring); joints below ``share`` of the largest gravity peak get none (with
+    ``q``, poses (N, n) rad, a chain that is planar once they are left out is taken: :func:`without_light`).
 
     :raises SpringlabError: when the loaded joints are not a planar chain (no level reference), or
         ``share`` is outside [0, 1)
@@ -117,6 +149,12 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE)
     if not 0.0 <= share < 1.0:
         raise SpringlabError(f"share = {share:g}: give the share of the largest gravity peak below which a joint "
                              "gets no spring, from 0 to 1 (e.g. 0.02)")
+    notes = []
+    if not found.planar and q is not None:
+        trimmed = without_light(model, found, share, q)
+        if trimmed.planar:
+            notes += [f"joint {model.joints[i]}: {trimmed.reasons[i]}" for i in found.loaded if i not in trimmed.loaded]
+            found = trimmed
     if not found.planar:
         raise SpringlabError(f"the loaded joints of {model.name!r} are not a planar chain ({found.why}): no body "
                              "carries a level reference to them; use the best springs")
@@ -125,7 +163,7 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE)
     first, bodies, joint_at, nxt, G = (plane[k] for k in ("first", "bodies", "joint_at", "next", "G"))
     peak = np.asarray(found.peak)
     largest = float(np.max(peak))
-    out, leads, notes, outward, planes = model, [], [], [], []
+    out, leads, outward, planes = model, [], [], []
     springs = []
     for k, joint in enumerate(found.loaded, start=1):
         if peak[joint] < share * largest:
@@ -235,7 +273,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
 
     :raises SpringlabError: naming a spring no stocked wire realises
     """
-    from springlab.design.arms import MAX_PARALLEL, _length_range
+    from springlab.design.arms import MAX_PARALLEL, length_range
     from springlab.design.buildable import cable_spring
     from springlab.model.revolute import body_frames
 
@@ -257,7 +295,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
         # coil, on the joint's side and out of the plane, the cable arrives at the pulley
         led = PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, pulley_radius=rho,
                           lead=lead if rho > 0 else None)
-        lengths = _length_range(model, led, R, o)
+        lengths = length_range(model, led, R, o)
         for parallel in range(1, MAX_PARALLEL + 1):
             coil, why = cable_spring(s.k / parallel, lengths, material)
             if coil is not None:

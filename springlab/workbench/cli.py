@@ -111,10 +111,12 @@ def _check_arguments(args) -> None:
         if not 0.0 <= args.share < 1.0:
             raise SpringlabError(f"--share = {args.share:g}: give the share of the largest gravity peak below which a "
                                  "joint gets no spring, from 0 to 1 (e.g. 0.02)")
-        if args.layout != "belts":
-            raise SpringlabError("--share applies to --layout belts (the two-point springs balance every loaded joint)")
+        if args.layout == "two-point":
+            raise SpringlabError("--share applies to the belt layout (the two-point springs balance every loaded joint)")
     if args.layout == "belts" and args.payload_range is not None:
         raise SpringlabError("--payload-range applies to the two-point layout: the belt layout has no payload dial yet")
+    if args.layout == "auto" and (args.payload_range is not None or args.reach is not None):
+        args.layout = "two-point"  # the payload dial moves two-point springs' anchors; --reach sets their brackets
     if args.payload is not None:
         from springlab.design.payload import MAX_PAYLOAD_RANGE
         from springlab.model.armfile import parse_quantity
@@ -169,8 +171,8 @@ def _design(args) -> int:
         if not folder.strip() or not Path(folder).is_dir():
             raise SpringlabError(f"--package-dir = {folder!r} is not a folder: give the folder that holds the "
                                  "URDF's mesh packages")
-    if (args.reach is not None or args.package_dir or args.margin is not None or args.layout != "two-point") \
-            and path.suffix != ".urdf":
+    if (args.reach is not None or args.package_dir or args.margin is not None or args.layout not in ("auto", "two-point")
+            or args.share is not None) and path.suffix != ".urdf":
         raise SpringlabError("--reach, --package-dir, --margin and --layout apply to URDF files (an arm file bounds "
                              "its attachments with limits: max_attachment, and has no link shapes to clear)")
     if args.workspace is not None and path.suffix != ".urdf":
@@ -181,7 +183,7 @@ def _design(args) -> int:
                              "model with a payload dial (an arm file's payload is its [payload] table)")
     if path.suffix == ".urdf" and (args.workspace is not None or args.reach is not None or args.package_dir
                                    or args.payload_range is not None or args.margin is not None
-                                   or args.layout != "two-point"):
+                                   or args.layout != "auto" or args.share is not None):
         return _design_general(args, path, data, "")  # ranges, reaches and outlines: the general model's
     try:
         spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up), tip=args.tip, base=args.base,
@@ -589,10 +591,11 @@ def main(argv=None) -> int:
                    help="also write the built springs' spec sheet beside the JSON (.sheet.csv, .sheet.md)")
     p.add_argument("--material", default="music wire", choices=("music wire", "stainless 302"),
                    help="spring wire for --sheet (default music wire)")
-    p.add_argument("--layout", default="two-point", choices=("two-point", "belts"),
-                   help="a URDF arm's springs: 'two-point' (default: between two links' points, exact for a planar "
-                        "chain) or 'belts' (a planar chain: one spring per loaded link, from a post on a level frame a "
-                        "1:1 belt carries to its joint, its coil along the link; paper 001's pseudobases)")
+    p.add_argument("--layout", default="auto", choices=("auto", "two-point", "belts"),
+                   help="a URDF arm's springs: 'belts' (a planar chain: one spring per loaded link, from a post on a "
+                        "level frame a 1:1 belt carries to its joint, its coil along the link; paper 001's pseudobases), "
+                        "'two-point' (between two links' points, exact for a planar chain) or 'auto' (default: belts "
+                        "where the arm allows them, else two-point; two-point with --payload-range or --reach)")
     p.add_argument("--share", type=float, default=None,
                    help="with --layout belts: joints whose gravity peak is below this share of the largest get no "
                         "spring (default 0.02); the torque they keep is named")
