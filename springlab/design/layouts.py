@@ -54,7 +54,7 @@ AXIAL_GAP = 0.02
 
 
 @dataclass(frozen=True)
-class _Plane:
+class SpringPlane:
     """A belt spring's plane: its joint's origin (world, zero pose), the plane's axes h, up and the joint's
     axis w, the axial offset d (m), the link's body and the level frame (name, and the point its offsets
     are given from), the zero pose's frames, and g G_k (N m: the link's gravity term, complex)."""
@@ -102,7 +102,7 @@ class Layout:
     leads: tuple
     notes: tuple
     outward: tuple = ()
-    planes: tuple = ()  # per spring, its plane (_Plane): where its complex offsets are placed
+    planes: tuple = ()  # per spring, its plane (SpringPlane): where its complex offsets are placed
 
 
 def _axial_extent(model: RevoluteChain, body: int, R0, o0, origin, w) -> tuple[float, float]:
@@ -192,7 +192,7 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE,
         else:
             out = out.with_belt(model.joints[joint], model.bodies[first])
             level, level_origin = out.belts[-1].name, joint_at[k]
-        plane = _Plane(np.asarray(joint_at[k]), h, up, w, float(d), link, level, np.asarray(level_origin), R0[first],
+        plane = SpringPlane(np.asarray(joint_at[k]), h, up, w, float(d), link, level, np.asarray(level_origin), R0[first],
                        R0, o0, complex(model.g * G[k]))
         planes.append(plane)
         springs.append(plane.spring(out, c, p, kappa))
@@ -233,7 +233,7 @@ def _cable_energy(x, rho: float, theta: np.ndarray, gG: complex) -> np.ndarray:
     return np.real(np.conj(1j) * turn * gG) + 0.5 * k * path**2
 
 
-def compensate_pulley(plane: _Plane, c: complex, p: complex, k: float, rho: float) -> tuple[complex, complex, float]:
+def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho: float) -> tuple[complex, complex, float]:
     """The offsets and rate (c, p, k) that hold the link best with a pulley of radius ``rho`` (m): least
     squares on the torque dV/dtheta over a full turn of the link's angle (its gravity term and its
     spring's energy depend on that angle alone), from the point-pulley design, the lever's and the post's

@@ -311,3 +311,44 @@ def record_payload(claims, study, label: str) -> None:
                       else "; but turned so far the built springs' dial takes an end off its link and bracket (it keeps "
                       f"them on from {study.holds['realised'][0]:.3g} to {study.holds['realised'][1]:.3g} kg): it needs "
                       "a longer slot"))
+
+
+def belt_design(label: str, *, samples: int = 2000, seed: int = 1, pulley_radius: float = PULLEY) -> ArmDesign:
+    """A robot of :data:`~springlab.model.robots.ROBOTS` with the belt layout
+    (:func:`springlab.design.layouts.belt_layout`: one spring per loaded link on a level frame a belt carries
+    to its joint), realised over pulleys of ``pulley_radius`` (m)."""
+    return design_model(load_robot(label), samples=samples, seed=seed, pulley_radius=pulley_radius, layout="belts")
+
+
+def hardware_table(designs: dict) -> Table:
+    """Per arm and spring of each design (label -> :class:`~springlab.design.arms.ArmDesign`): the share of its
+    link's joint's peak removed (ideal, realised, realised carrying the springs' own mass), the spring's
+    nearest approach to a link (coal, the URDF's meshes), its coil's longest length beside its link's length,
+    its largest force and its mass."""
+    rows = []
+    for label, design in designs.items():
+        q = design.q
+        peak = np.max(np.abs(geometry.gravity_torques(design.model, q)), axis=0)
+        peak = np.where(peak > 0, peak, np.nan)  # the unloaded joints: no share
+        shares = {case: 100 * (1 - np.max(np.abs(geometry.joint_torques(arm, springs, q)), axis=0) / peak)
+                  for case, arm, springs in (("ideal", design.model, design.ideal),
+                                             ("realised", design.model, design.realised),
+                                             ("mass", design.massed, design.realised))}
+        near = {row[0]: row for row in design.clearance.rows}
+        for name, s, (coil, _) in zip(design.realised_names, design.realised, design.coils, strict=True):
+            body = design.model.bodies.index(s.link_a)
+            joint = body - 1
+            _, piece, nearest, _, gap = near[name]
+            rows.append((label, name, design.model.joints[joint], *(f"{shares[c][joint]:.1f}" for c in shares),
+                         f"{1e3 * gap:.0f} ({piece}, {nearest})", f"{1e3 * coil.max_length:.0f}",
+                         f"{1e3 * _next_joint(design.model, body):.0f}", f"{coil.max_force:.0f}",
+                         f"{1e3 * coil.mass:.0f}"))
+    return Table(["arm", "spring", "its joint", "removed, ideal (%)", "realised (%)", "carrying the springs (%)",
+                  "nearest link (mm)", "longest coil (mm)", "its link (mm)", "largest force (N)", "mass (g)"], rows)
+
+
+def _next_joint(model, body: int) -> float:
+    """The length (m) of a body: from its joint to the next joint (the last body: to its centre of mass)."""
+    if body < model.n:
+        return float(np.linalg.norm(model.placements[body][:3, 3]))
+    return float(np.linalg.norm(model.com[body]))
