@@ -1588,6 +1588,8 @@ class Audit:
         first such pose (rad), the reason)
     :ivar crossings: per realised cable spring whose end B crosses its lead's line in the workspace
         (within :data:`CROSSING`), (its index, the angle (rad), the pose (rad))
+    :ivar free: how many of the drawn poses lie in the workspace (free of collisions) and were checked; None
+        for an arm without collision geometry (all of them)
     """
 
     samples: int
@@ -1596,17 +1598,21 @@ class Audit:
     raised: tuple
     undefined: tuple = ()
     crossings: tuple = ()
+    free: int | None = None
 
     @classmethod
     def of(cls, model: RevoluteChain, ranges, cases: dict, check, seed: int, samples: int = AUDIT_SAMPLES,
            sampler=None) -> Audit:
         """The audit of the springs ``cases`` (name -> springs; gravity alone is added) over the workspace
         ``ranges`` (n, 2) rad, beside the design's own ``check`` poses. With a ``sampler``
-        (:class:`~springlab.design.collision.Sampler`) its poses are the workspace's free ones, and each
-        climb moves through free poses only."""
+        (:class:`~springlab.design.collision.Sampler`) only the drawn poses free of collisions are checked
+        (:attr:`free` of them), and each climb moves through free poses only."""
         rng = np.random.default_rng([seed, samples])
-        q = (rng.uniform(ranges[:, 0], ranges[:, 1], (samples, model.n)) if sampler is None
-             else sampler.draw(samples, rng))
+        q = rng.uniform(ranges[:, 0], ranges[:, 1], (samples, model.n))
+        free = None
+        if sampler is not None:  # the drawn poses the workspace holds (no links in collision, none below the mount)
+            q = q[sampler.free(q)]
+            free = int(q.shape[0])
         lo, hi = ranges[:, 0], ranges[:, 1]
         worst, raised, undefined, largest = [], [], [], None
         for case, springs in ({"gravity alone": ()} | dict(cases)).items():
@@ -1646,15 +1652,16 @@ class Audit:
             if np.any(bad) and not any(u[0] == case for u in undefined):
                 undefined.append((case, 0, unique[int(np.argmax(bad))].tolist(), why))
             keep &= ~bad
-        return cls(samples, seed, unique[keep], tuple(raised), tuple(undefined), tuple(crossings))
+        return cls(samples, seed, unique[keep], tuple(raised), tuple(undefined), tuple(crossings), free)
 
     def note(self, checked: int) -> str:
         """The sample, in words, for the design's output."""
         found = ("; it found more than the check at " + ", ".join(
             f"{joint} ({case}: {own:.3g} -> {value:.3g} N m)" for case, joint, own, value in self.raised)
                  if self.raised else "; it found no peak above the check's, to 3 digits")
+        within = "" if self.free is None else f" ({self.free:,} of them in the workspace, free of collisions)"
         return (f"checked by route 2 on {checked} random poses of the workspace, then re-checked on {self.samples:,} "
-                f"independent ones with a local search from the {AUDIT_STARTS} worst of them per joint and case (the {len(self.worst)} "
+                f"independent ones{within} with a local search from the {AUDIT_STARTS} worst of them per joint and case (the {len(self.worst)} "
                 f"worst poses found join the check, so every peak and share below holds on them){found}")
 
     def as_dict(self) -> dict:
@@ -1663,7 +1670,8 @@ class Audit:
                                    for m, angle, pose in self.crossings],
                 "undefined": [{"case": case, "poses": count, "first_pose_rad": pose, "why": why}
                               for case, count, pose, why in self.undefined],
-                "samples": self.samples, "seed": list((self.seed, self.samples)), "worst_poses_rad": self.worst.tolist(),
+                "samples": self.samples, "in_workspace": self.free, "seed": list((self.seed, self.samples)),
+                "worst_poses_rad": self.worst.tolist(),
                 "raised": [{"case": case, "joint": joint, "check_peak_Nm": own, "audit_peak_Nm": value}
                            for case, joint, own, value in self.raised]}
 
