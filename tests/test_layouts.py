@@ -112,3 +112,16 @@ def test_the_cli_designs_belts_and_refuses_what_it_cannot(tmp_path, capsys):
     panda = load_robot("Panda")  # its loaded joints are no planar chain: no level reference to carry
     with pytest.raises(SpringlabError, match="not a planar chain"):
         belt_layout(panda, structure(panda))
+
+
+def test_a_light_joint_left_out_makes_the_so101s_lifting_joints_a_planar_chain():
+    from springlab.design.layouts import without_light
+
+    model = load_robot("SO-101")
+    q = model.random_q(512, 0)
+    found = structure(model, q)
+    assert not found.planar and "wrist_roll" in [model.joints[i] for i in found.loaded]
+    trimmed = without_light(model, found, 0.02, q)
+    assert trimmed.planar and model.joints.index("wrist_roll") in trimmed.unloaded
+    assert "light" in trimmed.reasons[model.joints.index("wrist_roll")]
+    assert not without_light(model, found, 0.0, q).planar  # the control: nothing left out, no planar chain
