@@ -1316,6 +1316,10 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
     return tuple(out), tuple(names), tuple(coils), tuple(origins)
 
 
+CARRY_ROUNDS = 2
+"""How many times the belt layout is designed again for the arm carrying the springs it found (their masses
+change a little with their rates)."""
+
 REBALANCE = 0.1
 """Where the realised springs over their pulleys, leads chosen, leave more than this fraction of a
 joint's scale (its own peak gravity torque, or for a light joint ten times what the ideal springs leave
@@ -1881,12 +1885,20 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     if layout == "belts":
         from springlab.design.layouts import SHARE, belt_layout, realise_layout
 
-        lay = belt_layout(model, found, share=SHARE if share is None else share, q=check)
-        model, ideal = lay.model, lay.springs
+        share = SHARE if share is None else share
+        lay = belt_layout(model, found, share=share, q=check)
+        realised, kinds, coils, origins = realise_layout(lay, check, material=material, pulley_radius=pulley_radius)
+        bare = (model.mass, model.com, model.inertia)
+        for _ in range(CARRY_ROUNDS):  # the springs' own steel rides on the links: designed for too
+            arm = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2])  # the arm alone, with the belts
+            carried = replace(with_spring_mass(arm, realised, kinds, coils, check), belts=())
+            lay = belt_layout(carried, structure(carried, check), share=share, q=check)
+            realised, kinds, coils, origins = realise_layout(lay, check, material=material, pulley_radius=pulley_radius)
+        model, ideal = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2]), lay.springs
         method = "belts: a level reference carried to each loaded joint (paper 001's pseudobases)"
         notes += [f"belts: {found.why}; one spring per loaded link, from a post on the level frame at its joint "
-                  "to the link, its coil along the link behind a pulley", *lay.notes]
-        realised, kinds, coils, origins = realise_layout(lay, check, material=material, pulley_radius=pulley_radius)
+                  "to the link, its coil along the link behind a pulley, designed for the arm carrying the springs' "
+                  f"own mass ({CARRY_ROUNDS} rounds)", *lay.notes]
         if pulley_radius > 0:
             notes.append(f"the springs run over {1e3 * pulley_radius:g} mm pulleys: each one's lever, post and rate "
                          "re-fitted for it over a full turn of its link (route 2's cable path)")
