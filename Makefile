@@ -34,6 +34,7 @@ bench: $(VENV)/.bench-installed
 	$(BIN)/python benchmarks/bench_design.py
 	$(BIN)/python benchmarks/bench_figures.py
 	$(BIN)/python benchmarks/bench_real_arms.py
+	$(BIN)/python benchmarks/bench_layouts.py
 
 lab: $(STAMP)
 	$(BIN)/jupyter lab notebooks/

@@ -553,6 +553,12 @@ def _write_sheet(args, spec, chosen, out: Path) -> None:
 
 EPILOG = """\
 what a URDF arm's output says:
+  the layout: belts (a level reference carried by 1:1 belts to each joint of a planar chain, one
+  spring per link beside the links, its coil along the link) where the arm allows them, else springs
+  between two links' points (--layout); the workspace is the poses within the limits where no two
+  links collide and none passes below the mounting plane, its share of the limits' box printed; each
+  realised spring's coil and cable are measured against the links' own collision shapes (coal) and
+  must keep --margin from them; the torque tables also show the arm carrying the springs' own mass.
   the best springs' note lists, after each spring the greedy search added, the share of the
   worst joint's scale removed ("1 spring 0.0 %, 2 springs 36.1 %, ..."): a joint's scale is its own
   peak gravity torque, or a tenth of the arm's largest for a light joint; the search stops when
@@ -564,7 +570,7 @@ what a URDF arm's output says:
 exit status: 0 a design that passes its own checks; 1 no design found; 2 bad input (one line
   naming it, nothing written); 3 a design written that fails its own checks (its JSON's "status"
   says which: no better than its negative control, a joint worse than gravity alone, a spring
-  with no line of action at a pose); 4 an unexpected error (a defect: rerun with --debug).
+  with no line of action at a pose, a spring nearer a link than the margin); 4 an unexpected error (a defect: rerun with --debug).
   The last line printed is the wall time of the whole command.
 """
 
