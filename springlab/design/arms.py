@@ -1592,8 +1592,7 @@ class Audit:
         first such pose (rad), the reason)
     :ivar crossings: per realised cable spring whose end B crosses its lead's line in the workspace
         (within :data:`CROSSING`), (its index, the angle (rad), the pose (rad))
-    :ivar free: how many of the drawn poses lie in the workspace (free of collisions) and were checked; None
-        for an arm without collision geometry (all of them)
+    :ivar workspace: the drawn poses in collision were left out (an arm with collision geometry)
     """
 
     samples: int
@@ -1602,37 +1601,54 @@ class Audit:
     raised: tuple
     undefined: tuple = ()
     crossings: tuple = ()
-    free: int | None = None
+    workspace: bool = False
 
     @classmethod
     def of(cls, model: RevoluteChain, ranges, cases: dict, check, seed: int, samples: int = AUDIT_SAMPLES,
            sampler=None) -> Audit:
         """The audit of the springs ``cases`` (name -> springs; gravity alone is added) over the workspace
         ``ranges`` (n, 2) rad, beside the design's own ``check`` poses. With a ``sampler``
-        (:class:`~springlab.design.collision.Sampler`) only the drawn poses free of collisions are checked
-        (:attr:`free` of them), and each climb moves through free poses only."""
+        (:class:`~springlab.design.collision.Sampler`) the drawn poses in collision are left out (each asked
+        only when it matters: a start, an undefined pose, the nearest approach to a lead line, in order of
+        how bad it is), and each climb moves through free poses only."""
         rng = np.random.default_rng([seed, samples])
         q = rng.uniform(ranges[:, 0], ranges[:, 1], (samples, model.n))
-        free = None
-        if sampler is not None:  # the drawn poses the workspace holds (no links in collision, none below the mount)
-            q = q[sampler.free(q)]
-            free = int(q.shape[0])
+        known, free_at = np.zeros(samples, dtype=bool), np.ones(samples, dtype=bool)
+
+        def first_free(order, count: int) -> np.ndarray:
+            """The first ``count`` indices of ``order`` whose poses are in the workspace."""
+            if sampler is None:
+                return np.asarray(order[:count], dtype=int)
+            out = []
+            for at in range(0, len(order), 64):
+                chunk = np.asarray(order[at:at + 64], dtype=int)
+                todo = chunk[~known[chunk]]
+                if len(todo):
+                    free_at[todo], known[todo] = sampler.free(q[todo]), True
+                out += chunk[free_at[chunk]].tolist()
+                if len(out) >= count:
+                    break
+            return np.asarray(out[:count], dtype=int)
+
         lo, hi = ranges[:, 0], ranges[:, 1]
         worst, raised, undefined, largest = [], [], [], None
         for case, springs in ({"gravity alone": ()} | dict(cases)).items():
             tau, why = defined_torques(model, springs, q)
             bad = np.isnan(tau[:, 0])
-            if np.any(bad):
-                undefined.append((case, int(np.sum(bad)), q[int(np.argmax(bad))].tolist(), why))
+            bad_free = first_free(np.flatnonzero(bad), samples) if np.any(bad) else np.zeros(0, dtype=int)
+            if len(bad_free):
+                undefined.append((case, len(bad_free), q[bad_free[0]].tolist(), why))
             tau = np.abs(np.where(bad[:, None], 0.0, tau))
             mine = np.abs(defined_torques(model, springs, check)[0])
             own = np.max(np.where(np.isnan(mine), 0.0, mine), axis=0)
-            largest = float(np.max(tau)) if largest is None else largest  # gravity's, the first case
+            if largest is None:  # gravity's, the first case, over the workspace's poses
+                largest = max(float(tau[first_free(np.argsort(-tau[:, j], kind="stable"), 1), j].max(initial=0.0))
+                              for j in range(model.n))
             for j in range(model.n):
                 if not np.max(tau[:, j]) > 0:
                     continue
                 climbed = []
-                for start in q[np.argsort([-_sig(v) for v in tau[:, j]], kind="stable")[:AUDIT_STARTS]]:
+                for start in q[first_free(np.argsort([-_sig(v) for v in tau[:, j]], kind="stable"), AUDIT_STARTS)]:
                     pose, value, broken = _climb(model, springs, start, j, lo, hi,
                                                  None if sampler is None else sampler.free)
                     climbed.append((_sig(value), -len(climbed), pose, value))
@@ -1645,7 +1661,13 @@ class Audit:
         crossings = []
         for m, spring in enumerate(dict(cases).get("realised", ())):
             if spring.pulley_radius > 0:
-                pose, angle = _nearest_approach(model, spring, q, lo, hi)
+                if sampler is None:
+                    pose, angle = _nearest_approach(model, spring, q, lo, hi)
+                else:  # from the nearest free pose, through free poses
+                    start = q[first_free(np.argsort(lead_angles(model, spring, q), kind="stable"), 1)[0]]
+                    pose, value = _compass(lambda t, s=spring: -lead_angles(model, s, t), start, lo, hi,
+                                           allowed=sampler.free)
+                    angle = -value
                 if angle < CROSSING / 3:
                     crossings.append((m, float(angle), pose.tolist()))
         unique = np.unique(np.array(worst).reshape(-1, model.n), axis=0)
@@ -1656,14 +1678,14 @@ class Audit:
             if np.any(bad) and not any(u[0] == case for u in undefined):
                 undefined.append((case, 0, unique[int(np.argmax(bad))].tolist(), why))
             keep &= ~bad
-        return cls(samples, seed, unique[keep], tuple(raised), tuple(undefined), tuple(crossings), free)
+        return cls(samples, seed, unique[keep], tuple(raised), tuple(undefined), tuple(crossings), sampler is not None)
 
     def note(self, checked: int) -> str:
         """The sample, in words, for the design's output."""
         found = ("; it found more than the check at " + ", ".join(
             f"{joint} ({case}: {own:.3g} -> {value:.3g} N m)" for case, joint, own, value in self.raised)
                  if self.raised else "; it found no peak above the check's, to 3 digits")
-        within = "" if self.free is None else f" ({self.free:,} of them in the workspace, free of collisions)"
+        within = " (those in collision left out)" if self.workspace else ""
         return (f"checked by route 2 on {checked} random poses of the workspace, then re-checked on {self.samples:,} "
                 f"independent ones{within} with a local search from the {AUDIT_STARTS} worst of them per joint and case (the {len(self.worst)} "
                 f"worst poses found join the check, so every peak and share below holds on them){found}")
@@ -1674,7 +1696,7 @@ class Audit:
                                    for m, angle, pose in self.crossings],
                 "undefined": [{"case": case, "poses": count, "first_pose_rad": pose, "why": why}
                               for case, count, pose, why in self.undefined],
-                "samples": self.samples, "in_workspace": self.free, "seed": list((self.seed, self.samples)),
+                "samples": self.samples, "workspace_only": self.workspace, "seed": list((self.seed, self.samples)),
                 "worst_poses_rad": self.worst.tolist(),
                 "raised": [{"case": case, "joint": joint, "check_peak_Nm": own, "audit_peak_Nm": value}
                            for case, joint, own, value in self.raised]}

@@ -289,10 +289,11 @@ class Clearances:
 
 
 def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Clearances:
-    """Each piece's clearance from each of the model's bodies at the poses ``q`` (N, n) rad: exact where it
-    is below ``margin`` and at each piece's nearest approach (:meth:`Clearances.worst`); elsewhere above the
-    margin, a lower bound (capsules that hold the piece and the shape screen the poses in numpy before
-    coal measures the near ones)."""
+    """Each piece's clearance from each of the model's bodies at the poses ``q`` (N, n) rad: exact at each
+    piece's nearest approach (:meth:`Clearances.worst`) and wherever it was measured; elsewhere a lower
+    bound (capsules that hold the piece and the shape screen the poses in numpy; coal measures the poses
+    in the order of those bounds, until no pose left can come nearer than one measured, or than the
+    ``margin``)."""
     coal = _coal()
     q = model.check_q(q)
     pieces = tuple(pieces)
@@ -325,9 +326,13 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Cl
         for i, (item, (Ri, ti, _)) in enumerate(zip(items, placed, strict=True)):
             Q0, Q1, r = _world_capsule(item, Ri, ti)
             G[i] = _segment_gap(a, b, Q0, Q1) - piece.radius - r
-            for p in np.flatnonzero(G[i] < margin):
+            best = np.inf  # the nearest approach to this shape, measured in the order of the screen's bounds
+            for p in np.argsort(G[i], kind="stable"):
+                if G[i, p] >= min(best, margin):
+                    break  # no pose left can come nearer than one measured, or than the margin
                 G[i, p] = exact(i, p, margin)
                 known[i, p] = G[i, p] < margin
+                best = min(best, G[i, p])
         while G.size:  # the smallest made exact: its value, link and pose are the piece's worst
             i, p = np.unravel_index(int(np.argmin(G)), G.shape)
             if known[i, p] or not np.isfinite(G[i, p]):
