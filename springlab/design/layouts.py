@@ -35,10 +35,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.design.arms import Structure, planar_moments
+from springlab.design.arms import END_GRID, RATE_DIGITS, Structure, planar_moments
 from springlab.errors import SpringlabError
 from springlab.model.revolute import RevoluteChain
 from springlab.model.springs import PointSpring
+from springlab.rounding import significant
 
 SHARE = 0.02
 """Joints whose peak gravity torque is below this share of the arm's largest get no spring by default."""
@@ -73,13 +74,17 @@ class SpringPlane:
     gG: complex
 
     def spring(self, model: RevoluteChain, c: complex, p: complex, k: float) -> PointSpring:
-        """The spring from c on the link to the post p (complex offsets from the joint, in the plane)."""
+        """The spring from c on the link to the post p (complex offsets from the joint, in the plane), its ends
+        on :data:`~springlab.design.arms.END_GRID` and its rate to
+        :data:`~springlab.design.arms.RATE_DIGITS` significant digits, as the search's: another CPU's
+        round-off (1e-16) then moves no end and no rate, and draws the same figure."""
         point = self.joint_at + c.real * self.h + c.imag * self.up + self.d * self.w
         post = self.joint_at + p.real * self.h + p.imag * self.up + self.d * self.w
         on_link = self.R0[self.link].T @ (point - self.o0[self.link])
         on_level = self.level_rotation.T @ (post - self.level_origin)
-        return PointSpring(model.bodies[self.link], tuple(float(v) for v in on_link), self.level,
-                           tuple(float(v) for v in on_level), float(k))
+        grid = lambda x: tuple(float(np.round(v / END_GRID) * END_GRID) + 0.0 for v in x)  # noqa: E731
+        return PointSpring(model.bodies[self.link], grid(on_link), self.level, grid(on_level),
+                           significant(k, RATE_DIGITS))
 
 
 @dataclass(frozen=True)
@@ -304,8 +309,10 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
             raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, even "
                                  f"{MAX_PARALLEL} side by side ({why})")
         shift = parallel * coil.outer_diameter  # beside the links by the coils' own width (side by side: all)
-        s = PointSpring(s.link_a, tuple(np.asarray(s.point_a) + shift * out_a), s.link_b,
-                        tuple(np.asarray(s.point_b) + shift * out_b), s.k)
+        grid = lambda x: tuple(float(np.round(v / END_GRID) * END_GRID) + 0.0 for v in x)  # noqa: E731
+        s = PointSpring(s.link_a, grid(np.asarray(s.point_a) + shift * out_a), s.link_b,
+                        grid(np.asarray(s.point_b) + shift * out_b), s.k)
+        lead = grid(lead)  # on the same grid: another CPU's round-off moves nothing
         k = s.k / parallel
         for m in range(parallel):
             realised.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, coil.initial_tension / k,
