@@ -1642,8 +1642,8 @@ class Audit:
             mine = np.abs(defined_torques(model, springs, check)[0])
             own = np.max(np.where(np.isnan(mine), 0.0, mine), axis=0)
             if largest is None:  # gravity's, the first case, over the workspace's poses
-                largest = max(float(tau[first_free(np.argsort(-tau[:, j], kind="stable"), 1), j].max(initial=0.0))
-                              for j in range(model.n))
+                largest = max(float(tau[first_free(np.argsort([-_sig(v) for v in tau[:, j]], kind="stable"), 1),
+                                        j].max(initial=0.0)) for j in range(model.n))
             for j in range(model.n):
                 if not np.max(tau[:, j]) > 0:
                     continue
@@ -1664,7 +1664,8 @@ class Audit:
                 if sampler is None:
                     pose, angle = _nearest_approach(model, spring, q, lo, hi)
                 else:  # from the nearest free pose, through free poses
-                    start = q[first_free(np.argsort(lead_angles(model, spring, q), kind="stable"), 1)[0]]
+                    order = np.argsort([_sig(v) for v in lead_angles(model, spring, q)], kind="stable")
+                    start = q[first_free(order, 1)[0]]
                     pose, value = _compass(lambda t, s=spring: -lead_angles(model, s, t), start, lo, hi,
                                            allowed=sampler.free)
                     angle = -value

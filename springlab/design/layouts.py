@@ -217,6 +217,15 @@ REFIT = 0.1
 """A pulley's compensation moves the lever and the post by at most this share of their lengths (the coil's
 stroke and the spring's proportion stay the layout's)."""
 
+FIT_STEPS = 1500
+"""The most steps the pulley compensation's compass search takes (each tries +- its step on every variable,
+from 0.05 down to 1e-5 of the variables' units)."""
+
+FIT_PULL = 1e-3
+"""The pulley compensation's pull towards the point-pulley design, per unit of its variables (rate and
+lengths relative to theirs, angles in rad): the torque alone leaves a shallow valley of equally good
+fits, where another CPU's round-off would land elsewhere."""
+
 ANGLES = 720
 """The link's angles (a full turn) a pulley's compensation is fitted on."""
 
@@ -241,12 +250,14 @@ def _cable_energy(x, rho: float, theta: np.ndarray, gG: complex) -> np.ndarray:
 def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho: float) -> tuple[complex, complex, float]:
     """The offsets and rate (c, p, k) that hold the link best with a pulley of radius ``rho`` (m): least
     squares on the torque dV/dtheta over a full turn of the link's angle (its gravity term and its
-    spring's energy depend on that angle alone), from the point-pulley design, the lever's and the post's
-    lengths within :data:`REFIT` of theirs, their directions and the rate free. Returns them unchanged
-    for rho = 0."""
+    spring's energy depend on that angle alone), with a small pull (:data:`FIT_PULL`) towards the
+    point-pulley design it starts from, the lever's and the post's lengths within :data:`REFIT` of theirs,
+    their directions and the rate free. The search is a compass search that compares to 9 significant
+    digits (:func:`springlab.design.arms._compass`), so another CPU's round-off takes no other step.
+    Returns them unchanged for rho = 0."""
     if rho == 0:
         return c, p, k
-    from scipy.optimize import least_squares
+    from springlab.design.arms import _compass
 
     theta = np.linspace(0.0, 2 * np.pi, ANGLES, endpoint=False)
     step = 1e-6
@@ -263,7 +274,12 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
     start = np.array([1.0, 1.0, np.angle(c), 1.0, np.angle(p)])
     lo = np.array([0.5, 1.0 - REFIT, start[2] - np.pi, 1.0 - REFIT, start[4] - np.pi])
     hi = np.array([2.0, 1.0 + REFIT, start[2] + np.pi, 1.0 + REFIT, start[4] + np.pi])
-    x = cartesian(least_squares(torque, start, bounds=(lo, hi), xtol=1e-12, ftol=1e-12).x)
+
+    def value(trials):  # the compass search maximises: minus the torques' mean square, and a pull to the start
+        return np.array([-(np.mean(torque(v) ** 2) + (FIT_PULL ** 2) * np.sum((v - start) ** 2)) for v in trials])
+
+    v, _ = _compass(value, start, lo, hi, max_steps=FIT_STEPS)
+    x = cartesian(v)
     return complex(x[1], x[2]), complex(x[3], x[4]), float(x[0])
 
 
