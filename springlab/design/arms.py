@@ -1405,12 +1405,12 @@ def _dense(model: RevoluteChain, q):
 def _nearest_approach(model: RevoluteChain, spring, q, lo, hi, frames=None, enough: float = 0.0):
     """The pose (rad) and angle (rad) where B comes nearest a cable spring's lead line
     (:func:`lead_angles`): the nearest of the poses ``q`` (``frames``: their body frames, where already
-    computed), refined by :func:`_compass` within [lo, hi] until the angle is below ``enough``."""
+    computed), refined by :func:`compass_search` within [lo, hi] until the angle is below ``enough``."""
     angle = lead_angles(model, spring, q, frames)
     start = q[int(np.argmin(angle))]
     if angle.min() < enough:  # already near enough: no need to refine
         return start, float(angle.min())
-    pose, value = _compass(lambda t: -lead_angles(model, spring, t), start, lo, hi, enough=-enough)
+    pose, value = compass_search(lambda t: -lead_angles(model, spring, t), start, lo, hi, enough=-enough)
     return pose, -value
 
 
@@ -1666,7 +1666,7 @@ class Audit:
                 else:  # from the nearest free pose, through free poses
                     order = np.argsort([_sig(v) for v in lead_angles(model, spring, q)], kind="stable")
                     start = q[first_free(order, 1)[0]]
-                    pose, value = _compass(lambda t, s=spring: -lead_angles(model, s, t), start, lo, hi,
+                    pose, value = compass_search(lambda t, s=spring: -lead_angles(model, s, t), start, lo, hi,
                                            allowed=sampler.free)
                     angle = -value
                 if angle < CROSSING / 3:
@@ -1705,7 +1705,7 @@ class Audit:
 
 def _climb(model: RevoluteChain, springs, start, j: int, lo, hi, allowed=None) -> tuple[np.ndarray, float, tuple | None]:
     """The largest |holding torque| (N m) of joint ``j`` near the pose ``start`` within the bounds [lo, hi]
-    (rad), by :func:`_compass` on route 2's torques, moving only to poses ``allowed`` (a function of poses
+    (rad), by :func:`compass_search` on route 2's torques, moving only to poses ``allowed`` (a function of poses
     (M, n) -> (M,) bool; None: all). Returns the pose, its |torque|, and the first trial pose where a
     spring had no line of action with the reason (None where every trial had one)."""
     broken = []
@@ -1716,14 +1716,14 @@ def _climb(model: RevoluteChain, springs, start, j: int, lo, hi, allowed=None) -
             broken.append((trials[int(np.argmax(np.isnan(tau[:, j])))], why))
         return np.abs(tau[:, j])  # nan where undefined: never chosen
 
-    x, best = _compass(value, start, lo, hi)
+    x, best = compass_search(value, start, lo, hi)
     if allowed is not None and not allowed(x[None])[0]:  # it climbed out of the workspace: again, within it
-        x, best = _compass(value, start, lo, hi, allowed=allowed)
+        x, best = compass_search(value, start, lo, hi, allowed=allowed)
     return x, best, broken[0] if broken else None
 
 
-def _compass(value, start, lo, hi, max_steps: int = 400, enough: float = np.inf,
-             allowed=None) -> tuple[np.ndarray, float]:
+def compass_search(value, start, lo, hi, max_steps: int = 400, enough: float = np.inf,
+                   allowed=None) -> tuple[np.ndarray, float]:
     """A compass search for the largest ``value`` (a function of poses (M, n) rad, nan where undefined)
     near the pose ``start`` within the bounds [lo, hi] (rad): each step tries +- the step on every joint
     (one call of 2n poses) and moves to the best trial where it beats the current pose (compared to 9

@@ -253,11 +253,11 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
     spring's energy depend on that angle alone), with a small pull (:data:`FIT_PULL`) towards the
     point-pulley design it starts from, the lever's and the post's lengths within :data:`REFIT` of theirs,
     their directions and the rate free. The search is a compass search that compares to 9 significant
-    digits (:func:`springlab.design.arms._compass`), so another CPU's round-off takes no other step.
+    digits (:func:`springlab.design.arms.compass_search`), so another CPU's round-off takes no other step.
     Returns them unchanged for rho = 0."""
     if rho == 0:
         return c, p, k
-    from springlab.design.arms import _compass
+    from springlab.design.arms import compass_search
 
     theta = np.linspace(0.0, 2 * np.pi, ANGLES, endpoint=False)
     step = 1e-6
@@ -278,7 +278,7 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
     def value(trials):  # the compass search maximises: minus the torques' mean square, and a pull to the start
         return np.array([-(np.mean(torque(v) ** 2) + (FIT_PULL ** 2) * np.sum((v - start) ** 2)) for v in trials])
 
-    v, _ = _compass(value, start, lo, hi, max_steps=FIT_STEPS)
+    v, _ = compass_search(value, start, lo, hi, max_steps=FIT_STEPS)
     x = cartesian(v)
     return complex(x[1], x[2]), complex(x[3], x[4]), float(x[0])
 
