@@ -15,7 +15,7 @@ the solid; the winding number of the mesh about the piece's middle decides (Jaco
 and inside, the depth is the hull's. So a clearance is never larger than the truth, and a negative
 one is a depth (m) the piece runs into the link.
 
-The same geometry defines the arm's **workspace** (:func:`free_poses`): poses within the limits where
+The same geometry defines the arm's **workspace** (:class:`Sampler`): poses within the limits where
 no two links collide but those that touch by construction, which an SRDF would disable as MoveIt's
 setup assistant does (adjacent links; pairs in collision at the zero pose; pairs in collision at
 nearly every pose), and no link passes below the mounting plane (the lowest point of the base's
@@ -69,8 +69,6 @@ class _Item:
     mesh: object | None  # a mesh's triangles (coal BVH), else None
     triangles: np.ndarray | None  # a mesh's triangles' corners (t, 3, 3), for the winding number
     points: np.ndarray  # (k, 3) points in the item's frame whose hull holds it (its lowest point is theirs)
-    centre: np.ndarray  # (3,) a sphere that holds it, in the item's frame
-    radius: float
 
     @functools.cached_property
     def capsule(self) -> tuple[np.ndarray, np.ndarray, float]:
@@ -105,7 +103,7 @@ def _items(model: RevoluteChain) -> tuple:
             else:
                 out.append(_mesh_item(coal, body, s))
                 continue
-            out.append(_Item(body, s.link, np.asarray(s.frame), geom, None, None, *_bounds(s.kind, s.size)))
+            out.append(_Item(body, s.link, np.asarray(s.frame), geom, None, None, _outer_points(s.kind, s.size)))
     items = tuple(i for i in out if i is not None)
     try:
         _CACHE[model] = items
@@ -134,28 +132,24 @@ def _mesh_item(coal, body, s):
         points = v[ConvexHull(v).vertices]
     except (QhullError, ValueError):
         points = v
-    centre = (points.min(axis=0) + points.max(axis=0)) / 2
-    return _Item(body, s.link, np.asarray(s.frame), hull, bvh, v[f], points, centre,
-                 float(np.max(np.linalg.norm(points - centre, axis=1))))
+    return _Item(body, s.link, np.asarray(s.frame), hull, bvh, v[f], points)
 
 
-def _bounds(kind: str, size) -> tuple[np.ndarray, np.ndarray, float]:
-    """A primitive's outer points (their hull holds it: a round rim's polygon circumscribes it), the
-    centre and radius of a sphere that holds it, in its own frame."""
+def _outer_points(kind: str, size) -> np.ndarray:
+    """A primitive's outer points, in its own frame: their hull holds it (a round rim's polygon
+    circumscribes it)."""
     if kind == "box":
         h = np.asarray(size, dtype=float) / 2
-        points = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * h
-        return points, np.zeros(3), float(np.linalg.norm(h))
+        return np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * h
     t = np.linspace(0.0, 2 * np.pi, 32, endpoint=False)
     ring = np.column_stack([np.cos(t), np.sin(t), np.zeros_like(t)]) / np.cos(np.pi / 32)
     if kind == "sphere":
         r = float(size[0])
         points = np.vstack([ring * r, ring[:, [0, 2, 1]] * r, ring[:, [2, 0, 1]] * r, [[0, 0, r], [0, 0, -r]]])
-        return points * np.sqrt(3), np.zeros(3), r  # the three rings' hull holds the ball once scaled by sqrt 3
+        return points * np.sqrt(3)  # the three rings' hull holds the ball once scaled by sqrt 3
     r, length = (float(v) for v in size)
     h = length / 2 + (r if kind == "capsule" else 0.0)
-    points = np.vstack([ring * r + [0, 0, -h], ring * r + [0, 0, h]])
-    return points, np.zeros(3), float(np.hypot(r, length / 2) if kind == "cylinder" else length / 2 + r)
+    return np.vstack([ring * r + [0, 0, -h], ring * r + [0, 0, h]])
 
 
 def has_geometry(model: RevoluteChain) -> bool:
@@ -304,7 +298,7 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Cl
     for item in items:
         Ri = R[:, item.body] @ item.frame[:3, :3]
         ti = np.einsum("pij,j->pi", R[:, item.body], item.frame[:3, 3]) + o[:, item.body]
-        placed.append((Ri, ti, np.einsum("pij,j->pi", Ri, item.centre) + ti))
+        placed.append((Ri, ti))
     for k, piece in enumerate(pieces):
         own = {body: (end, allowance) for body, end, allowance in piece.bodies}
         a, b = np.asarray(piece.a, dtype=float), np.asarray(piece.b, dtype=float)
@@ -318,12 +312,12 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Cl
             if found is None:
                 return np.inf
             solid, Rs, c = found
-            Ri, ti, _ = placed[i]
+            Ri, ti = placed[i]
             return _signed(coal, items[i], _transform(coal, Ri[p], ti[p]), solid, _transform(coal, Rs, c), c, near)
 
         G = np.empty((len(items), q.shape[0]))  # per shape and pose: exact below the margin, else a lower bound
         known = np.zeros(G.shape, dtype=bool)
-        for i, (item, (Ri, ti, _)) in enumerate(zip(items, placed, strict=True)):
+        for i, (item, (Ri, ti)) in enumerate(zip(items, placed, strict=True)):
             Q0, Q1, r = _world_capsule(item, Ri, ti)
             G[i] = _segment_gap(a, b, Q0, Q1) - piece.radius - r
             best = np.inf  # the nearest approach to this shape, measured in the order of the screen's bounds
@@ -341,16 +335,6 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Cl
         for i, item in enumerate(items):
             gaps[k, :, item.body] = np.minimum(gaps[k, :, item.body], G[i])
     return Clearances(pieces, gaps, tuple(model.bodies))
-
-
-@dataclass(frozen=True)
-class Workspace:
-    """Where the arm may go (:func:`free_poses`): the poses kept, the share of the limits' poses that are
-    free, and what was left unchecked by construction (a note each)."""
-
-    q: np.ndarray
-    share: float
-    notes: tuple
 
 
 def _pairs(model: RevoluteChain) -> list[tuple[int, int]]:
@@ -551,14 +535,3 @@ class Sampler:
             return self.notes[0]
         return (f"the workspace: poses within the joint ranges where no two links collide and none passes below the "
                 f"mounting plane, {100 * self.share:.0f} % of the ranges' poses ({self.drawn} drawn)")
-
-
-def free_poses(model: RevoluteChain, ranges, count: int, rng, *, calibration: int = 400) -> Workspace:
-    """``count`` random poses of the workspace (:class:`Sampler`), the share of the ranges' poses that are
-    free, and the notes.
-
-    :raises SpringlabError: when no pose of the ranges is free (every one collides)
-    """
-    sampler = Sampler(model, ranges, rng, calibration=calibration)
-    q = sampler.draw(count, rng)
-    return Workspace(q, sampler.share, (*sampler.notes, sampler.note()))

@@ -112,11 +112,6 @@ def spring_clearance(model: RevoluteChain, realised, kinds, coils, names, q, *, 
     return SpringClearance(tuple(best[n] for n in names if n in best), float(margin), int(np.asarray(q).shape[0]))
 
 
-def spring_masses(realised, kinds, coils) -> tuple:
-    """Each realised spring's mass (kg)."""
-    return tuple(float(coil.mass) for coil, _ in coils)
-
-
 def with_spring_mass(model: RevoluteChain, realised, kinds, coils, q) -> RevoluteChain:
     """The arm carrying its realised springs' mass (see the module docstring); ``q`` (N, n) rad, the poses
     a point pulley's coil direction is taken over."""
