@@ -226,7 +226,7 @@ FIT_PULL = 1e-3
 lengths relative to theirs, angles in rad): the torque alone leaves a shallow valley of equally good
 fits, where another CPU's round-off would land elsewhere."""
 
-ANGLES = 720
+ANGLES = 360
 """The link's angles (a full turn) a pulley's compensation is fitted on."""
 
 
@@ -235,21 +235,23 @@ def _cable_energy(x, rho: float, theta: np.ndarray, gG: complex) -> np.ndarray:
     spring k (x[0]) from a pulley of radius ``rho`` centred at c = x[1] + i x[2] on the link (its cable
     arriving along the lead, :data:`LEAD_TILT` out of the plane from c's direction: from the coil on the
     joint's side) to the post p = x[3] + i x[4]; route 2's path over the pulley
-    (:func:`springlab.energy.geometry.cable_geometry`: the angle alpha between the lead and B - A)."""
-    k, c, p = x[0], complex(x[1], x[2]), complex(x[3], x[4])
+    (:func:`springlab.energy.geometry.cable_geometry`: the angle alpha between the lead and B - A). ``x``
+    may hold several designs, (M, 5): the energies are then (M, len(theta))."""
+    x = np.asarray(x, dtype=float)
+    k, c, p = x[..., 0, None], (x[..., 1] + 1j * x[..., 2])[..., None], (x[..., 3] + 1j * x[..., 4])[..., None]
     turn = np.exp(1j * theta)
     A = turn * c
     D = p - A
     L = np.abs(D)
-    along = np.cos(LEAD_TILT) * np.real(np.conj(turn * c / abs(c)) * D)  # the lead's part in the plane
+    along = np.cos(LEAD_TILT) * np.real(np.conj(turn * c / np.abs(c)) * D)  # the lead's part in the plane
     alpha = np.arccos(np.clip(along / L, -1.0, 1.0))
     path = rho * (alpha + np.arcsin(np.clip(rho / L, -1, 1))) + np.sqrt(np.maximum(L**2 - rho**2, 0.0))
     return np.real(np.conj(1j) * turn * gG) + 0.5 * k * path**2
 
 
 def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho: float) -> tuple[complex, complex, float]:
-    """The offsets and rate (c, p, k) that hold the link best with a pulley of radius ``rho`` (m): least
-    squares on the torque dV/dtheta over a full turn of the link's angle (its gravity term and its
+    """The offsets and rate (c, p, k) that hold the link best with a pulley of radius ``rho`` (m): the least
+    mean square of the torque dV/dtheta over a full turn of the link's angle (its gravity term and its
     spring's energy depend on that angle alone), with a small pull (:data:`FIT_PULL`) towards the
     point-pulley design it starts from, the lever's and the post's lengths within :data:`REFIT` of theirs,
     their directions and the rate free. The search is a compass search that compares to 9 significant
@@ -262,11 +264,13 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
     theta = np.linspace(0.0, 2 * np.pi, ANGLES, endpoint=False)
     step = 1e-6
 
-    def cartesian(v):  # (k / k0, |c| / |c0|, arg c, |p| / |p0|, arg p)
-        c_, p_ = v[1] * c * np.exp(1j * (v[2] - np.angle(c))), v[3] * p * np.exp(1j * (v[4] - np.angle(p)))
-        return np.array([v[0] * k, c_.real, c_.imag, p_.real, p_.imag])
+    def cartesian(v):  # (k / k0, |c| / |c0|, arg c, |p| / |p0|, arg p), (5,) or (M, 5)
+        v = np.asarray(v, dtype=float)
+        c_ = v[..., 1] * abs(c) * np.exp(1j * v[..., 2])
+        p_ = v[..., 3] * abs(p) * np.exp(1j * v[..., 4])
+        return np.stack([v[..., 0] * k, c_.real, c_.imag, p_.real, p_.imag], axis=-1)
 
-    def torque(v):
+    def torque(v):  # dV/dtheta over |g G| at each angle, (M, len(theta)) for designs v (M, 5)
         x = cartesian(v)
         return (_cable_energy(x, rho, theta + step, plane.gG) - _cable_energy(x, rho, theta - step, plane.gG)) / (
             2 * step * abs(plane.gG))
@@ -276,7 +280,8 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
     hi = np.array([2.0, 1.0 + REFIT, start[2] + np.pi, 1.0 + REFIT, start[4] + np.pi])
 
     def value(trials):  # the compass search maximises: minus the torques' mean square, and a pull to the start
-        return np.array([-(np.mean(torque(v) ** 2) + (FIT_PULL ** 2) * np.sum((v - start) ** 2)) for v in trials])
+        trials = np.atleast_2d(trials)
+        return -(np.mean(torque(trials) ** 2, axis=1) + FIT_PULL**2 * np.sum((trials - start) ** 2, axis=1))
 
     v, _ = compass_search(value, start, lo, hi, max_steps=FIT_STEPS)
     x = cartesian(v)
