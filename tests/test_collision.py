@@ -70,9 +70,8 @@ def test_the_workspace_leaves_out_poses_in_collision_and_below_the_mount(ur5):
 def test_the_springs_own_mass_is_carried_and_costs_balance(ur5):
     from springlab.design.arms import design_model
 
-    design = design_model(ur5, samples=300, fit_poses=100, pulley_radius=0.005)  # the two-point springs
+    design = design_model(ur5, samples=300, fit_poses=100, pulley_radius=0.005, collisions=False)  # two-point
     data = design.as_dict()
-    assert data["status"]["verdict"] == "flagged"  # they do not clear the links
     shoulder = data["torques"][1]
     assert data["spring_mass_kg"] == pytest.approx(sum(s["mass_kg"] for s in data["realised"]))
     assert data["spring_mass_kg"] > 1.0
