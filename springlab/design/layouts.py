@@ -54,6 +54,12 @@ AXIAL_GAP = 0.02
 """m: how far beyond the farther of the two links' shapes, along the joint's axis, the spring runs."""
 
 
+def _on_grid(x) -> tuple:
+    """Coordinates (m, or a direction's components) rounded to :data:`~springlab.design.arms.END_GRID`, as
+    the search keeps its ends: another CPU's round-off then moves none of them."""
+    return tuple(float(np.round(v / END_GRID) * END_GRID) + 0.0 for v in x)
+
+
 @dataclass(frozen=True)
 class SpringPlane:
     """A belt spring's plane: its joint's origin (world, zero pose), the plane's axes h, up and the joint's
@@ -82,8 +88,7 @@ class SpringPlane:
         post = self.joint_at + p.real * self.h + p.imag * self.up + self.d * self.w
         on_link = self.R0[self.link].T @ (point - self.o0[self.link])
         on_level = self.level_rotation.T @ (post - self.level_origin)
-        grid = lambda x: tuple(float(np.round(v / END_GRID) * END_GRID) + 0.0 for v in x)  # noqa: E731
-        return PointSpring(model.bodies[self.link], grid(on_link), self.level, grid(on_level),
+        return PointSpring(model.bodies[self.link], _on_grid(on_link), self.level, _on_grid(on_level),
                            significant(k, RATE_DIGITS))
 
 
@@ -330,10 +335,9 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
             raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, even "
                                  f"{MAX_PARALLEL} side by side ({why})")
         shift = parallel * coil.outer_diameter  # beside the links by the coils' own width (side by side: all)
-        grid = lambda x: tuple(float(np.round(v / END_GRID) * END_GRID) + 0.0 for v in x)  # noqa: E731
-        s = PointSpring(s.link_a, grid(np.asarray(s.point_a) + shift * out_a), s.link_b,
-                        grid(np.asarray(s.point_b) + shift * out_b), s.k)
-        lead = grid(lead)  # on the same grid: another CPU's round-off moves nothing
+        s = PointSpring(s.link_a, _on_grid(np.asarray(s.point_a) + shift * out_a), s.link_b,
+                        _on_grid(np.asarray(s.point_b) + shift * out_b), s.k)
+        lead = _on_grid(lead)  # on the same grid: another CPU's round-off moves nothing
         k = s.k / parallel
         for m in range(parallel):
             realised.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, coil.initial_tension / k,
