@@ -1190,7 +1190,7 @@ def _coil_fields(kind: str, coil, span) -> dict:
            "wire_diameter": coil.wire, "mean_diameter": coil.mean_diameter, "body_coils": coil.body_coils,
            "material": coil.material, "end_distance_range": list(span)}
     if kind.startswith("cable over a pulley"):
-        out["cable_offset"] = coil.free_length - coil.initial_tension / coil.rate
+        out["cable_offset"] = coil.cable_offset
     return out
 
 

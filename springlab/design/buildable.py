@@ -217,6 +217,12 @@ class ExtensionSpring:
         return self.mean_diameter + self.wire
 
     @property
+    def cable_offset(self) -> float:
+        """L_0 - F_i / k (m): what a cable realisation adds to its path so that the coil pulls k times the
+        path (the coil's length is the path plus this)."""
+        return self.free_length - self.initial_tension / self.rate
+
+    @property
     def mass(self) -> float:
         """The spring's mass (kg): its wire, pi d^2 / 4 times its length pi D (N_b + 2) (the body coils and a
         full loop for each machine hook), at :data:`STEEL_DENSITY`."""

@@ -68,18 +68,19 @@ class _Item:
     convex: object  # coal geometry: the shape itself, or a mesh's hull
     mesh: object | None  # a mesh's triangles (coal BVH), else None
     triangles: np.ndarray | None  # a mesh's triangles' corners (t, 3, 3), for the winding number
-    points: np.ndarray  # (k, 3) points in the item's frame whose hull holds it (its lowest point is theirs)
+    points: np.ndarray  # (k, 3) points in the item's frame: the item is their hull swollen by ``pad``
+    pad: float = 0.0  # m: a sphere is its centre swollen by its radius, a capsule its axis' ends
 
     @functools.cached_property
     def capsule(self) -> tuple[np.ndarray, np.ndarray, float]:
         """A capsule that holds the item (its ends, in the item's frame, and radius): along the points'
-        principal axis, from their least to their largest reach along it."""
+        principal axis, from their least to their largest reach along it, swollen by the pad."""
         p = self.points
         c = p.mean(axis=0)
         axis = np.linalg.svd(p - c, full_matrices=False)[2][0] if len(p) > 1 else np.array([0.0, 0.0, 1.0])
         t = (p - c) @ axis
         r = float(np.max(np.linalg.norm((p - c) - np.outer(t, axis), axis=1))) if len(p) else 0.0
-        return c + t.min() * axis, c + t.max() * axis, r
+        return c + t.min() * axis, c + t.max() * axis, r + self.pad
 
 
 def _items(model: RevoluteChain) -> tuple:
@@ -103,7 +104,7 @@ def _items(model: RevoluteChain) -> tuple:
             else:
                 out.append(_mesh_item(coal, body, s))
                 continue
-            out.append(_Item(body, s.link, np.asarray(s.frame), geom, None, None, _outer_points(s.kind, s.size)))
+            out.append(_Item(body, s.link, np.asarray(s.frame), geom, None, None, *_outer_points(s.kind, s.size)))
     items = tuple(i for i in out if i is not None)
     try:
         _CACHE[model] = items
@@ -135,21 +136,21 @@ def _mesh_item(coal, body, s):
     return _Item(body, s.link, np.asarray(s.frame), hull, bvh, v[f], points)
 
 
-def _outer_points(kind: str, size) -> np.ndarray:
-    """A primitive's outer points, in its own frame: their hull holds it (a round rim's polygon
-    circumscribes it)."""
+def _outer_points(kind: str, size) -> tuple[np.ndarray, float]:
+    """A primitive as points in its own frame and a pad: the points' hull swollen by the pad holds it,
+    exactly for a box, a sphere (its centre, padded by its radius) and a capsule (its axis' two ends), and
+    a cylinder's rims by polygons that circumscribe them."""
     if kind == "box":
         h = np.asarray(size, dtype=float) / 2
-        return np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * h
+        return np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * h, 0.0
+    if kind == "sphere":
+        return np.zeros((1, 3)), float(size[0])
+    r, length = (float(v) for v in size)
+    if kind == "capsule":
+        return np.array([[0.0, 0.0, -length / 2], [0.0, 0.0, length / 2]]), r
     t = np.linspace(0.0, 2 * np.pi, 32, endpoint=False)
     ring = np.column_stack([np.cos(t), np.sin(t), np.zeros_like(t)]) / np.cos(np.pi / 32)
-    if kind == "sphere":
-        r = float(size[0])
-        points = np.vstack([ring * r, ring[:, [0, 2, 1]] * r, ring[:, [2, 0, 1]] * r, [[0, 0, r], [0, 0, -r]]])
-        return points * np.sqrt(3)  # the three rings' hull holds the ball once scaled by sqrt 3
-    r, length = (float(v) for v in size)
-    h = length / 2 + (r if kind == "capsule" else 0.0)
-    return np.vstack([ring * r + [0, 0, -h], ring * r + [0, 0, h]])
+    return np.vstack([ring * r + [0, 0, -length / 2], ring * r + [0, 0, length / 2]]), 0.0
 
 
 def has_geometry(model: RevoluteChain) -> bool:
@@ -351,21 +352,10 @@ def mounting_plane(model: RevoluteChain) -> float:
     base frame's origin when it has none."""
     if model in _PLANES:
         return _PLANES[model]
-    coal = _coal()
     base = [i for i in _items(model) if i.body == 0]
-    _PLANES[model] = plane = min((_lowest(coal, item, model.up) for item in base), default=0.0)
+    _PLANES[model] = plane = min((float(np.min((i.points @ i.frame[:3, :3].T + i.frame[:3, 3]) @ model.up)) - i.pad
+                                  for i in base), default=0.0)
     return plane
-
-
-def _lowest(coal, item: _Item, up) -> float:
-    if item.triangles is not None:
-        points = item.triangles.reshape(-1, 3) @ item.frame[:3, :3].T + item.frame[:3, 3]
-        return float(np.min(points @ up))
-    T = item.frame
-    hs = coal.Halfspace(np.asarray(up, dtype=float), -1e3)  # far below: the distance is the lowest point's height
-    d = coal.distance(hs, coal.Transform3s(), item.convex, _transform(coal, T[:3, :3], T[:3, 3]),
-                      coal.DistanceRequest(), coal.DistanceResult())
-    return float(d - 1e3)
 
 
 def collision_masks(model: RevoluteChain, q, *, pairs=None, below=None, first: bool = False) -> tuple[np.ndarray, np.ndarray]:
@@ -392,7 +382,7 @@ def collision_masks(model: RevoluteChain, q, *, pairs=None, below=None, first: b
         if item.body and (below is None or item.body in below):
             Q0, Q1, r = capsules[k]
             maybe = np.flatnonzero(np.minimum(Q0 @ up, Q1 @ up) - r < plane)  # the capsule that holds it dips
-            heights = np.einsum("pij,i->pj", Rw[k][maybe], up) @ item.points.T + (tw[k][maybe] @ up)[:, None]
+            heights = np.einsum("pij,i->pj", Rw[k][maybe], up) @ item.points.T + (tw[k][maybe] @ up)[:, None] - item.pad
             low[maybe, item.body] |= heights.min(axis=1) < plane
     by_body: dict = {}
     for k, item in enumerate(items):

@@ -68,8 +68,7 @@ def spring_pieces(model: RevoluteChain, realised, kinds, coils, names, q) -> lis
         rho = s.pulley_radius
         u = R[:, ia] @ _lead(model, s, R, o, ia, A, B)
         path, T = cable_geometry(A, B, u, rho) if rho > 0 else (np.linalg.norm(B - A, axis=1), A)
-        offset = coil.free_length - coil.initial_tension / coil.rate
-        length = np.clip(path + offset, coil.free_length, None)  # the coil's length at each pose
+        length = np.clip(path + coil.cable_offset, coil.free_length, None)  # the coil's length at each pose
         fixed = A - u * (rho + HOOK_GAP + coil.max_length)
         moving = fixed + u * length[:, None]
         out.append(Piece(f"{name} coil", fixed, moving, coil.outer_diameter / 2, ((ia, "a", ALLOWANCE),)))
@@ -132,8 +131,7 @@ def with_spring_mass(model: RevoluteChain, realised, kinds, coils, q) -> Revolut
             raise SpringlabError(f"{s.label}: a cable spring's coil rides on link_a, here a belt's frame; give the "
                                  "belt's end as link_b")
         u = _lead(model, s, R, o, ia, world_points(R, o, ia, pa), world_points(R, o, ib, pb))
-        offset = coil.free_length - coil.initial_tension / coil.rate
-        mid = (min(span) + max(span)) / 2 + offset  # the coil's length at mid-stroke
+        mid = (min(span) + max(span)) / 2 + coil.cable_offset  # the coil's length at mid-stroke
         behind = s.pulley_radius + HOOK_GAP + coil.max_length - mid / 2  # its centre, from A along -lead
         out = out.with_point_mass(model.bodies[ia], pa - behind * u, m)
     return out

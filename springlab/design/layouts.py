@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.design.arms import END_GRID, RATE_DIGITS, Structure, planar_moments
+from springlab.design.arms import END_GRID, PARALLEL, RATE_DIGITS, Structure, planar_moments
 from springlab.errors import SpringlabError
 from springlab.model.revolute import RevoluteChain
 from springlab.model.springs import PointSpring
@@ -137,7 +137,7 @@ def without_light(model: RevoluteChain, found: Structure, share: float, q) -> St
         return found
     R, _ = body_frames(model, model.check_q(q))
     w = joint_axes(model, R)
-    vertical = np.all(np.linalg.norm(np.cross(w, model.up), axis=-1) <= 1e-5, axis=0)
+    vertical = np.all(np.linalg.norm(np.cross(w, model.up), axis=-1) <= PARALLEL, axis=0)
     loaded = tuple(i for i in found.loaded if i not in light)
     planar, why = planar_chain(model, loaded, w, vertical, model.up)
     reasons = dict(found.reasons) | {i: f"light: at most {peak[i]:.3g} N m, {100 * peak[i] / largest:.2g} % of the "
