@@ -41,7 +41,7 @@ def main() -> None:
         left = np.max(np.abs(geometry.joint_torques(design.massed, design.realised, design.q)), axis=0)
         shares = ", ".join(f"{100 * (1 - left[i] / peak[i]):.1f}" for i in design.structure.loaded)
         gaps = [row[4] for row in design.clearance.rows] if design.clearance else []
-        mass = sum(coil.mass for coil, _ in design.coils)
+        mass = sum(fit.coil.mass for fit in design.coils)
         status = "passed" if not design.flags() else f"flagged ({len(design.flags())})"
         rows.append((label, design.method.split(":")[0], len(design.realised), shares,
                      f"{1e3 * min(gaps):.0f}" if gaps else "-", f"{mass:.2f} / {float(np.sum(model.mass[1:])):.1f}",

@@ -19,20 +19,22 @@ from springlab.workbench.cli import main
 
 @pytest.fixture(scope="module")
 def ur5():
-    return design_model(load_robot("UR5"), pulley_radius=0.005, layout="belts", samples=600)
+    return design_model(load_robot("UR5"), pulley_radius=None, layout="belts", samples=600)
 
 
 def test_the_ur5s_belt_springs_clear_its_links_and_hold_it_with_their_own_weight(ur5):
-    assert len(ur5.realised) == 2 and ur5.flags() == ()
+    assert len(ur5.ideal) == 2 and len(ur5.realised) <= 3 and ur5.flags() == ()
     assert all(gap >= 0.005 for *_, gap in ur5.clearance.rows)  # m: the margin, on the URDF's own meshes
     q = ur5.q
-    gravity = np.abs(gravity_torques(ur5.model, q)).max(axis=0)
-    for arm in (ur5.model, ur5.massed):  # as realised over 5 mm pulleys, and carrying the springs' steel
-        left = np.abs(joint_torques(arm, ur5.realised, q)).max(axis=0)
-        assert np.all(1 - left[1:3] / gravity[1:3] >= 0.95)  # the shoulder's and the elbow's peaks
+    gravity = np.abs(gravity_torques(ur5.massed, q)).max(axis=0)
+    left = np.abs(joint_torques(ur5.massed, ur5.realised, q)).max(axis=0)  # carrying the springs' hardware
+    assert np.all(1 - left[1:3] / gravity[1:3] >= 0.95)  # the shoulder's and the elbow's peaks
+    bare = np.abs(joint_torques(ur5.model, ur5.realised, q)).max(axis=0)  # the control: the hardware's mass left
+    assert 1 - bare[1] / np.abs(gravity_torques(ur5.model, q)).max(axis=0)[1] < 0.95  # out, the shoulder is not held
     assert any("wrist_1_joint carries" in note and "no spring" in note for note in ur5.notes)
-    frames = [s.get("frame_b") for s in ur5.as_dict()["realised"]]
-    assert frames == [None, {"at_joint": "elbow_joint", "axes_of": "shoulder_link"}]
+    for s in ur5.as_dict()["realised"]:
+        assert s.get("frame_b") == ({"at_joint": "elbow_joint", "axes_of": "shoulder_link"} if s["realises"] == "S2"
+                                    else None)
 
 
 def test_the_clearance_is_pinocchios_on_the_same_urdf(ur5):
@@ -58,10 +60,14 @@ def test_the_clearance_is_pinocchios_on_the_same_urdf(ur5):
             if own == body:
                 u = (b - a) / np.linalg.norm(b - a)
                 a, b = (a + allowance * u, b) if end == "a" else (a, b - allowance * u)
-        z = (b - a) / np.linalg.norm(b - a)
-        x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
-        x /= np.linalg.norm(x)
-        capsule = coal.Capsule(piece.radius, float(np.linalg.norm(b - a)))
+        if np.linalg.norm(b - a) == 0:  # a pulley: a ball
+            z, x = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0])
+            capsule = coal.Sphere(piece.radius)
+        else:
+            z = (b - a) / np.linalg.norm(b - a)
+            x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
+            x /= np.linalg.norm(x)
+            capsule = coal.Capsule(piece.radius, float(np.linalg.norm(b - a)))
         placed = coal.Transform3s(np.column_stack([x, np.cross(z, x), z]), (a + b) / 2)
         theirs = min(coal.distance(obj.geometry, coal.Transform3s(gdata.oMg[i].rotation, gdata.oMg[i].translation),
                                    capsule, placed, coal.DistanceRequest(), coal.DistanceResult())
@@ -75,10 +81,14 @@ def test_springs_in_the_links_plane_are_caught(ur5):
     # offset, which changes no length's variation and so not the balance) run through the links
     model = load_robot("UR5")
     layout = belt_layout(model, structure(model, ur5.q))
-    inside = [dataclasses.replace(plane, d=0.0).spring(layout.model, *_offsets(plane, s), s.k)
-              for plane, s in zip(layout.planes, layout.springs, strict=True)]
-    found = spring_clearance(layout.model, inside, ur5.kinds, ur5.coils, ("S1", "S2"), ur5.q)
+    inside = []
+    for s, i in zip(ur5.realised, ur5.origins, strict=True):
+        plane = layout.planes[i]
+        moved = dataclasses.replace(plane, d=0.0).spring(layout.model, *_offsets(plane, s), s.k)
+        inside.append(dataclasses.replace(s, point_a=moved.point_a, point_b=moved.point_b))
+    found = spring_clearance(layout.model, inside, ur5.kinds, ur5.coils, ur5.realised_names, ur5.q)
     assert any(gap < 0 for *_, gap in found.rows)
+    assert not ur5.clearance.failing()  # the control: where the layout puts them, they clear
 
 
 def _offsets(plane, s):
@@ -103,8 +113,8 @@ def test_the_cli_designs_belts_and_refuses_what_it_cannot(tmp_path, capsys):
     assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--quiet"]) == 0  # the default: auto
     data = json.loads(out.read_text())
     assert data["status"]["verdict"] == "passed" and data["inputs"]["layout"] == "auto"
-    assert data["method"].startswith("belts") and len(data["realised"]) == 2
-    assert data["clearance"]["clears"] and data["spring_mass_kg"] < 0.1 * 16.99  # under a tenth of the arm
+    assert data["method"].startswith("belts") and len(data["ideal"]) == 2 and len(data["realised"]) <= 3
+    assert data["clearance"]["clears"] and data["spring_mass_kg"] < 0.2 * 16.99  # under a fifth of the arm
     for bad in (["--share", "1.5"], ["--share", "0.1", "--layout", "two-point"]):  # out of range; not for two-point
         args = ["design", str(robot_urdf("UR5")), *bad, "--json", str(tmp_path / "x.json"), "--quiet"]
         assert main(args) == 2 and "--share" in capsys.readouterr().err

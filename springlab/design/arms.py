@@ -37,6 +37,7 @@ round-off, which differs from one CPU to another, decides none of its choices.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -928,6 +929,8 @@ class ArmDesign:
     :ivar massed: the arm carrying its realised springs' own mass
         (:func:`~springlab.design.hardware.with_spring_mass`), or None
     :ivar workspace: what the workspace is (:class:`~springlab.design.collision.Sampler`'s note)
+    :ivar carried: whether the springs were designed for the arm carrying their hardware (:attr:`massed`;
+        the belt layout), so that their checks are made on it
     """
 
     model: RevoluteChain
@@ -947,6 +950,7 @@ class ArmDesign:
     clearance: object = None
     massed: RevoluteChain | None = None
     workspace: str = ""
+    carried: bool = False
 
     @property
     def names(self) -> tuple:
@@ -982,7 +986,7 @@ class ArmDesign:
                          [(name, s.link_a, mm(s.point_a), s.link_b, mm(s.point_b), f"{s.k:.4g}")
                           for name, s in zip(self.names, self.ideal, strict=True)])
         rows = []
-        for n, r, kind, (coil, _) in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
+        for n, r, kind, (coil, *_) in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
             pulley = (f"{1e3 * r.pulley_radius:g}, lead ({', '.join(f'{v + 0.0:.2f}' for v in r.lead)})"
                       if r.pulley_radius > 0 else "")
             rows.append((n, r.link_a, mm(r.point_a), r.link_b, mm(r.point_b), f"{r.k:.4g}", kind, pulley,
@@ -1002,7 +1006,7 @@ class ArmDesign:
 
         mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
         rows = []
-        for n, r, kind, (coil, _) in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
+        for n, r, kind, (coil, *_) in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
             cable = kind.startswith("cable")
             rows.append((n, f"{r.link_a} {mm(r.point_a)}", f"{r.link_b} {mm(r.point_b)}", kind, *coil_cells(coil),
                          f"{1e3 * (coil.free_length - r.free_length):.1f}" if cable else "",
@@ -1016,12 +1020,14 @@ class ArmDesign:
         """The realised springs as wound, each coil's initial tension, free length and rate multiplied by
         the factors (1: as specified; :data:`~springlab.design.buildable.TOLERANCES`). A cable's length
         stays as cut: its offset c = L_0 - F_i / k is kept, so the force along its path is
-        F_i' + k' (path + c - L_0')."""
+        F_i' + k' (path + c - L_0'); over a pulley block of ratio n the coil moves path / n and the cable
+        pulls (F_i' + k' (path / n + c - L_0')) / n, a spring of rate k' / n^2, initial tension F_i' / n and
+        free length n (L_0' - c) along the path."""
         out = []
-        for r, (coil, _) in zip(self.realised, self.coils, strict=True):
-            offset = coil.free_length - r.free_length  # the cable's offset; 0 for a zero-length spring
+        for r, (coil, _, ratio, _) in zip(self.realised, self.coils, strict=True):
+            offset = coil.free_length - r.free_length / ratio  # the cable's offset; 0 for a zero-length spring
             k = r.k * _checks.positive("stiffness", stiffness)
-            L0 = coil.free_length * _checks.positive("free_length", free_length) - offset
+            L0 = ratio * (coil.free_length * _checks.positive("free_length", free_length) - offset)
             Fi = r.initial_tension * _checks.positive("tension", tension)
             fields = {"free_length": L0, "initial_tension": Fi} if L0 >= 0 else {"free_length": 0.0,
                                                                                   "initial_tension": Fi - k * L0}
@@ -1064,10 +1070,16 @@ class ArmDesign:
                      + [("(left out)", self.names[i], why) for i, why in self.left_out])
 
     def flags(self, factor: float = 0.9) -> tuple:
-        """What makes this design fail its own checks, in words (empty: it passes): the ideal springs
+        """What makes this design fail its own checks, in words (empty: it passes): its balance
+        (:meth:`balance_flags`) and its hardware (:meth:`hardware_flags`)."""
+        return self.balance_flags(factor) + self.hardware_flags()
+
+    def balance_flags(self, factor: float = 0.9) -> tuple:
+        """What makes its balance fail, in words: the ideal springs
         leaving no less than their negative control (every rate times ``factor``), or any joint left with
         more holding torque by the ideal or the realised springs than by gravity alone (above round-off:
-        1e-9 of the arm's largest gravity torque)."""
+        1e-9 of the arm's largest gravity torque), a spring with no line of action or whose cable's end
+        crosses its lead, a spring that does not clear the links."""
         out = []
         designed, control = self.control(factor)
         if self.ideal and _sig(control) <= _sig(designed):
@@ -1090,13 +1102,13 @@ class ArmDesign:
                      f"comes within {1e3 * gap:.1f} mm of {link}, less than the {1e3 * self.clearance.margin:g} mm margin")
             out.append(f"the realised spring {spring}'s {piece} {depth} (at {np.round(np.degrees(self.q[pose]), 1).tolist()} "
                        "deg): it cannot be mounted as drawn")
-        gravity = np.max(np.abs(gravity_torques(self.model, self.q)), axis=0)
+        gravity = np.max(np.abs(gravity_torques(self.designed_for, self.q)), axis=0)
         floor = 1e-9 * max(float(np.max(gravity)), 1e-300)
         for which in ("ideal", "realised"):
             springs = getattr(self, which)
             if not springs:
                 continue
-            left = np.max(np.abs(joint_torques(self.model, springs, self.q)), axis=0)
+            left = np.max(np.abs(joint_torques(self.designed_for, springs, self.q)), axis=0)
             for i in np.flatnonzero(left > gravity * (1 + 1e-9) + floor):
                 more = (f"{100 * (left[i] / gravity[i] - 1):.0f} % more than gravity alone, {gravity[i]:.3g} N m"
                         if gravity[i] > floor else "where gravity alone needs none")
@@ -1104,13 +1116,47 @@ class ArmDesign:
                            f"({100 * left[i] / np.max(gravity):.2g} % of the arm's largest gravity torque)")
         return tuple(out)
 
+    def hardware_flags(self) -> tuple:
+        """What its hardware cannot do: a cable spring with no stocked cable for its pull, a cable pulled past
+        its working load, a pulley smaller than its cable's D/d asks for, a coil longer in service than the
+        link it lies on (:func:`springlab.design.hardware.link_length`)."""
+        from springlab.design.hardware import link_length
+
+        out = []
+        for name, r, kind, fit in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
+            if not kind.startswith("cable"):
+                continue
+            pull = r.k * float(fit.span[1])
+            if fit.cable is None:
+                out.append(f"the realised spring {name}'s cable pulls {pull:.4g} N: no stocked cable carries it")
+                continue
+            if fit.cable.working < pull * (1 - 1e-9):
+                out.append(f"the realised spring {name}'s cable ({fit.cable.name}) pulls {pull:.4g} N, more than its "
+                           f"working load {fit.cable.working:.4g} N")
+            if r.pulley_radius > 0 and not fit.cable.fits(r.pulley_radius):
+                out.append(f"the realised spring {name}'s pulley ({1e3 * r.pulley_radius:g} mm to the cable's centre) is "
+                           f"smaller than its cable ({fit.cable.name}) asks for, {1e3 * fit.cable.pulley_radius:g} mm "
+                           f"(D/d {fit.cable.ratio:g}): give a larger --pulley-radius, or leave it to be sized")
+            room = link_length(self.model, self.model.locate(r.link_a, r.point_a)[0])
+            if fit.coil.max_length > room * (1 + 1e-9):
+                out.append(f"the realised spring {name}'s coil is {1e3 * fit.coil.max_length:.0f} mm long in service, "
+                           f"longer than its link {r.link_a} ({1e3 * room:.0f} mm from its joint to the next)")
+        return tuple(out)
+
     def control(self, factor: float = 0.9) -> tuple[float, float]:
         """The negative control: the largest holding torque (N m, over joints and the workspace poses)
         of the ideal springs as designed and with every rate times ``factor``. A check that cannot
         fail checks nothing: the scaled springs must leave more."""
         scaled = [s.scaled(factor) for s in self.ideal]
-        return (float(np.max(np.abs(joint_torques(self.model, self.ideal, self.q)))),
-                float(np.max(np.abs(joint_torques(self.model, scaled, self.q)))))
+        arm = self.designed_for
+        return (float(np.max(np.abs(joint_torques(arm, self.ideal, self.q)))),
+                float(np.max(np.abs(joint_torques(arm, scaled, self.q)))))
+
+    @property
+    def designed_for(self) -> RevoluteChain:
+        """The arm the springs were designed for: carrying their hardware's mass where the layout designed
+        for it (:attr:`carried`), else the arm alone."""
+        return self.massed if self.carried and self.massed is not None else self.model
 
     def removed(self, which: str = "ideal") -> np.ndarray:
         """Per joint, the percentage of its peak gravity torque the springs remove (nan where unloaded)."""
@@ -1146,7 +1192,7 @@ class ArmDesign:
         hardware = [{"mass_kg": coil.mass, "coil_outer_diameter": coil.outer_diameter}
                     | ({"clearance_m": near[n][4], "nearest_link": near[n][2], "nearest_piece": near[n][1],
                         "nearest_pose": self.q[near[n][3]].tolist()} if n in near else {})
-                    for n, (coil, _) in zip(self.realised_names, self.coils, strict=True)]
+                    for n, (coil, *_) in zip(self.realised_names, self.coils, strict=True)]
         return {"arm": self.model.name, "method": self.method,
                 "status": {"verdict": "flagged" if flags else "passed", "flags": list(flags)},
                 "joints": list(self.model.joints),
@@ -1157,7 +1203,7 @@ class ArmDesign:
                           for name, s in zip(self.names, self.ideal, strict=True)],
                 "realised": [{"name": name, "realises": self.names[i], "changed": why} | s.as_dict()
                              | belt_frames(self.model, s) | _coil_fields(kind, coil, span) | extra
-                             for name, i, why, s, kind, (coil, span), extra in zip(
+                             for name, i, why, s, kind, (coil, span, *_), extra in zip(
                                  self.realised_names, origins, changes, self.realised, self.kinds, self.coils,
                                  hardware, strict=True)],
                 "workspace": self.workspace,
@@ -1225,7 +1271,9 @@ def realise_springs(model: RevoluteChain, springs, q, *, material: str = "music 
 def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach, fit, max_stiffness):
     """:func:`realise_springs`, with a fourth tuple: per realised spring, the index of the ideal
     spring it realises."""
-    from springlab.design.buildable import cable_spring, zero_length_spring
+    from springlab.design.buildable import Fitted, cable_spring, zero_length_spring
+    from springlab.design.hardware import link_length
+    from springlab.design.layouts import _cable_for, _coil_for
 
     q = model.check_q(q)
     pulley_radius = _checks.positive("pulley_radius", pulley_radius, allow_zero=True, unit="m")
@@ -1283,7 +1331,7 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
         if kind == "zero-length spring":
             out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, coil.free_length, s.k * coil.free_length))
             names.append(kind)
-            coils.append((coil, detail))
+            coils.append(Fitted(coil, detail))
             continue
         if s.k < DROP_RATE * springs[i].k:
             names.append(f"not realised: spring S{i + 1} ({s.label}): the re-balance over the pulleys took its rate "
@@ -1293,11 +1341,10 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
             coils.append(None)
             continue
         lengths = length_range(model, s, R, o)
-        coil, why_cable = cable_spring(s.k, lengths, material)
-        parallel = 1
-        while coil is None and parallel < MAX_PARALLEL:  # too strong for one wire: side by side, k / m each
-            parallel += 1
-            coil, _ = cable_spring(s.k / parallel, lengths, material)
+        room = link_length(model, model.locate(s.link_a, s.point_a)[0])
+        found = _coil_for(s.k, lengths, room, material)  # side by side where one wire is too weak, over a block
+        coil, why_cable = (found[0], found[1]) if found[0] is None else (found[0], "")  # where too long for its link
+        ratio, parallel = (found[1], found[2]) if coil is not None else (1, 1)
         if coil is None:
             names.append(f"not realised: spring S{i + 1} ({s.label}, k = {s.k:.4g} N/m): no zero-length spring "
                          f"({detail}) and no cable spring ({why_cable}), nor {MAX_PARALLEL} side by side")
@@ -1305,16 +1352,37 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
             coils.append(None)
             continue
         k = s.k / parallel
+        try:  # the stocked cable that carries its pull (the flags say when the pulley is too small for it)
+            rope = _cable_for(k * lengths[1], s.pulley_radius)
+        except SpringlabError:
+            rope = None
+        tension = coil.initial_tension / ratio  # along the cable: a block divides the coil's pull
+        single = parallel > 1 and _coil_for(s.k, lengths, np.inf, material)[0] is not None
         for m in range(parallel):
             if m:
                 origins.append(i)
-            out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, coil.initial_tension / k,
-                                   coil.initial_tension, s.pulley_radius, s.lead))
-            names.append("cable over a pulley" + (f" ({m + 1} of {parallel} side by side)" if parallel > 1 else "")
+            out.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, tension / k,
+                                   tension, s.pulley_radius, s.lead))
+            names.append("cable over a pulley" + (f", with a {ratio}:1 pulley block" if ratio > 1 else "")
+                         + (f" ({m + 1} of {parallel} side by side" + (", so that each coil fit its link)" if single
+                                                                      else ")") if parallel > 1 else "")
                          + (" (a point pulley: its ends come within twice the pulley's radius)" if i in near else ""))
-            coils.append((coil, lengths))
+            coils.append(Fitted(coil, lengths, ratio, rope))
     return tuple(out), tuple(names), tuple(coils), tuple(origins)
 
+
+def _sized_pulley(model: RevoluteChain, springs, q) -> float:
+    """The two-point springs' one pulley radius (m), sized to the cable of the largest pull (N) any of them
+    pulls over the poses ``q`` (:mod:`springlab.design.cables`: the rope maker's D/d); the strongest
+    cable's where none carries it (the flags then say so)."""
+    from springlab.design.cables import CABLES, choose_cable
+
+    R, o = body_frames(model, q)
+    pull = max((s.k * length_range(model, s, R, o)[1] for s in springs), default=0.0)
+    try:
+        return choose_cable(pull).pulley_radius
+    except SpringlabError:
+        return CABLES[-1].pulley_radius
 
 CARRY_ROUNDS = 2
 """How many times the belt layout is designed again for the arm carrying the springs it found (their masses
@@ -1809,7 +1877,10 @@ def _defined(model: RevoluteChain, spring, q) -> bool:
 def realisation_changes(model: RevoluteChain, ideal, realised, kinds, origins) -> tuple:
     """Per realised spring, what the realisation changed of the ideal spring it realises (``origins``:
     its index), and why, in words: the rate (N/m, and the share), each end's move (mm), the pulley and
-    its lead, a split side by side; or that only its free length and initial tension were chosen."""
+    its lead, a pulley block, a split side by side; or that only its free length and initial tension
+    were chosen."""
+    from springlab.design.layouts import side_by_side
+
     out = []
     for r, kind, i in zip(realised, kinds, origins, strict=True):
         s = ideal[i]
@@ -1835,9 +1906,13 @@ def realisation_changes(model: RevoluteChain, ideal, realised, kinds, origins) -
                "from) chosen for the least torque left" if r.pulley_radius > 0 else
                "a cable over a point pulley at end A (its coil on link A), the force k times |B - A|")
         text = how + ("; " + ", ".join(parts) + " (" + why + ")" if parts else "; the designed rate and ends")
+        ratio = re.search(r"(\d):1 pulley block", kind)
+        if ratio:
+            text += (f"; over a {ratio.group(1)}:1 pulley block (its coil moves 1/{ratio.group(1)} of the cable's path "
+                     f"at {ratio.group(1)} times its pull): a coil on the cable alone would be longer than its link")
         count = origins.count(i)
         if count > 1:
-            text += f"; one of {count} side by side at k / {count} each: no stocked wire carries its force alone"
+            text += f"; one of {count} side by side at k / {count} each: {side_by_side(kind)}"
         out.append(text)
     return tuple(out)
 
@@ -1845,8 +1920,9 @@ def realisation_changes(model: RevoluteChain, ideal, realised, kinds, origins) -
 def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, fit_poses: int = 300, seed: int = 1,
                  target: float = 0.1, reach: float | None = None, max_springs: int = 8,
                  max_stiffness: float = MAX_STIFFNESS, material: str = "music wire",
-                 pulley_radius: float = 0.0, tag: str = "S", margin: float | None = None,
-                 collisions: bool = True, layout: str = "two-point", share: float | None = None) -> ArmDesign:
+                 pulley_radius: float | None = 0.0, tag: str = "S", margin: float | None = None,
+                 collisions: bool = True, layout: str = "two-point", share: float | None = None,
+                 cable=None) -> ArmDesign:
     """Springs for an arm of the general model over its workspace (:func:`workspace_ranges`): its
     structure (:func:`structure`); the exact planar springs where its loaded joints form a planar
     chain (:func:`planar_springs`), else the best springs (:func:`best_springs`, fitted on
@@ -1866,8 +1942,11 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     ``layout='belts'`` (a planar loaded chain only): one spring per loaded link from a post on a level
     frame a 1:1 belt carries to the link's joint (:func:`springlab.design.layouts.belt_layout`), its coil
     along the link, the pulley compensated for; joints below ``share`` of the largest gravity peak
-    (default :data:`springlab.design.layouts.SHARE`) get none. ``'two-point'`` (default): springs between
-    two links' points, exact for a planar chain, else the best springs."""
+    (default :data:`springlab.design.layouts.SHARE`) get none; each cable is the stocked one that carries
+    its pull (:mod:`springlab.design.cables`, or ``cable``), over a pulley sized to it
+    (``pulley_radius=None``) or of ``pulley_radius`` (m). ``'two-point'`` (default): springs between two
+    links' points, exact for a planar chain, else the best springs, their cables over pulleys of
+    ``pulley_radius`` (None: sized to the cable of the largest pull)."""
     if layout not in ("two-point", "belts", "auto"):
         raise SpringlabError(f"layout = {layout!r}: give 'two-point' (springs between two links), 'belts' (a level "
                              "reference carried to each loaded joint) or 'auto' (belts where the arm allows them)")
@@ -1879,7 +1958,9 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     if not (isinstance(tag, str) and tag.isalpha() and tag.isupper()):
         raise SpringlabError(f"tag = {tag!r}: give capital letters, e.g. 'S' (springs S1, S2, ...) or 'P'")
     samples = _checks.count("samples", samples, least=1)
-    _check_pulley(model, pulley_radius)
+    sized = pulley_radius is None  # the pulleys sized to their cables
+    if not sized:
+        _check_pulley(model, pulley_radius)
     ranges = workspace_ranges(model, workspace)
     rng = np.random.default_rng(seed)
     sampler = Sampler(model, ranges, np.random.default_rng([seed, 17])) if collisions and has_geometry(model) else None
@@ -1910,21 +1991,27 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
 
         share = SHARE if share is None else share
         lay = belt_layout(model, found, share=share, q=check)
-        realised, kinds, coils, origins = realise_layout(lay, check, material=material, pulley_radius=pulley_radius)
+        realised, kinds, coils, origins = realise_layout(lay, check, material=material, cable=cable,
+                                                         pulley_radius=None if sized else pulley_radius)
         bare = (model.mass, model.com, model.inertia)
         for _ in range(CARRY_ROUNDS):  # the springs' own steel rides on the links: designed for too
             arm = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2])  # the arm alone, with the belts
             carried = replace(with_spring_mass(arm, realised, kinds, coils, check), belts=())
             lay = belt_layout(carried, structure(carried, check), share=share, q=check)
-            realised, kinds, coils, origins = realise_layout(lay, check, material=material, pulley_radius=pulley_radius)
+            realised, kinds, coils, origins = realise_layout(lay, check, material=material, cable=cable,
+                                                             pulley_radius=None if sized else pulley_radius)
         model, ideal = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2]), lay.springs
         method = "belts: a level reference carried to each loaded joint (paper 001's pseudobases)"
         notes += [f"belts: {found.why}; one spring per loaded link, from a post on the level frame at its joint "
                   "to the link, its coil along the link behind a pulley, designed for the arm carrying the springs' "
                   f"own mass ({CARRY_ROUNDS} rounds)", *lay.notes]
-        if pulley_radius > 0:
-            notes.append(f"the springs run over {1e3 * pulley_radius:g} mm pulleys: each one's lever, post and rate "
-                         "re-fitted for it over a full turn of its link (route 2's cable path)")
+        radii = sorted({r.pulley_radius for r in realised})
+        if radii and radii[-1] > 0:
+            sizes = ", ".join(f"{1e3 * r:.3g}" for r in radii)
+            notes.append(f"the springs' cables wrap their pulleys at {sizes} mm" + (
+                " (each sized to its cable, the rope maker's D/d)" if sized else "") + ": each one's lever, post and "
+                "rate re-fitted for it over a full turn of its link (route 2's cable path)")
+        pulley_radius = radii[-1] if radii else 0.0
     else:
         notes.append(_reach_note(model, reach))
     if layout == "belts":
@@ -1938,6 +2025,8 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         ideal, method = fit.springs, "best springs"
         notes.append(f"not exact: {found.why}; springlab's exact construction needs a planar chain, so the "
                      f"best springs were searched: {fit.note}")
+    if layout == "two-point" and sized:
+        pulley_radius = _sized_pulley(model, ideal, check)
     if layout == "two-point":
         realised, kinds, coils, origins = _realise(
             model, ideal, check, material=material, pulley_radius=pulley_radius, reach=reach,
@@ -1983,4 +2072,4 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         clearance = spring_clearance(model, realised, kinds, coils, design.realised_names, check, margin=margin)
     massed = with_spring_mass(model, realised, kinds, coils, check)
     workspace = sampler.note() if sampler is not None else "the joint ranges' box (the arm has no collision geometry)"
-    return replace(design, clearance=clearance, massed=massed, workspace=workspace)
+    return replace(design, clearance=clearance, massed=massed, workspace=workspace, carried=layout == "belts")

@@ -48,6 +48,7 @@ from __future__ import annotations
 import csv
 import io
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -277,6 +278,30 @@ class ExtensionSpring:
             out.append(f"stress {stress / 1e6:.0f} MPa at the largest force {self.max_force:.1f} N above "
                        f"{100 * STRESS_SHARE:.0f} % of the allowable {self.allowable_stress / 1e6:.0f} MPa")
         return out
+
+
+class Fitted(NamedTuple):
+    """A realised spring's coil and how it is mounted on the arm (a URDF arm's design,
+    :class:`springlab.design.arms.ArmDesign`).
+
+    :ivar coil: the coil as wound
+    :ivar span: (shortest, longest) m: the distance between the spring's ends (a zero-length spring) or
+        its cable's path from the pulley to end B (a cable spring) over the workspace
+    :ivar ratio: a cable spring's pulley block, 1, 2 or 3: the coil moves 1 / ratio of the cable's path
+        at ratio times the cable's pull (its rate is ratio^2 times the spring's), so that a coil too long
+        for its link fits; the coil's length is path / ratio + its cable offset
+    :ivar cable: the cable (:class:`springlab.design.cables.Cable`) a cable spring runs on, or None
+    """
+
+    coil: ExtensionSpring
+    span: tuple
+    ratio: int = 1
+    cable: object = None
+
+    def coil_length(self, path):
+        """The coil's length (m, inside the hooks) at the cable's paths ``path`` (m): path / ratio plus the
+        cable's offset, never shorter than its free length."""
+        return np.maximum(np.asarray(path, dtype=float) / self.ratio + self.coil.cable_offset, self.coil.free_length)
 
 
 def _coils_for(material: Material, d, C, k):

@@ -204,8 +204,8 @@ def _capsules(coal, P0, P1, radius):
     """Capsules from P0 to P1 ((N, 3) each) of the radius: per row, its coal shape, rotation and centre."""
     d = P1 - P0
     length = np.linalg.norm(d, axis=1)
-    z = d / np.maximum(length, 1e-12)[:, None]
-    x = np.cross(z, np.where(np.abs(z[:, :1]) < 0.9, [[1.0, 0.0, 0.0]], [[0.0, 1.0, 0.0]]))
+    z = np.where(length[:, None] >= 1e-9, d / np.maximum(length, 1e-12)[:, None], [[0.0, 0.0, 1.0]])  # a ball: any
+    x = np.cross(z, np.where(np.abs(z[:, :1]) < 0.9, [[1.0, 0.0, 0.0]], [[0.0, 1.0, 0.0]]))  # frame, a rotation
     x /= np.maximum(np.linalg.norm(x, axis=1), 1e-12)[:, None]
     frames = np.stack([x, np.cross(z, x), z], axis=2)
     centres = (P0 + P1) / 2

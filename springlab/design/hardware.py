@@ -53,28 +53,67 @@ def _lead(model: RevoluteChain, s, R, o, ia, A, B) -> np.ndarray:
     return d / max(float(np.linalg.norm(d)), 1e-12)
 
 
+def link_length(model: RevoluteChain, body: int) -> float:
+    """The length (m) of a body: from its joint to the next joint (the last body: to its centre of mass; the
+    base: unbounded, a coil on it lies on the ground or the arm's stand)."""
+    if body == 0 or body > model.n:  # the base, or a belt's frame
+        return float("inf")
+    if body < model.n:
+        return float(np.linalg.norm(model.placements[body][:3, 3]))
+    return float(np.linalg.norm(model.com[body]))
+
+
+def _cable_diameter(fit) -> float:
+    return fit.cable.diameter if getattr(fit, "cable", None) is not None else CABLE_DIAMETER
+
+
+def _block(fit, rho: float) -> float:
+    """m: what a pulley block's travelling sheave adds between the coil's moving hook and the pulley."""
+    return 2 * (rho + _cable_diameter(fit)) if fit.ratio > 1 else 0.0
+
+
+def _coil_ends(model: RevoluteChain, s, fit, R, o):
+    """A cable spring's lead u (link_a's frame), the coil's fixed hook and, per pose, its moving hook (link_a's
+    frame), the cable's point T leaving the pulley (base frame) and B (base frame), at the poses of R, o."""
+    (ia, pa), (ib, pb) = model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)
+    A, B = world_points(R, o, ia, pa), world_points(R, o, ib, pb)
+    rho = s.pulley_radius
+    u = _lead(model, s, R, o, ia, A, B)
+    path, T = cable_geometry(A, B, R[:, ia] @ u, rho) if rho > 0 else (np.linalg.norm(B - A, axis=1), A)
+    length = fit.coil_length(path)
+    fixed = pa - u * (rho + HOOK_GAP + _block(fit, rho) + fit.coil.max_length)
+    return u, fixed, fixed + length[:, None] * u, T, B, ia, ib
+
+
 def spring_pieces(model: RevoluteChain, realised, kinds, coils, names, q) -> list[Piece]:
-    """The pieces (coil, cable) of each realised spring at the poses ``q`` (N, n) rad, named
-    'S3 coil', 'S3 cable' (see the module docstring)."""
+    """The pieces (coil, cable, pulley) of each realised spring at the poses ``q`` (N, n) rad, named
+    'S3 coil', 'S3 cable', 'S3 pulley' (see the module docstring)."""
     q = model.check_q(q)
     R, o = body_frames(model, q)
     out = []
-    for name, s, kind, (coil, _) in zip(names, realised, kinds, coils, strict=True):
+    for name, s, kind, fit in zip(names, realised, kinds, coils, strict=True):
         (ia, pa), (ib, pb) = model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)
         A, B = world_points(R, o, ia, pa), world_points(R, o, ib, pb)
         if not kind.startswith("cable"):
-            out.append(Piece(f"{name} coil", A, B, coil.outer_diameter / 2, ((ia, "a", ALLOWANCE), (ib, "b", ALLOWANCE))))
+            out.append(Piece(f"{name} coil", A, B, fit.coil.outer_diameter / 2,
+                             ((ia, "a", ALLOWANCE), (ib, "b", ALLOWANCE))))
             continue
-        rho = s.pulley_radius
-        u = R[:, ia] @ _lead(model, s, R, o, ia, A, B)
-        path, T = cable_geometry(A, B, u, rho) if rho > 0 else (np.linalg.norm(B - A, axis=1), A)
-        length = np.clip(path + coil.cable_offset, coil.free_length, None)  # the coil's length at each pose
-        fixed = A - u * (rho + HOOK_GAP + coil.max_length)
-        moving = fixed + u * length[:, None]
-        out.append(Piece(f"{name} coil", fixed, moving, coil.outer_diameter / 2, ((ia, "a", ALLOWANCE),)))
-        out.append(Piece(f"{name} cable", moving, A - u * rho, CABLE_DIAMETER / 2, ((ia, "b", ALLOWANCE),)))
-        out.append(Piece(f"{name} cable", T, B, CABLE_DIAMETER / 2, ((ia, "a", ALLOWANCE), (ib, "b", ALLOWANCE))))
+        rho, d = s.pulley_radius, _cable_diameter(fit)
+        u, fixed, moving, T, B, ia, ib = _coil_ends(model, s, fit, R, o)
+        fixed, moving = world_points(R, o, ia, fixed), _world(R, o, ia, moving)
+        at_pulley = world_points(R, o, ia, pa - u * rho)
+        out.append(Piece(f"{name} coil", fixed, moving, fit.coil.outer_diameter / 2, ((ia, "a", ALLOWANCE),)))
+        run = rho + d if fit.ratio > 1 else d / 2  # a block's strands lie within its travelling sheave
+        out.append(Piece(f"{name} cable", moving, at_pulley, run, ((ia, "b", ALLOWANCE),)))
+        out.append(Piece(f"{name} cable", T, B, d / 2, ((ia, "a", ALLOWANCE), (ib, "b", ALLOWANCE))))
+        if rho > 0:  # the sheave: a ball of its flanges' radius, on its bracket (its own link not checked)
+            out.append(Piece(f"{name} pulley", A, A, rho + d, ((ia, "a", ALLOWANCE),)))
     return out
+
+
+def _world(R, o, body: int, points) -> np.ndarray:
+    """Per pose, a point given per pose in a body's frame, (N, 3), in the base frame."""
+    return np.einsum("pij,pj->pi", R[:, body], points) + o[:, body]
 
 
 @dataclass(frozen=True)
@@ -111,27 +150,170 @@ def spring_clearance(model: RevoluteChain, realised, kinds, coils, names, q, *, 
     return SpringClearance(tuple(best[n] for n in names if n in best), float(margin), int(np.asarray(q).shape[0]))
 
 
-def with_spring_mass(model: RevoluteChain, realised, kinds, coils, q) -> RevoluteChain:
-    """The arm carrying its realised springs' mass (see the module docstring); ``q`` (N, n) rad, the poses
-    a point pulley's coil direction is taken over."""
+ROD_STRESS = 100e6
+"""Pa: the bending stress a post or bracket (aluminium 6061-T6 rod, yield 276 MPa) is sized to."""
+
+BELT_TENSION = 10.0
+"""N per mm of width: the working tension a timing belt (HTD 5M or GT2 class, glass-fibre cords) carries."""
+
+BELT_MASS = 0.004
+"""kg/m per mm of width: such a belt's mass."""
+
+BELT_PULLEY = 0.15
+"""A belt's pulleys' pitch diameter over the length of the link it runs along (at least :data:`BELT_LEAST`)."""
+
+BELT_LEAST = 0.012
+"""m: the least pitch diameter of a belt's pulley (and the least belt width, 6 mm, is half of it)."""
+
+
+@dataclass(frozen=True)
+class Part:
+    """A part of the springs' hardware: its kind ('spring', 'cable', 'pulley', 'belt', 'post'), name, the
+    link (frame) it rides on and its centre there (m), its mass (kg), its sizes (m) and the loads it
+    carries (N, N m) over the workspace, and where its mass is carried in the balance: (link, point m,
+    kg) each."""
+
+    kind: str
+    name: str
+    link: str
+    centre: tuple
+    mass: float
+    size: dict
+    loads: dict
+    carried: tuple
+
+    def as_dict(self) -> dict:
+        return {"kind": self.kind, "name": self.name, "link": self.link,
+                "centre": [float(v) + 0.0 for v in self.centre], "mass_kg": float(self.mass)} | {
+            k: float(v) if isinstance(v, (float, np.floating)) else v for k, v in (self.size | self.loads).items()}
+
+
+def _rod(force: float, length: float) -> float:
+    """m: the diameter of an aluminium rod cantilevered ``length`` m with ``force`` N at its end, at
+    :data:`ROD_STRESS` (32 F L / (pi d^3)), at least 6 mm."""
+    return max(0.006, float(np.cbrt(32 * force * length / (np.pi * ROD_STRESS))))
+
+
+def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
+    """Every part of the realised springs' hardware (:class:`Part`) over the poses ``q`` (N, n) rad:
+    each spring's coil (a zero-length spring's mass half at each end, exactly; a cable spring's on link_a at
+    its centre at mid-stroke, which moves by a quarter of its stroke), its cable and pulleys (the pulley at
+    end A on link_a; a block's travelling sheave at the coil's moving hook at mid-stroke; the cable's mass
+    half at each end of its free span), the post each belt-carried end stands on (an aluminium rod from
+    the joint's axis, sized to its bending) and each belt (one per joint it crosses, its pulleys' pitch
+    diameter :data:`BELT_PULLEY` of the link, its width carrying the largest moment its springs put on it at
+    :data:`BELT_TENSION`). Its loads are the largest over ``q``: a cable's pull, a pulley's load on its
+    shaft, a post's force and bending moment at its root, a belt's moment and tension."""
+    from springlab.design.cables import ALUMINIUM, pulley_mass
+
     q = model.check_q(q)
     R, o = body_frames(model, q)
-    out = model
-    for s, kind, (coil, span) in zip(realised, kinds, coils, strict=True):
-        m = float(coil.mass)
-        if not kind.startswith("cable"):
-            for link, point in ((s.link_a, s.point_a), (s.link_b, s.point_b)):
-                body, local = model.locate(link, point)
-                if body > model.n:  # a belt's frame: its post turns about the joint, carried at the joint's origin
-                    link, point = model.bodies[model.belts[body - model.n - 1].joint + 1], (0.0, 0.0, 0.0)
-                out = out.with_point_mass(link, point, m / 2)
-            continue
+    out = []
+
+    def on(name, point):  # where a point's mass is carried: a belt frame's at its joint's origin
+        body, _ = model.locate(name, point)
+        if body > model.n:
+            return model.bodies[model.belts[body - model.n - 1].joint + 1], (0.0, 0.0, 0.0)
+        return name, tuple(point)
+
+    moments = {b.name: np.zeros(len(q)) for b in model.belts}
+    for name, s, kind, fit in zip(names, realised, kinds, coils, strict=True):
+        coil = fit.coil
         (ia, pa), (ib, pb) = model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)
-        if ia > model.n:
-            raise SpringlabError(f"{s.label}: a cable spring's coil rides on link_a, here a belt's frame; give the "
-                                 "belt's end as link_b")
-        u = _lead(model, s, R, o, ia, world_points(R, o, ia, pa), world_points(R, o, ib, pb))
-        mid = (min(span) + max(span)) / 2 + coil.cable_offset  # the coil's length at mid-stroke
-        behind = s.pulley_radius + HOOK_GAP + coil.max_length - mid / 2  # its centre, from A along -lead
-        out = out.with_point_mass(model.bodies[ia], pa - behind * u, m)
+        A, B = world_points(R, o, ia, pa), world_points(R, o, ib, pb)
+        if not kind.startswith("cable"):
+            pull = s.k * np.linalg.norm(B - A, axis=1)
+            out.append(Part("spring", f"{name} coil", s.link_a, tuple(pa), coil.mass,
+                            {"wire_diameter": coil.wire, "outer_diameter": coil.outer_diameter,
+                             "free_length": coil.free_length, "longest": coil.max_length},
+                            {"largest_force_N": float(np.max(pull))},
+                            (on(s.link_a, pa) + (coil.mass / 2,), on(s.link_b, pb) + (coil.mass / 2,))))
+            towards, at = A, B
+        else:
+            rho, d = s.pulley_radius, _cable_diameter(fit)
+            u, fixed, moving, T, B, _, _ = _coil_ends(model, s, fit, R, o)
+            path = np.linalg.norm(B - T, axis=1)
+            pull = s.k * (cable_geometry(A, B, R[:, ia] @ u, rho)[0] if rho > 0 else path)
+            mid = float(fit.coil_length(np.mean(fit.span)))
+            centre = fixed + u * mid / 2
+            out.append(Part("spring", f"{name} coil", s.link_a, tuple(centre), coil.mass,
+                            {"wire_diameter": coil.wire, "outer_diameter": coil.outer_diameter,
+                             "free_length": coil.free_length, "longest": coil.max_length, "block_ratio": fit.ratio},
+                            {"largest_force_N": float(coil.max_force)}, ((s.link_a, tuple(centre), coil.mass),)))
+            hook = fixed + u * mid
+            run = float(np.linalg.norm(pa - hook))
+            free = float(np.max(path))
+            cable = fit.cable
+            m_cable = (fit.ratio * run + free) * (cable.mass_per_length if cable is not None else
+                                                  0.7 * 7900 * np.pi * CABLE_DIAMETER**2 / 4)
+            rating = {} if cable is None else {"cable": cable.name, "working_load_N": cable.working,
+                                               "breaking_load_N": cable.breaking}
+            out.append(Part("cable", f"{name} cable", s.link_a, tuple((hook + pa) / 2), m_cable,
+                            {"diameter": d, "length": fit.ratio * run + free},
+                            {"largest_pull_N": float(np.max(pull))} | rating,
+                            ((s.link_a, tuple((hook + pa) / 2), m_cable * fit.ratio * run / (fit.ratio * run + free)),
+                             on(s.link_a, pa) + (m_cable * free / (fit.ratio * run + free) / 2,),
+                             on(s.link_b, pb) + (m_cable * free / (fit.ratio * run + free) / 2,))))
+            if rho > 0 and cable is not None:
+                m = pulley_mass(cable, rho)
+                lead = R[:, ia] @ u
+                out_dir = (B - T) / np.maximum(np.linalg.norm(B - T, axis=1), 1e-12)[:, None]
+                shaft = pull * np.linalg.norm(out_dir - lead, axis=1)
+                out.append(Part("pulley", f"{name} pulley", s.link_a, tuple(pa), m,
+                                {"tread_diameter": 2 * rho - d, "cable_radius": rho},
+                                {"shaft_load_N": float(np.max(shaft))}, ((s.link_a, tuple(pa), m),)))
+                if fit.ratio > 1:
+                    sheave = hook + u * (rho + d)
+                    out.append(Part("pulley", f"{name} block sheave", s.link_a, tuple(sheave), m,
+                                    {"tread_diameter": 2 * rho - d, "cable_radius": rho, "ratio": fit.ratio},
+                                    {"shaft_load_N": float(coil.max_force)}, ((s.link_a, tuple(sheave), m),)))
+            towards, at = T, B
+        level = model.belts[0].level if model.belts else None
+        if ib > model.n or ib == level:  # end B stands on a post at its joint: on a belt's frame, or the level body
+            belt = model.belts[ib - model.n - 1] if ib > model.n else None
+            root = np.zeros(3) if belt is not None else model.placements[ib][:3, 3]
+            joint = belt.joint if belt is not None else ib
+            direction = (towards - at) / np.maximum(np.linalg.norm(towards - at, axis=1), 1e-12)[:, None]
+            force = pull[:, None] * direction
+            if belt is not None:
+                w = R[:, joint + 1] @ model.axes[joint]
+                moments[belt.name] = moments[belt.name] + np.einsum("pi,pi->p", w, np.cross(at - o[:, joint + 1], force))
+            length = float(np.linalg.norm(np.asarray(pb) - root))
+            F = float(np.max(pull))
+            dia = _rod(F, length)
+            m = ALUMINIUM * np.pi * dia**2 / 4 * length
+            centre = tuple((np.asarray(pb) + root) / 2)
+            carried = (model.bodies[joint + 1], (0.0, 0.0, 0.0), m) if belt is not None else (s.link_b, centre, m)
+            out.append(Part("post", f"{name} post", s.link_b, centre, m, {"length": length, "rod_diameter": dia},
+                            {"largest_force_N": F, "root_moment_Nm": F * length}, (carried,)))
+    for belt in model.belts:
+        moment = float(np.max(np.abs(moments[belt.name])))
+        for t in range(belt.level, belt.joint):  # a belt per joint crossed, riding on the link after it
+            span = model.placements[t + 1][:3, 3]
+            pitch = max(BELT_LEAST, BELT_PULLEY * float(np.linalg.norm(span)))
+            tension = moment / (pitch / 2)
+            width = max(BELT_LEAST / 2, np.ceil(tension / BELT_TENSION) * 1e-3)
+            length = 2 * float(np.linalg.norm(span)) + np.pi * pitch
+            m_belt = BELT_MASS * width * 1e3 * length
+            m_pulley = ALUMINIUM * np.pi * (pitch / 2) ** 2 * (width + 0.004)
+            link = model.bodies[t + 1]
+            out.append(Part("belt", f"{belt.name} ({model.joints[t]} to {model.joints[t + 1]})", link,
+                            tuple(span / 2), m_belt + 2 * m_pulley,
+                            {"length": length, "width": float(width), "pulley_pitch_diameter": pitch,
+                             "belt_mass_kg": m_belt, "pulleys_mass_kg": 2 * m_pulley},
+                            {"largest_moment_Nm": moment, "tension_N": tension},
+                            ((link, tuple(span / 2), m_belt), (link, (0.0, 0.0, 0.0), m_pulley),
+                             (link, tuple(span), m_pulley))))
+    return tuple(out)
+
+
+def with_spring_mass(model: RevoluteChain, realised, kinds, coils, q) -> RevoluteChain:
+    """The arm carrying its realised springs' hardware: every part's mass where :func:`parts` says it is
+    carried; ``q`` (N, n) rad, the poses a point pulley's coil direction is taken over."""
+    out = model
+    names = tuple(f"S{i}" for i in range(1, len(realised) + 1))
+    for part in parts(model, realised, kinds, coils, names, q):
+        for link, point, m in part.carried:
+            if m > 0:
+                out = out.with_point_mass(link, point, m)
     return out

@@ -113,6 +113,7 @@ class Layout:
     notes: tuple
     outward: tuple = ()
     planes: tuple = ()  # per spring, its plane (SpringPlane): where its complex offsets are placed
+    rooms: tuple = ()  # per spring, its link's length (m): the longest its coil may be in service
 
 
 def _axial_extent(model: RevoluteChain, body: int, R0, o0, origin, w) -> tuple[float, float]:
@@ -173,7 +174,7 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE,
     first, bodies, joint_at, nxt, G = (plane[k] for k in ("first", "bodies", "joint_at", "next", "G"))
     peak = np.asarray(found.peak)
     largest = float(np.max(peak))
-    out, leads, outward, planes = model, [], [], []
+    out, leads, outward, planes, rooms = model, [], [], [], []
     springs = []
     for k, joint in enumerate(found.loaded, start=1):
         if peak[joint] < share * largest:
@@ -205,11 +206,12 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE,
         plane = SpringPlane(np.asarray(joint_at[k]), h, up, w, float(d), link, level, np.asarray(level_origin), R0[first],
                        R0, o0, complex(model.g * G[k]))
         planes.append(plane)
+        rooms.append(length)
         springs.append(plane.spring(out, c, p, kappa))
         towards = R0[link].T @ (-(c.real * h + c.imag * up))
         leads.append(tuple(towards / np.linalg.norm(towards)))
         outward.append((R0[link].T @ (side * w), R0[first].T @ (side * w)))
-    return Layout(out, tuple(springs), tuple(leads), tuple(notes), tuple(outward), tuple(planes))
+    return Layout(out, tuple(springs), tuple(leads), tuple(notes), tuple(outward), tuple(planes), tuple(rooms))
 
 
 LEAD_TILT = np.radians(10.0)
@@ -218,7 +220,7 @@ from the links): the post then never comes onto the lead's line behind the pulle
 have to swivel half a turn at once (the post sweeps a circle about the joint that the lead's line in the
 plane would cross)."""
 
-REFIT = 0.1
+REFIT = 0.3
 """A pulley's compensation moves the lever and the post by at most this share of their lengths (the coil's
 stroke and the spring's proportion stay the layout's)."""
 
@@ -230,6 +232,10 @@ FIT_PULL = 1e-3
 """The pulley compensation's pull towards the point-pulley design, per unit of its variables (rate and
 lengths relative to theirs, angles in rad): the torque alone leaves a shallow valley of equally good
 fits, where another CPU's round-off would land elsewhere."""
+
+LEAD_TURN = np.radians(60.0)
+"""rad: the pulley compensation may turn the coil's lead this far in the spring's plane from the line
+through the joint (the coil then lies across its link at up to that angle)."""
 
 ANGLES = 360
 """The link's angles (a full turn) a pulley's compensation is fitted on."""
@@ -244,105 +250,195 @@ def _cable_energy(x, rho: float, theta: np.ndarray, gG: complex) -> np.ndarray:
     may hold several designs, (M, 5): the energies are then (M, len(theta))."""
     x = np.asarray(x, dtype=float)
     k, c, p = x[..., 0, None], (x[..., 1] + 1j * x[..., 2])[..., None], (x[..., 3] + 1j * x[..., 4])[..., None]
+    phi = x[..., 5, None] if x.shape[-1] > 5 else 0.0
     turn = np.exp(1j * theta)
     A = turn * c
     D = p - A
     L = np.abs(D)
-    along = np.cos(LEAD_TILT) * np.real(np.conj(turn * c / np.abs(c)) * D)  # the lead's part in the plane
+    along = np.cos(LEAD_TILT) * np.real(np.conj(turn * c / np.abs(c) * np.exp(1j * phi)) * D)  # the lead, in plane
     alpha = np.arccos(np.clip(along / L, -1.0, 1.0))
     path = rho * (alpha + np.arcsin(np.clip(rho / L, -1, 1))) + np.sqrt(np.maximum(L**2 - rho**2, 0.0))
     return np.real(np.conj(1j) * turn * gG) + 0.5 * k * path**2
 
 
-def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho: float) -> tuple[complex, complex, float]:
-    """The offsets and rate (c, p, k) that hold the link best with a pulley of radius ``rho`` (m): the least
-    mean square of the torque dV/dtheta over a full turn of the link's angle (its gravity term and its
+def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho: float,
+                      angles=None) -> tuple[complex, complex, float, float]:
+    """The offsets, rate and lead (c, p, k, phi) that hold the link best with a pulley of radius ``rho`` (m):
+    the least L8 norm (near the largest) of the torque dV/dtheta over the link's angles ``angles`` (rad;
+    default a full turn, :data:`ANGLES`; its gravity term and its
     spring's energy depend on that angle alone), with a small pull (:data:`FIT_PULL`) towards the
     point-pulley design it starts from, the lever's and the post's lengths within :data:`REFIT` of theirs,
-    their directions and the rate free. The search is a compass search that compares to 9 significant
-    digits (:func:`springlab.design.arms.compass_search`), so another CPU's round-off takes no other step.
-    Returns them unchanged for rho = 0."""
+    their directions, the rate and the lead's turn phi in the plane (within :data:`LEAD_TURN`) free. The
+    search is a compass search that compares to 9 significant digits
+    (:func:`springlab.design.arms.compass_search`), so another CPU's round-off takes no other step.
+    Returns them unchanged (phi = 0) for rho = 0."""
     if rho == 0:
-        return c, p, k
+        return c, p, k, 0.0
     from springlab.design.arms import compass_search
 
-    theta = np.linspace(0.0, 2 * np.pi, ANGLES, endpoint=False)
+    theta = np.linspace(0.0, 2 * np.pi, ANGLES, endpoint=False) if angles is None else np.asarray(angles, float)
     step = 1e-6
 
-    def cartesian(v):  # (k / k0, |c| / |c0|, arg c, |p| / |p0|, arg p), (5,) or (M, 5)
+    def cartesian(v):  # (k / k0, |c| / |c0|, arg c, |p| / |p0|, arg p, phi), (6,) or (M, 6)
         v = np.asarray(v, dtype=float)
         c_ = v[..., 1] * abs(c) * np.exp(1j * v[..., 2])
         p_ = v[..., 3] * abs(p) * np.exp(1j * v[..., 4])
-        return np.stack([v[..., 0] * k, c_.real, c_.imag, p_.real, p_.imag], axis=-1)
+        return np.stack([v[..., 0] * k, c_.real, c_.imag, p_.real, p_.imag, v[..., 5]], axis=-1)
 
     def torque(v):  # dV/dtheta over |g G| at each angle, (M, len(theta)) for designs v (M, 5)
         x = cartesian(v)
         return (_cable_energy(x, rho, theta + step, plane.gG) - _cable_energy(x, rho, theta - step, plane.gG)) / (
             2 * step * abs(plane.gG))
 
-    start = np.array([1.0, 1.0, np.angle(c), 1.0, np.angle(p)])
-    lo = np.array([0.5, 1.0 - REFIT, start[2] - np.pi, 1.0 - REFIT, start[4] - np.pi])
-    hi = np.array([2.0, 1.0 + REFIT, start[2] + np.pi, 1.0 + REFIT, start[4] + np.pi])
+    start = np.array([1.0, 1.0, np.angle(c), 1.0, np.angle(p), 0.0])
+    lo = np.array([0.5, 1.0 - REFIT, start[2] - np.pi, 1.0 - REFIT, start[4] - np.pi, -LEAD_TURN])
+    hi = np.array([2.0, 1.0 + REFIT, start[2] + np.pi, 1.0 + REFIT, start[4] + np.pi, LEAD_TURN])
 
     def value(trials):  # the compass search maximises: minus the torques' mean square, and a pull to the start
         trials = np.atleast_2d(trials)
-        return -(np.mean(torque(trials) ** 2, axis=1) + FIT_PULL**2 * np.sum((trials - start) ** 2, axis=1))
+        return -(np.mean(torque(trials) ** 8, axis=1) ** 0.25 + FIT_PULL**2 * np.sum((trials - start) ** 2, axis=1))
 
     v, _ = compass_search(value, start, lo, hi, max_steps=FIT_STEPS)
     x = cartesian(v)
-    return complex(x[1], x[2]), complex(x[3], x[4]), float(x[0])
+    return complex(x[1], x[2]), complex(x[3], x[4]), float(x[0]), float(x[5])
 
 
-def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_radius: float = 0.0) -> tuple:
+def _link_angles(plane: SpringPlane, R) -> np.ndarray:
+    """The link's angles (rad) in its spring's plane at the poses of ``R`` (body rotations, (N, bodies, 3, 3)),
+    from the zero pose's, on a whole-degree grid (each once): where the workspace takes it."""
+    v = np.einsum("pij,j->pi", R[:, plane.link], plane.R0[plane.link].T @ plane.h)
+    theta = np.degrees(np.arctan2(v @ plane.up, v @ plane.h))
+    return np.radians(np.unique(np.round(theta)))
+
+
+BLOCKS = (1, 2, 3)
+"""The pulley blocks a coil too long for its link is tried with, in turn: the coil moves 1 / n of the cable's
+path at n times its pull."""
+
+
+def _coil_for(k: float, lengths, room: float, material: str):
+    """The coil, pulley block and side-by-side count for a cable spring of rate ``k`` (N/m) over cable paths
+    ``lengths`` (m): the fewest side by side (up to :data:`~springlab.design.arms.MAX_PARALLEL`), then the
+    least block (:data:`BLOCKS`) whose coil is no longer than ``room`` (m) in service; where none fits, the
+    shortest coil found (the design's flags then say so). Returns (coil, ratio, parallel) or (None, why)."""
+    from springlab.design.arms import MAX_PARALLEL
+    from springlab.design.buildable import cable_spring
+
+    lengths = np.asarray(lengths, dtype=float)
+    best, why = None, ""
+    for parallel in range(1, MAX_PARALLEL + 1):
+        for n in BLOCKS:
+            coil, reason = cable_spring(k * n * n / parallel, lengths / n, material)
+            why = why or reason
+            if coil is None:
+                continue
+            if coil.max_length <= room:
+                return coil, n, parallel
+            if best is None or coil.max_length < best[0].max_length:
+                best = (coil, n, parallel)
+    return best if best is not None else (None, why)
+
+
+def side_by_side(kind: str) -> str:
+    """Why a realised spring is one of several side by side, from its kind (:func:`_coil_for`'s order:
+    the fewest that a stocked wire carries and whose coil fits its link)."""
+    return ("one coil would be longer than its link" if "fit its link" in kind else
+            "no stocked wire carries its force alone")
+
+
+def _cable_for(pull: float, given: float | None):
+    """The stocked cable for a pull (N) over a given pulley (m; None or 0: sized to the cable): the one with
+    the least pulley that carries it, among those the given pulley fits where one does (else by strength
+    alone: the design's flags name the pulley too small for it)."""
+    from springlab.design.cables import choose_cable
+
+    if given:
+        try:
+            return choose_cable(pull, pulley_radius=given)
+        except SpringlabError:
+            pass
+    return choose_cable(pull)
+
+
+def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_radius: float | None = 0.0,
+                   cable=None) -> tuple:
     """Each spring of a layout as a coil on its link behind a pulley at its point, the cable running to the
     post (:func:`springlab.design.buildable.cable_spring`; up to
-    :data:`~springlab.design.arms.MAX_PARALLEL` side by side where one wire is too weak). Returns the
-    realised springs, their kinds, (coil, span) per spring and the index of the layout's spring each
-    realises, as :func:`~springlab.design.arms.realise_springs` does; the coil lies along the link towards
-    the joint (the cable arrives from there). With a pulley (``pulley_radius`` > 0) each spring's lever,
-    post and rate are first re-fitted for it (:func:`compensate_pulley`).
+    :data:`~springlab.design.arms.MAX_PARALLEL` side by side where one wire is too weak, and over a pulley
+    block, :data:`BLOCKS`, where the coil would be longer than its link). Returns the realised springs,
+    their kinds, their coils (:class:`~springlab.design.buildable.Fitted`: the coil, the cable's paths, the
+    block and the cable) and the index of the layout's spring each realises, as
+    :func:`~springlab.design.arms.realise_springs` does; the coil lies along the link towards the joint
+    (the cable arrives from there).
 
-    :raises SpringlabError: naming a spring no stocked wire realises
+    The cable (:func:`springlab.design.cables.choose_cable`, or ``cable``) carries the spring's largest pull
+    with the stated safety factor; the pulley is sized to it (``pulley_radius=None``: the rope maker's
+    ratio) or given (m; 0: a point pulley, no hardware). With a pulley each spring's lever, post and rate
+    are first re-fitted for it (:func:`compensate_pulley`), and the cable chosen again for the re-fitted
+    pull.
+
+    :raises SpringlabError: naming a spring no stocked wire realises or no stocked cable carries, or a given
+        cable that a given pulley is too small for
     """
-    from springlab.design.arms import MAX_PARALLEL, length_range
-    from springlab.design.buildable import cable_spring
+    from springlab.design.arms import length_range
+    from springlab.design.buildable import Fitted
     from springlab.model.revolute import body_frames
 
     model = layout.model
     q = model.check_q(q)
-    rho = _checks.positive("pulley_radius", pulley_radius, allow_zero=True, unit="m")
+    given = None if pulley_radius is None else _checks.positive("pulley_radius", pulley_radius, allow_zero=True,
+                                                                unit="m")
+    if cable is not None and given is not None and given > 0 and not cable.fits(given):
+        raise SpringlabError(f"cable {cable.name}: a pulley of {1e3 * given:g} mm is too small for it (the rope maker's "
+                             f"D/d of {cable.ratio:g} asks for {1e3 * cable.pulley_radius:g} mm); give a larger "
+                             "--pulley-radius or a finer --cable")
     R, o = body_frames(model, q)
     realised, kinds, coils, origins = [], [], [], []
-    rows = zip(layout.springs, layout.leads, layout.outward, layout.planes, strict=True)
-    for index, (s, towards, (out_a, out_b), plane) in enumerate(rows):
-        if rho > 0:  # the pulley adds k rho (its wrap's change): c, p and k re-fitted for it
-            point = np.asarray(plane.R0[plane.link]) @ np.asarray(s.point_a) + plane.o0[plane.link] - plane.joint_at
-            post = plane.level_rotation @ np.asarray(s.point_b) + plane.level_origin - plane.joint_at
-            c0, p0 = complex(point @ plane.h, point @ plane.up), complex(post @ plane.h, post @ plane.up)
-            c, p, k = compensate_pulley(plane, c0, p0, s.k, rho)
-            s = plane.spring(model, c, p, k)
-            towards = tuple(plane.R0[plane.link].T @ (-(c.real * plane.h + c.imag * plane.up)) / abs(c))
-        lead = tuple(-np.cos(LEAD_TILT) * np.asarray(towards) - np.sin(LEAD_TILT) * np.asarray(out_a))  # from the
-        # coil, on the joint's side and out of the plane, the cable arrives at the pulley
-        led = PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, pulley_radius=rho,
-                          lead=lead if rho > 0 else None)
-        lengths = length_range(model, led, R, o)
-        for parallel in range(1, MAX_PARALLEL + 1):
-            coil, why = cable_spring(s.k / parallel, lengths, material)
-            if coil is not None:
+    rooms = layout.rooms or (np.inf,) * len(layout.springs)
+    rows = zip(layout.springs, layout.leads, layout.outward, layout.planes, rooms, strict=True)
+    for index, (ideal, ideal_towards, (out_a, out_b), plane, room) in enumerate(rows):
+        pull = ideal.k * length_range(model, ideal, R, o)[1]
+        chosen = cable
+        for _ in range(4):  # the cable for the pull, its pulley, the spring re-fitted for it, and again
+            if chosen is None or chosen.working < pull:
+                chosen = _cable_for(pull, given)
+            rho = chosen.pulley_radius if given is None else given
+            s, towards = ideal, ideal_towards
+            if rho > 0:  # the pulley adds k rho (its wrap's change): c, p and k re-fitted for it
+                point = np.asarray(plane.R0[plane.link]) @ np.asarray(s.point_a) + plane.o0[plane.link] - plane.joint_at
+                post = plane.level_rotation @ np.asarray(s.point_b) + plane.level_origin - plane.joint_at
+                c0, p0 = complex(point @ plane.h, point @ plane.up), complex(post @ plane.h, post @ plane.up)
+                c, p, k, phi = compensate_pulley(plane, c0, p0, s.k, rho, _link_angles(plane, R))
+                s = plane.spring(model, c, p, k)
+                z = c / abs(c) * np.exp(1j * phi)  # the lead's direction in the plane
+                towards = tuple(plane.R0[plane.link].T @ (-(z.real * plane.h + z.imag * plane.up)))
+            lead = tuple(-np.cos(LEAD_TILT) * np.asarray(towards) - np.sin(LEAD_TILT) * np.asarray(out_a))  # from
+            # the coil, on the joint's side and out of the plane, the cable arrives at the pulley
+            led = PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, pulley_radius=rho,
+                              lead=lead if rho > 0 else None)
+            lengths = length_range(model, led, R, o)
+            found = _coil_for(s.k, lengths, room, material)
+            if found[0] is None:
+                raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, even "
+                                     f"side by side or over a pulley block ({found[1]})")
+            coil, ratio, parallel = found
+            pull = s.k / parallel * lengths[1]  # each side-by-side spring has its own cable
+            if chosen.working >= pull or cable is not None:
                 break
-        if coil is None:
-            raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, even "
-                                 f"{MAX_PARALLEL} side by side ({why})")
         shift = parallel * coil.outer_diameter  # beside the links by the coils' own width (side by side: all)
         s = PointSpring(s.link_a, _on_grid(np.asarray(s.point_a) + shift * out_a), s.link_b,
                         _on_grid(np.asarray(s.point_b) + shift * out_b), s.k)
         lead = _on_grid(lead)  # on the same grid: another CPU's round-off moves nothing
         k = s.k / parallel
+        tension = coil.initial_tension / ratio  # along the cable: the block divides the coil's pull
+        block = f", with a {ratio}:1 pulley block" if ratio > 1 else ""
+        single = parallel > 1 and _coil_for(s.k, lengths, np.inf, material)[0] is not None
         for m in range(parallel):
-            realised.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, coil.initial_tension / k,
-                                        coil.initial_tension, rho, lead if rho > 0 else None))
-            kinds.append("cable over a pulley" + (f" ({m + 1} of {parallel} side by side)" if parallel > 1 else ""))
-            coils.append((coil, lengths))
+            realised.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, tension / k, tension, rho,
+                                        lead if rho > 0 else None))
+            kinds.append("cable over a pulley" + block + (f" ({m + 1} of {parallel} side by side"
+                                                          + (", so that each coil fit its link)" if single else ")")
+                                                          if parallel > 1 else ""))
+            coils.append(Fitted(coil, lengths, ratio, chosen if rho > 0 else None))
             origins.append(index)
     return tuple(realised), tuple(kinds), tuple(coils), tuple(origins)

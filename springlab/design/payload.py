@@ -469,7 +469,7 @@ def _stretch(design, turned, R, o) -> tuple[float, str]:
     from springlab.errors import GeometryError
 
     worst = (0.0, "")
-    for n, spring, (_, span) in zip(design.realised_names, turned, design.coils, strict=True):
+    for n, spring, (_, span, *_) in zip(design.realised_names, turned, design.coils, strict=True):
         try:
             length = spring_lengths(design.model, [spring], R, o)[0]
         except GeometryError:  # its cable meets its pulley at some pose: named in the study's warnings

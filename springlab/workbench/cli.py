@@ -100,9 +100,18 @@ def _check_arguments(args) -> None:
     _checks.positive("--time-limit", args.time_limit, unit="s")
     from springlab.model.armfile import parse_quantity
 
-    args.pulley_radius = _checks.positive("--pulley-radius", parse_quantity(args.pulley_radius, "length",
-                                                                            "--pulley-radius"),
-                                          allow_zero=True, unit="m") + 0.0
+    if args.pulley_radius is not None:
+        args.pulley_radius = _checks.positive("--pulley-radius", parse_quantity(args.pulley_radius, "length",
+                                                                                "--pulley-radius"),
+                                              allow_zero=True, unit="m") + 0.0
+    if args.cable is not None:
+        from springlab.design.cables import cable_by_name
+
+        args.cable = cable_by_name(args.cable)
+        if args.pulley_radius and not args.cable.fits(args.pulley_radius):
+            raise SpringlabError(f"--cable {args.cable.name}: --pulley-radius {1e3 * args.pulley_radius:g} mm is too "
+                                 f"small for it (its D/d of {args.cable.ratio:g} asks for "
+                                 f"{1e3 * args.cable.pulley_radius:g} mm); give a larger pulley or a finer cable")
     if args.margin is not None:
         args.margin = _checks.positive("--margin", parse_quantity(args.margin, "length", "--margin"),
                                        allow_zero=True, unit="m") + 0.0
@@ -278,7 +287,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     reach = None if args.reach is None else _checks.positive(
         "--reach", parse_quantity(args.reach, "length", "--reach"), allow_zero=True, unit="m") + 0.0
     design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material, reach=reach,
-                          pulley_radius=args.pulley_radius, margin=args.margin, layout=args.layout, share=args.share)
+                          pulley_radius=args.pulley_radius, margin=args.margin, layout=args.layout, share=args.share,
+                          cable=args.cable)
     seconds = time.perf_counter() - started
     tip = (f"the tip {args.tip!r} (fixed to {model.bodies[-1]!r}, the last body a joint moves)"
            if args.tip and args.tip != model.bodies[-1] else repr(model.bodies[-1]))
@@ -333,7 +343,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
               "payload_range_kg": None if args.payloads is None else list(args.payloads), "up": _up(args.up) or [0.0, 0.0, 1.0],
               "workspace_deg": {name: [float(np.degrees(lo)), float(np.degrees(hi))]
                                 for name, (lo, hi) in zip(model.joints, workspace_ranges(model, workspace), strict=True)},
-              "reach_m": reach, "pulley_radius_m": args.pulley_radius, "package_dirs": list(args.package_dir),
+              "reach_m": reach, "pulley_radius_m": args.pulley_radius,
+              "cable": None if args.cable is None else args.cable.name, "package_dirs": list(args.package_dir),
               "layout": args.layout, "share": args.share, "margin_m": args.margin,
               "seed": args.seed + 1,
               "material": args.material}
@@ -353,7 +364,9 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
         clear = ("every spring clear of every link by the margin" if design.clearance is not None else
                  "the springs' clearance from the links is not among these checks (no link shapes): see its table")
         print("\nstatus: passed (better than its negative control; no joint left worse than gravity alone; every "
-              f"spring with a line of action at every pose checked, no cable's end crossing its pulley's lead; {clear})")
+              f"spring with a line of action at every pose checked, no cable's end crossing its pulley's lead; every "
+              "cable within its working load over a pulley its rope maker allows; every coil no longer than its link; "
+              f"{clear})")
         return 0
     print(f"\nstatus: flagged, {len(flags)} of the design's own checks fail:")
     for flag in flags:
@@ -524,7 +537,8 @@ def _write_sheet(args, spec, chosen, out: Path) -> None:
 
     chain = spec.chain()
     X = workspace_poses(spec, chain)
-    built = buildable.realise(chain, chosen.springs, X, material=args.material, pulley_radius=args.pulley_radius)
+    built = buildable.realise(chain, chosen.springs, X, material=args.material,
+                              pulley_radius=buildable.PULLEY_RADIUS if args.pulley_radius is None else args.pulley_radius)
     loss = buildable.balance_loss(chain, built, X)
     from springlab.design.clearance import clearance
     from springlab.design.rank import workspace_note
@@ -608,9 +622,13 @@ def main(argv=None) -> int:
     p.add_argument("--margin", default=None,
                    help="the clearance every realised spring's coil and cable keeps from the URDF's links, e.g. '5 mm' "
                         "(a bare number is in m; default 0.005); a spring nearer than it is flagged")
-    p.add_argument("--pulley-radius", default="0.005",
-                   help="the pulley of a spring realised as a cable over a pulley, e.g. '5 mm' (a URDF arm's realised "
-                        "springs, and --sheet; a bare number is in m; default 0.005, a 10 mm wheel; 0 for a point)")
+    p.add_argument("--pulley-radius", default=None,
+                   help="the pulley of a spring realised as a cable over a pulley, to the cable's centre, e.g. '20 mm' "
+                        "(a bare number is in m; 0 for a point). Default: the belt layout's pulleys sized to their "
+                        "cables (the rope maker's D/d), the two-point springs' to the cable of the largest pull; --sheet's 0.01")
+    p.add_argument("--cable", default=None,
+                   help="the belt layout's cable, by its diameter in mm, e.g. '1.59' (default: the stocked stainless "
+                        "rope that carries each spring's pull with a safety factor of 5, over the least pulley)")
     p.add_argument("--up", help="a URDF arm's up direction in its base link's frame, e.g. 0,1,0 (default 0,0,1: "
                                 "URDF's gravity acts along -z)")
     p.add_argument("--tip", help="a URDF arm's last link: the joints from the base to it are the arm; every other "

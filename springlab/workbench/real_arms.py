@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab.design.arms import ArmDesign, design_model, ends_outside
+from springlab.design.hardware import link_length
 from springlab.energy import geometry, simulation
 from springlab.model.mjcf import to_mjcf
 from springlab.model.robots import ROBOTS, load_robot, robot_urdf
@@ -313,10 +314,10 @@ def record_payload(claims, study, label: str) -> None:
                       "a longer slot"))
 
 
-def belt_design(label: str, *, samples: int = 2000, seed: int = 1, pulley_radius: float = PULLEY) -> ArmDesign:
+def belt_design(label: str, *, samples: int = 2000, seed: int = 1, pulley_radius: float | None = None) -> ArmDesign:
     """A robot of :data:`~springlab.model.robots.ROBOTS` with the belt layout
     (:func:`springlab.design.layouts.belt_layout`: one spring per loaded link on a level frame a belt carries
-    to its joint), realised over pulleys of ``pulley_radius`` (m)."""
+    to its joint), realised over pulleys of ``pulley_radius`` (m; None: each sized to its cable)."""
     return design_model(load_robot(label), samples=samples, seed=seed, pulley_radius=pulley_radius, layout="belts")
 
 
@@ -335,20 +336,16 @@ def hardware_table(designs: dict) -> Table:
                                              ("realised", design.model, design.realised),
                                              ("mass", design.massed, design.realised))}
         near = {row[0]: row for row in design.clearance.rows}
-        for name, s, (coil, _) in zip(design.realised_names, design.realised, design.coils, strict=True):
+        for name, s, (coil, *_) in zip(design.realised_names, design.realised, design.coils, strict=True):
             body = design.model.bodies.index(s.link_a)
             joint = body - 1
             _, piece, nearest, _, gap = near[name]
             rows.append((label, name, design.model.joints[joint], *(f"{shares[c][joint]:.1f}" for c in shares),
                          f"{1e3 * gap:.0f} ({piece}, {nearest})", f"{1e3 * coil.max_length:.0f}",
-                         f"{1e3 * _next_joint(design.model, body):.0f}", f"{coil.max_force:.0f}",
+                         f"{1e3 * link_length(design.model, body):.0f}", f"{coil.max_force:.0f}",
                          f"{1e3 * coil.mass:.0f}"))
     return Table(["arm", "spring", "its joint", "removed, ideal (%)", "realised (%)", "carrying the springs (%)",
                   "nearest link (mm)", "longest coil (mm)", "its link (mm)", "largest force (N)", "mass (g)"], rows)
 
 
-def _next_joint(model, body: int) -> float:
-    """The length (m) of a body: from its joint to the next joint (the last body: to its centre of mass)."""
-    if body < model.n:
-        return float(np.linalg.norm(model.placements[body][:3, 3]))
-    return float(np.linalg.norm(model.com[body]))
+
