@@ -62,6 +62,10 @@ class Table:
         return Table([self.headers[0], *(str(row[0]) for row in rows)],
                      [[header, *(row[k] for row in rows)] for k, header in enumerate(self.headers) if k])
 
+    def records(self) -> list[dict]:
+        """The rows as dicts keyed by the headers (for JSON)."""
+        return [dict(row) if isinstance(row, dict) else dict(zip(self.headers, row, strict=True)) for row in self.rows]
+
     def _repr_markdown_(self) -> str:
         return self.markdown()
 

@@ -1143,6 +1143,80 @@ class ArmDesign:
                            f"longer than its link {r.link_a} ({1e3 * room:.0f} mm from its joint to the next)")
         return tuple(out)
 
+    def removed_by(self, springs) -> np.ndarray:
+        """Per loaded joint (:attr:`structure`), the percentage of its peak gravity torque ``springs`` remove
+        on the arm they were designed for (:attr:`designed_for`), over :attr:`q`; realised springs on an arm
+        that carries them also carry their hardware's mass (:attr:`massed`)."""
+        arm = self.massed if self.massed is not None and springs is self.realised else self.designed_for
+        loaded = list(self.structure.loaded)
+        gravity = np.max(np.abs(gravity_torques(arm, self.q)), axis=0)[loaded]
+        left = np.max(np.abs(joint_torques(arm, springs, self.q)), axis=0)[loaded]
+        return 100 * (1 - left / np.where(gravity > 0, gravity, np.nan))
+
+    def reached(self, share: float = 0.9) -> dict:
+        """Whether the realised springs, carrying their hardware's mass, remove at least ``share`` of every loaded
+        joint's peak gravity torque but the light ones (below :data:`~springlab.design.layouts.SHARE` of the
+        largest peak, which a layout may leave out): {"share", "reached", "removed_percent" per loaded joint,
+        "missed": the joints below it, "light": those not held to it}."""
+        share = _checks.number("share", share)
+        if not 0 < share <= 1:
+            raise SpringlabError(f"target = {share:g}: give the share of each loaded joint's peak to remove, above 0 "
+                                 "and at most 1 (e.g. 0.9)")
+        from springlab.design.layouts import SHARE
+
+        names = [self.model.joints[i] for i in self.structure.loaded]
+        removed = self.removed_by(self.realised) if self.realised else np.zeros(len(names))
+        peak = np.asarray(self.structure.peak)
+        light = [self.model.joints[i] for i in self.structure.loaded if peak[i] < SHARE * float(np.max(peak))]
+        missed = [n for n, v in zip(names, removed, strict=True) if not v >= 100 * share - 1e-9 and n not in light]
+        return {"share": share, "reached": not missed,
+                "removed_percent": {n: float(v) for n, v in zip(names, removed, strict=True)}, "missed": missed,
+                "light": light}
+
+    def trade_off(self) -> Table:
+        """The spring count against the share removed: from all the realised springs, the one (with any beside
+        it, side by side) whose leaving out costs least is left out, in turn; per count, the percentage of
+        each loaded joint's peak the rest remove (on the arm carrying only their hardware)."""
+        from springlab.design.hardware import with_spring_mass
+
+        groups = sorted(set(self.origins or range(len(self.realised))))
+        origins = self.origins or tuple(range(len(self.realised)))
+        names = [self.model.joints[i] for i in self.structure.loaded]
+        loaded = list(self.structure.loaded)
+
+        def shares(kept):
+            idx = [m for m, o in enumerate(origins) if o in kept]
+            springs = [self.realised[m] for m in idx]
+            arm = (with_spring_mass(self.model, springs, [self.kinds[m] for m in idx], [self.coils[m] for m in idx],
+                                    self.q) if idx else self.model)
+            gravity = np.max(np.abs(gravity_torques(arm, self.q)), axis=0)[loaded]
+            left = np.max(np.abs(joint_torques(arm, springs, self.q)), axis=0)[loaded]
+            return 100 * (1 - left / np.where(gravity > 0, gravity, np.nan))
+
+        rows, kept = [], list(groups)
+        while kept:
+            rows.append((str(sum(1 for o in origins if o in kept)), ", ".join(self.names[g] for g in kept),
+                         *(f"{v:.1f}" for v in shares(kept))))
+            if len(kept) == 1:
+                break
+            kept.remove(max(kept, key=lambda g: (float(np.nanmin(shares([k for k in kept if k != g]))), -g)))
+        rows.append(("0", "none", *("0.0" for _ in names)))
+        return Table(["springs", "kept", *(f"{n} removed (%)" for n in names)], rows)
+
+    def parts_table(self) -> Table:
+        """Every part of the realised springs' hardware (:func:`springlab.design.hardware.parts`): its kind,
+        the link it rides on, its mass (g), sizes (mm) and the largest loads over :attr:`q`."""
+        from springlab.design.hardware import parts
+
+        rows = []
+        for p in parts(self.model, self.realised, self.kinds, self.coils, self.realised_names, self.q):
+            size = ", ".join(f"{k.replace('_', ' ')} {1e3 * v:.3g}" if isinstance(v, float) else f"{k.replace('_', ' ')} {v}"
+                             for k, v in p.size.items() if not k.endswith("_kg"))
+            loads = ", ".join(f"{k.rsplit('_', 1)[0].replace('_', ' ')} {v:.3g} {k.rsplit('_', 1)[1]}"
+                              if isinstance(v, float) else str(v) for k, v in p.loads.items() if k != "breaking_load_N")
+            rows.append((p.name, p.kind, p.link, f"{1e3 * p.mass:.0f}", size, loads))
+        return Table(["part", "kind", "rides on", "mass (g)", "sizes (mm)", "largest loads"], rows)
+
     def control(self, factor: float = 0.9) -> tuple[float, float]:
         """The negative control: the largest holding torque (N m, over joints and the workspace poses)
         of the ideal springs as designed and with every rate times ``factor``. A check that cannot
@@ -1189,10 +1263,16 @@ class ArmDesign:
         origins = self.origins or tuple(range(len(self.realised)))
         changes = self.changes or ("",) * len(self.realised)
         near = {r[0]: r for r in (self.clearance.rows if self.clearance is not None else ())}
-        hardware = [{"mass_kg": coil.mass, "coil_outer_diameter": coil.outer_diameter}
+        from springlab.design.hardware import coil_ends, parts
+
+        ends = coil_ends(self.model, self.realised, self.kinds, self.coils, self.q) if self.realised else []
+        hardware = [{"mass_kg": fit.coil.mass, "coil_outer_diameter": fit.coil.outer_diameter, "block_ratio": fit.ratio,
+                     "cable": None if fit.cable is None else fit.cable.as_dict()} | end
                     | ({"clearance_m": near[n][4], "nearest_link": near[n][2], "nearest_piece": near[n][1],
                         "nearest_pose": self.q[near[n][3]].tolist()} if n in near else {})
-                    for n, (coil, *_) in zip(self.realised_names, self.coils, strict=True)]
+                    for n, fit, end in zip(self.realised_names, self.coils, ends, strict=True)]
+        listed = [p.as_dict() for p in parts(self.model, self.realised, self.kinds, self.coils, self.realised_names,
+                                               self.q)] if self.realised else []
         return {"arm": self.model.name, "method": self.method,
                 "status": {"verdict": "flagged" if flags else "passed", "flags": list(flags)},
                 "joints": list(self.model.joints),
@@ -1211,6 +1291,8 @@ class ArmDesign:
                     "margin_m": self.clearance.margin, "poses": self.clearance.poses,
                     "clears": not self.clearance.failing()},
                 "spring_mass_kg": float(sum(h["mass_kg"] for h in hardware)),
+                "hardware_mass_kg": float(sum(p["mass_kg"] for p in listed)),
+                "parts": listed,
                 "left_out": [{"realises": self.names[i], "why": why} for i, why in self.left_out],
                 "torques": rows, "notes": list(self.notes)}
 
@@ -1273,7 +1355,7 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
     spring it realises."""
     from springlab.design.buildable import Fitted, cable_spring, zero_length_spring
     from springlab.design.hardware import link_length
-    from springlab.design.layouts import _cable_for, _coil_for
+    from springlab.design.layouts import cable_for, coil_for
 
     q = model.check_q(q)
     pulley_radius = _checks.positive("pulley_radius", pulley_radius, allow_zero=True, unit="m")
@@ -1342,7 +1424,7 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
             continue
         lengths = length_range(model, s, R, o)
         room = link_length(model, model.locate(s.link_a, s.point_a)[0])
-        found = _coil_for(s.k, lengths, room, material)  # side by side where one wire is too weak, over a block
+        found = coil_for(s.k, lengths, room, material)  # side by side where one wire is too weak, over a block
         coil, why_cable = (found[0], found[1]) if found[0] is None else (found[0], "")  # where too long for its link
         ratio, parallel = (found[1], found[2]) if coil is not None else (1, 1)
         if coil is None:
@@ -1353,11 +1435,11 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
             continue
         k = s.k / parallel
         try:  # the stocked cable that carries its pull (the flags say when the pulley is too small for it)
-            rope = _cable_for(k * lengths[1], s.pulley_radius)
+            rope = cable_for(k * lengths[1], s.pulley_radius)
         except SpringlabError:
             rope = None
         tension = coil.initial_tension / ratio  # along the cable: a block divides the coil's pull
-        single = parallel > 1 and _coil_for(s.k, lengths, np.inf, material)[0] is not None
+        single = parallel > 1 and coil_for(s.k, lengths, np.inf, material)[0] is not None
         for m in range(parallel):
             if m:
                 origins.append(i)
@@ -1874,13 +1956,19 @@ def _defined(model: RevoluteChain, spring, q) -> bool:
     return True
 
 
+def _side_by_side(kind: str) -> str:
+    """Why a realised spring is one of several side by side, from its kind
+    (:func:`~springlab.design.layouts.coil_for`'s order: the fewest that a stocked wire carries and whose
+    coil fits its link)."""
+    return ("one coil would be longer than its link" if "fit its link" in kind else
+            "no stocked wire carries its force alone")
+
+
 def realisation_changes(model: RevoluteChain, ideal, realised, kinds, origins) -> tuple:
     """Per realised spring, what the realisation changed of the ideal spring it realises (``origins``:
     its index), and why, in words: the rate (N/m, and the share), each end's move (mm), the pulley and
     its lead, a pulley block, a split side by side; or that only its free length and initial tension
     were chosen."""
-    from springlab.design.layouts import side_by_side
-
     out = []
     for r, kind, i in zip(realised, kinds, origins, strict=True):
         s = ideal[i]
@@ -1912,7 +2000,7 @@ def realisation_changes(model: RevoluteChain, ideal, realised, kinds, origins) -
                      f"at {ratio.group(1)} times its pull): a coil on the cable alone would be longer than its link")
         count = origins.count(i)
         if count > 1:
-            text += f"; one of {count} side by side at k / {count} each: {side_by_side(kind)}"
+            text += f"; one of {count} side by side at k / {count} each: {_side_by_side(kind)}"
         out.append(text)
     return tuple(out)
 

@@ -30,7 +30,6 @@ import numpy as np
 
 from springlab.design.collision import MARGIN, Piece, clearances
 from springlab.energy.geometry import cable_geometry
-from springlab.errors import SpringlabError
 from springlab.model.revolute import RevoluteChain, body_frames, world_points
 from springlab.tables import Table
 
@@ -83,6 +82,26 @@ def _coil_ends(model: RevoluteChain, s, fit, R, o):
     length = fit.coil_length(path)
     fixed = pa - u * (rho + HOOK_GAP + _block(fit, rho) + fit.coil.max_length)
     return u, fixed, fixed + length[:, None] * u, T, B, ia, ib
+
+
+def coil_ends(model: RevoluteChain, realised, kinds, coils, q) -> list[dict]:
+    """Per realised spring, for ``--json``: its coil's two ends at the pose of ``q`` (N, n) rad where it is
+    longest, each as {"link", "point" (m, in that link's frame)} (a cable spring's both on link_a, its fixed
+    hook and its moving one), and its cable's diameter (m; None for a zero-length spring)."""
+    q = model.check_q(q)
+    R, o = body_frames(model, q)
+    out = []
+    for s, kind, fit in zip(realised, kinds, coils, strict=True):
+        if not kind.startswith("cable"):
+            out.append({"coil_a": {"link": s.link_a, "point": [float(v) for v in s.point_a]},
+                        "coil_b": {"link": s.link_b, "point": [float(v) for v in s.point_b]}, "cable_diameter": None})
+            continue
+        u, fixed, moving, *_ = _coil_ends(model, s, fit, R, o)
+        longest = int(np.argmax(np.linalg.norm(moving - fixed, axis=1)))
+        out.append({"coil_a": {"link": s.link_a, "point": [float(v) + 0.0 for v in fixed]},
+                    "coil_b": {"link": s.link_a, "point": [float(v) + 0.0 for v in moving[longest]]},
+                    "cable_diameter": _cable_diameter(fit)})
+    return out
 
 
 def spring_pieces(model: RevoluteChain, realised, kinds, coils, names, q) -> list[Piece]:
@@ -153,8 +172,9 @@ def spring_clearance(model: RevoluteChain, realised, kinds, coils, names, q, *, 
 ROD_STRESS = 100e6
 """Pa: the bending stress a post or bracket (aluminium 6061-T6 rod, yield 276 MPa) is sized to."""
 
-BELT_TENSION = 10.0
-"""N per mm of width: the working tension a timing belt (HTD 5M or GT2 class, glass-fibre cords) carries."""
+BELT_TENSION = 20.0
+"""N per mm of width: the working tension a timing belt of the HTD 5M class with glass-fibre cords carries
+(a round figure between GT2's and steel-cord AT5's: check the maker's table for the chosen belt)."""
 
 BELT_MASS = 0.004
 """kg/m per mm of width: such a belt's mass."""

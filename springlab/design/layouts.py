@@ -316,11 +316,11 @@ BLOCKS = (1, 2, 3)
 path at n times its pull."""
 
 
-def _coil_for(k: float, lengths, room: float, material: str):
+def coil_for(k: float, lengths, room: float, material: str):
     """The coil, pulley block and side-by-side count for a cable spring of rate ``k`` (N/m) over cable paths
     ``lengths`` (m): the fewest side by side (up to :data:`~springlab.design.arms.MAX_PARALLEL`), then the
     least block (:data:`BLOCKS`) whose coil is no longer than ``room`` (m) in service; where none fits, the
-    shortest coil found (the design's flags then say so). Returns (coil, ratio, parallel) or (None, why)."""
+    shortest coil of the fewest side by side (the design's flags then say so). Returns (coil, ratio, parallel) or (None, why)."""
     from springlab.design.arms import MAX_PARALLEL
     from springlab.design.buildable import cable_spring
 
@@ -334,19 +334,13 @@ def _coil_for(k: float, lengths, room: float, material: str):
                 continue
             if coil.max_length <= room:
                 return coil, n, parallel
-            if best is None or coil.max_length < best[0].max_length:
-                best = (coil, n, parallel)
+            if best is None or (parallel, coil.max_length) < (best[2], best[0].max_length):
+                best = (coil, n, parallel)  # none fits: the fewest side by side, the shortest of those
     return best if best is not None else (None, why)
 
 
-def side_by_side(kind: str) -> str:
-    """Why a realised spring is one of several side by side, from its kind (:func:`_coil_for`'s order:
-    the fewest that a stocked wire carries and whose coil fits its link)."""
-    return ("one coil would be longer than its link" if "fit its link" in kind else
-            "no stocked wire carries its force alone")
 
-
-def _cable_for(pull: float, given: float | None):
+def cable_for(pull: float, given: float | None):
     """The stocked cable for a pull (N) over a given pulley (m; None or 0: sized to the cable): the one with
     the least pulley that carries it, among those the given pulley fits where one does (else by strength
     alone: the design's flags name the pulley too small for it)."""
@@ -401,7 +395,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
         chosen = cable
         for _ in range(4):  # the cable for the pull, its pulley, the spring re-fitted for it, and again
             if chosen is None or chosen.working < pull:
-                chosen = _cable_for(pull, given)
+                chosen = cable_for(pull, given)
             rho = chosen.pulley_radius if given is None else given
             s, towards = ideal, ideal_towards
             if rho > 0:  # the pulley adds k rho (its wrap's change): c, p and k re-fitted for it
@@ -417,7 +411,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
             led = PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, pulley_radius=rho,
                               lead=lead if rho > 0 else None)
             lengths = length_range(model, led, R, o)
-            found = _coil_for(s.k, lengths, room, material)
+            found = coil_for(s.k, lengths, room, material)
             if found[0] is None:
                 raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, even "
                                      f"side by side or over a pulley block ({found[1]})")
@@ -432,7 +426,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
         k = s.k / parallel
         tension = coil.initial_tension / ratio  # along the cable: the block divides the coil's pull
         block = f", with a {ratio}:1 pulley block" if ratio > 1 else ""
-        single = parallel > 1 and _coil_for(s.k, lengths, np.inf, material)[0] is not None
+        single = parallel > 1 and coil_for(s.k, lengths, np.inf, material)[0] is not None
         for m in range(parallel):
             realised.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, tension / k, tension, rho,
                                         lead if rho > 0 else None))

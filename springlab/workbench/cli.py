@@ -104,6 +104,10 @@ def _check_arguments(args) -> None:
         args.pulley_radius = _checks.positive("--pulley-radius", parse_quantity(args.pulley_radius, "length",
                                                                                 "--pulley-radius"),
                                               allow_zero=True, unit="m") + 0.0
+    target = _checks.number("--target", args.target)
+    if not 0 < target <= 1:
+        raise SpringlabError(f"--target = {args.target!r}: give the share of each loaded joint's peak to remove, above 0 "
+                             "and at most 1 (e.g. 0.9)")
     if args.cable is not None:
         from springlab.design.cables import cable_by_name
 
@@ -292,8 +296,9 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     seconds = time.perf_counter() - started
     tip = (f"the tip {args.tip!r} (fixed to {model.bodies[-1]!r}, the last body a joint moves)"
            if args.tip and args.tip != model.bodies[-1] else repr(model.bodies[-1]))
+    reached = design.reached(args.target) if design.structure.loaded else None
     print(f"# {model.name}: {model.n} revolute joints from {model.bodies[0]!r} to {tip}"
-          + (f", payload {payload:g} kg at the tip frame" if payload else ""))
+          + (f", payload {payload:g} kg at the tip frame" if payload else "") + _reached_line(reached))
     ranges = workspace_ranges(model, workspace)
     print("workspace (deg): " + ", ".join(f"{name} {np.degrees(lo):.0f}..{np.degrees(hi):.0f}"
                                          for name, (lo, hi) in zip(model.joints, ranges, strict=True))
@@ -326,6 +331,15 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
         print(f"\nclearance of the realised springs from the bodies (their outlines), over "
               f"{min(len(design.q), 100)} workspace poses:")
         print(design.clearance_table())
+    if design.realised:
+        print("\nthe parts (springs, cables, pulleys, posts, belts): their sizes, masses and the largest loads over the "
+              "check poses, each carried in the balance where it rides:")
+        print(design.parts_table())
+    if reached is not None and not reached["reached"] and design.realised:
+        print(f"\nthe target, {100 * args.target:g} % of each loaded joint's peak, is missed at "
+              f"{', '.join(reached['missed'])}; what fewer springs reach (each left out where it costs least; "
+              "a stiffer target needs another layout, --workspace or --target):")
+        print(design.trade_off())
     print("\nthe balance the built springs leave, with a maker's tolerances on every spring at once (route 2):")
     print(design.tolerance_table())
     study = None
@@ -349,7 +363,9 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
               "seed": args.seed + 1,
               "material": args.material}
     try:
-        extra = {} if study is None else {"payload": study.as_dict()}
+        extra = ({} if study is None else {"payload": study.as_dict()}) | (
+            {} if reached is None else {"target": reached | (
+                {} if reached["reached"] or not design.realised else {"trade_off": design.trade_off().records()})})
         out.write_text(json.dumps({"source": str(path), "inputs": inputs} | design.as_dict() | extra, indent=1,
                                   allow_nan=False) + "\n")
     except OSError as err:
@@ -374,6 +390,17 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     print(f"springlab: warning: the design fails {len(flags)} of its own checks (listed under 'status', and in {out}'s "
           f"\"status\"); the files are written; exit status {EXIT_FLAGGED}", file=sys.stderr)
     return EXIT_FLAGGED
+
+
+def _reached_line(reached) -> str:
+    """The first line's end: whether the design reaches its target share of each loaded joint's peak."""
+    if reached is None:
+        return ""
+    shares = ", ".join(f"{n} {v:.1f} %" for n, v in reached["removed_percent"].items() if n not in reached["light"])
+    if reached["reached"]:
+        return f"; target {100 * reached['share']:g} % reached ({shares} of the peaks removed, hardware carried)"
+    return (f"; TARGET MISSED: {100 * reached['share']:g} % asked, {shares} removed (hardware carried): "
+            "see the trade-off below")
 
 
 def _print_dial(study) -> None:
@@ -626,6 +653,10 @@ def main(argv=None) -> int:
                    help="the pulley of a spring realised as a cable over a pulley, to the cable's centre, e.g. '20 mm' "
                         "(a bare number is in m; 0 for a point). Default: the belt layout's pulleys sized to their "
                         "cables (the rope maker's D/d), the two-point springs' to the cable of the largest pull; --sheet's 0.01")
+    p.add_argument("--target", type=float, default=0.9,
+                   help="the share of each loaded joint's peak gravity torque the realised springs, carrying their "
+                        "hardware, must remove (default 0.9); a design that misses it says so in its first line and "
+                        "offers what fewer springs reach")
     p.add_argument("--cable", default=None,
                    help="the belt layout's cable, by its diameter in mm, e.g. '1.59' (default: the stocked stainless "
                         "rope that carries each spring's pull with a safety factor of 5, over the least pulley)")

@@ -323,29 +323,34 @@ def belt_design(label: str, *, samples: int = 2000, seed: int = 1, pulley_radius
 
 def hardware_table(designs: dict) -> Table:
     """Per arm and spring of each design (label -> :class:`~springlab.design.arms.ArmDesign`): the share of its
-    link's joint's peak removed (ideal, realised, realised carrying the springs' own mass), the spring's
-    nearest approach to a link (coal, the URDF's meshes), its coil's longest length beside its link's length,
-    its largest force and its mass."""
+    link's joint's peak removed on the arm carrying the springs' hardware (ideal, realised) and, as the
+    control, by the realised springs on the bare arm; the spring's nearest approach to a link (coal, the
+    URDF's meshes); its coil's longest length beside its link's length and its pulley block; its largest
+    force; its cable with the largest pull beside the cable's working load, and its pulley's tread; its mass."""
     rows = []
     for label, design in designs.items():
         q = design.q
-        peak = np.max(np.abs(geometry.gravity_torques(design.model, q)), axis=0)
-        peak = np.where(peak > 0, peak, np.nan)  # the unloaded joints: no share
-        shares = {case: 100 * (1 - np.max(np.abs(geometry.joint_torques(arm, springs, q)), axis=0) / peak)
-                  for case, arm, springs in (("ideal", design.model, design.ideal),
-                                             ("realised", design.model, design.realised),
-                                             ("mass", design.massed, design.realised))}
+        shares = {}
+        for case, arm, springs in (("ideal", design.designed_for, design.ideal), ("realised", design.massed, design.realised),
+                                   ("bare", design.model, design.realised)):
+            peak = np.max(np.abs(geometry.gravity_torques(arm, q)), axis=0)
+            peak = np.where(peak > 0, peak, np.nan)  # the unloaded joints: no share
+            shares[case] = 100 * (1 - np.max(np.abs(geometry.joint_torques(arm, springs, q)), axis=0) / peak)
         near = {row[0]: row for row in design.clearance.rows}
-        for name, s, (coil, *_) in zip(design.realised_names, design.realised, design.coils, strict=True):
+        for name, s, fit in zip(design.realised_names, design.realised, design.coils, strict=True):
             body = design.model.bodies.index(s.link_a)
             joint = body - 1
             _, piece, nearest, _, gap = near[name]
+            cable = (f"{1e3 * fit.cable.diameter:.2f} {fit.cable.construction}: {s.k * fit.span[1]:.0f} of "
+                     f"{fit.cable.working:.0f}" if fit.cable is not None else "")
+            tread = f"{1e3 * fit.cable.pulley_diameter:.0f}" if fit.cable is not None and s.pulley_radius > 0 else ""
             rows.append((label, name, design.model.joints[joint], *(f"{shares[c][joint]:.1f}" for c in shares),
-                         f"{1e3 * gap:.0f} ({piece}, {nearest})", f"{1e3 * coil.max_length:.0f}",
-                         f"{1e3 * link_length(design.model, body):.0f}", f"{coil.max_force:.0f}",
-                         f"{1e3 * coil.mass:.0f}"))
-    return Table(["arm", "spring", "its joint", "removed, ideal (%)", "realised (%)", "carrying the springs (%)",
-                  "nearest link (mm)", "longest coil (mm)", "its link (mm)", "largest force (N)", "mass (g)"], rows)
+                         f"{1e3 * gap:.0f} ({piece}, {nearest})", f"{1e3 * fit.coil.max_length:.0f}",
+                         f"{1e3 * link_length(design.model, body):.0f}", f"{fit.ratio}:1" if fit.ratio > 1 else "none",
+                         f"{fit.coil.max_force:.0f}", cable, tread, f"{1e3 * fit.coil.mass:.0f}"))
+    return Table(["arm", "spring", "its joint", "removed, ideal (%)", "realised (%)", "realised, bare arm (%)",
+                  "nearest link (mm)", "longest coil (mm)", "its link (mm)", "block", "coil's largest force (N)",
+                  "cable (mm): pull of working load (N)", "pulley tread (mm)", "coil mass (g)"], rows)
 
 
 
