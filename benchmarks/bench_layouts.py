@@ -2,10 +2,12 @@
 
 The twelve arms of the real-robots work, each designed as ``springlab design`` does by default
 (``layout='auto'``: the belt layout where the loaded joints, the light ones left out, form a planar
-chain, else the two-point springs), over 5 mm pulleys with the springs' own mass carried. Per arm:
-the layout, the springs, the share of each loaded joint's peak removed (realised, and carrying the
-springs), each spring's nearest approach to a link on the URDF's own meshes (coal), the longest coil
-beside its link, the springs' mass beside the arm's, the design's status, and its seconds.
+chain, else the two-point springs), each cable a stocked stainless rope over a pulley sized to it,
+with the springs' hardware (coils, ropes, pulleys, posts, belts) carried. Per arm: the layout, the
+springs, the share of each loaded joint's peak removed by the realised springs carrying their hardware,
+each spring's nearest approach to a link on the URDF's own meshes (coal), the longest coil over its
+link's length, the springs' and the hardware's mass beside the arm's, the design's status, and its
+seconds.
 
 Targets (issue's): the UR5 and the UR10 >= 95 % of the shoulder's and the elbow's peaks, the UR3
 >= 90 %, the SO-101 >= 90 % of shoulder_lift's and elbow_flex's, all with <= 3 springs; no spring,
@@ -24,7 +26,8 @@ import numpy as np
 from springlab.design.arms import design_model
 from springlab.energy import geometry
 from springlab.model.robots import ROBOTS, load_robot
-from springlab.workbench.real_arms import PULLEY, hardware_table
+from springlab.design.hardware import link_length
+from springlab.workbench.real_arms import hardware_table
 
 
 def main() -> None:
@@ -32,25 +35,28 @@ def main() -> None:
     for label in ROBOTS:
         model = load_robot(label)
         start = time.perf_counter()
-        design = design_model(model, pulley_radius=PULLEY, layout="auto")
+        design = design_model(model, pulley_radius=None, layout="auto")
         seconds = time.perf_counter() - start
         if not design.realised:
-            rows.append((label, design.method, 0, "", "", "", "", f"{seconds:.1f}"))
+            rows.append((label, design.method, 0, "", "", "", "", "", f"{seconds:.1f}"))
             continue
-        peak = np.max(np.abs(geometry.gravity_torques(design.model, design.q)), axis=0)
+        peak = np.max(np.abs(geometry.gravity_torques(design.massed, design.q)), axis=0)
         left = np.max(np.abs(geometry.joint_torques(design.massed, design.realised, design.q)), axis=0)
         shares = ", ".join(f"{100 * (1 - left[i] / peak[i]):.1f}" for i in design.structure.loaded)
         gaps = [row[4] for row in design.clearance.rows] if design.clearance else []
         mass = sum(fit.coil.mass for fit in design.coils)
+        hardware = float(np.sum(design.massed.mass) - np.sum(design.model.mass))
+        worst = max(fit.coil.max_length / link_length(design.model, design.model.locate(s.link_a, s.point_a)[0])
+                    for s, fit in zip(design.realised, design.coils, strict=True))
         status = "passed" if not design.flags() else f"flagged ({len(design.flags())})"
         rows.append((label, design.method.split(":")[0], len(design.realised), shares,
-                     f"{1e3 * min(gaps):.0f}" if gaps else "-", f"{mass:.2f} / {float(np.sum(model.mass[1:])):.1f}",
-                     status, f"{seconds:.1f}"))
+                     f"{1e3 * min(gaps):.0f}" if gaps else "-", f"{worst:.2f}",
+                     f"{mass:.2f} / {hardware:.2f} / {float(np.sum(model.mass[1:])):.1f}", status, f"{seconds:.1f}"))
         if design.model.belts or design.method.startswith("belts"):
             belts[label] = design
-    print("| arm | layout | springs | loaded joints' peaks removed, springs' mass carried (%) | nearest link (mm) "
-          "| springs' / arm's mass (kg) | status | seconds |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| arm | layout | springs | loaded joints' peaks removed, hardware carried (%) | nearest link (mm) "
+          "| longest coil / its link | springs' / hardware's / arm's mass (kg) | status | seconds |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for row in rows:
         print("| " + " | ".join(str(v) for v in row) + " |")
     if belts:

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from springlab.design.arms import design_model, structure
-from springlab.design.hardware import spring_clearance
+from springlab.design.hardware import parts, spring_clearance
 from springlab.design.layouts import belt_layout
 from springlab.energy.geometry import gravity_torques, joint_torques
 from springlab.errors import SpringlabError
@@ -32,6 +32,8 @@ def test_the_ur5s_belt_springs_clear_its_links_and_hold_it_with_their_own_weight
     bare = np.abs(joint_torques(ur5.model, ur5.realised, q)).max(axis=0)  # the control: the hardware's mass left
     assert 1 - bare[1] / np.abs(gravity_torques(ur5.model, q)).max(axis=0)[1] < 0.95  # out, the shoulder is not held
     assert any("wrist_1_joint carries" in note and "no spring" in note for note in ur5.notes)
+    listed = sum(p.mass for p in parts(ur5.model, ur5.realised, ur5.kinds, ur5.coils, ur5.realised_names, q))
+    assert np.sum(ur5.massed.mass) - np.sum(ur5.model.mass) == pytest.approx(listed, rel=1e-12)  # all of it carried
     for s in ur5.as_dict()["realised"]:
         assert s.get("frame_b") == ({"at_joint": "elbow_joint", "axes_of": "shoulder_link"} if s["realises"] == "S2"
                                     else None)

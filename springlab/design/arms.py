@@ -1117,16 +1117,26 @@ class ArmDesign:
         return tuple(out)
 
     def hardware_flags(self) -> tuple:
-        """What its hardware cannot do: a cable spring with no stocked cable for its pull, a cable pulled past
-        its working load, a pulley smaller than its cable's D/d asks for, a coil longer in service than the
-        link it lies on (:func:`springlab.design.hardware.link_length`)."""
+        """What its hardware cannot do: a spring stretched at a pose of :attr:`q` (the audit's worst poses
+        included) beyond what its coil was wound for; a cable spring with no stocked cable for its pull, a
+        cable pulled past its working load, a pulley smaller than its cable's D/d asks for, a coil longer
+        in service than the link it lies on (:func:`springlab.design.hardware.link_length`)."""
         from springlab.design.hardware import link_length
 
         out = []
+        R, o = body_frames(self.model, self.q)
         for name, r, kind, fit in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
+            try:
+                longest = length_range(self.model, r, R, o)[1]
+            except GeometryError:
+                longest = float(fit.span[1])  # no line of action at some pose: flagged by the balance checks
+            if longest > fit.span[1] * (1 + 1e-6):
+                out.append(f"the realised spring {name} is stretched to {1e3 * longest:.1f} mm between its ends (its "
+                           f"cable's path) at a pose of the check, beyond the {1e3 * fit.span[1]:.1f} mm its coil was "
+                           "wound for")
             if not kind.startswith("cable"):
                 continue
-            pull = r.k * float(fit.span[1])
+            pull = r.k * max(float(fit.span[1]), longest)
             if fit.cable is None:
                 out.append(f"the realised spring {name}'s cable pulls {pull:.4g} N: no stocked cable carries it")
                 continue

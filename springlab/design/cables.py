@@ -130,15 +130,16 @@ def choose_cable(pull: float, *, pulley_radius: float | None = None) -> Cable:
                          "side or a larger pulley")
 
 
-def cable_by_name(name: str) -> Cable:
-    """The stocked cable named ``name`` (:data:`CABLES`; its diameter in mm, e.g. '1.59', is enough).
+def cable_by_name(name: str, *, option: str = "cable") -> Cable:
+    """The stocked cable named ``name`` (:data:`CABLES`; its diameter in mm, e.g. '1.59', is enough);
+    ``option`` names the parameter in the message.
 
     :raises SpringlabError: naming the stocked cables
     """
     for c in CABLES:
         if name == c.name or (isinstance(name, str) and name.strip().removesuffix("mm").strip() == f"{c.diameter * 1e3:.2f}"):
             return c
-    raise SpringlabError(f"cable = {name!r}: give a stocked cable by its diameter in mm, one of "
+    raise SpringlabError(f"{option} = {name!r}: give a stocked cable by its diameter in mm, one of "
                          + ", ".join(f"{c.diameter * 1e3:.2f}" for c in CABLES))
 
 

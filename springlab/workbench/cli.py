@@ -111,7 +111,7 @@ def _check_arguments(args) -> None:
     if args.cable is not None:
         from springlab.design.cables import cable_by_name
 
-        args.cable = cable_by_name(args.cable)
+        args.cable = cable_by_name(args.cable, option="--cable")
         if args.pulley_radius and not args.cable.fits(args.pulley_radius):
             raise SpringlabError(f"--cable {args.cable.name}: --pulley-radius {1e3 * args.pulley_radius:g} mm is too "
                                  f"small for it (its D/d of {args.cable.ratio:g} asks for "
