@@ -24,9 +24,9 @@ import time
 import numpy as np
 
 from springlab.design.arms import design_model
+from springlab.design.hardware import link_length
 from springlab.energy import geometry
 from springlab.model.robots import ROBOTS, load_robot
-from springlab.design.hardware import link_length
 from springlab.workbench.real_arms import hardware_table
 
 
