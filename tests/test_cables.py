@@ -86,7 +86,8 @@ def test_the_ur5s_json_carries_its_parts_and_coil_ends(tmp_path, capsys):
         a, b = np.array(s["coil_a"]["point"]), np.array(s["coil_b"]["point"])
         if s["kind"].startswith("cable"):  # both hooks on link_a: as far apart as the coil at its longest
             assert s["coil_a"]["link"] == s["coil_b"]["link"] == s["link_a"]
-            assert np.linalg.norm(b - a) == pytest.approx(s["coil_max_length"], rel=1e-6)  # (ends on a 1 um grid)
+            stretched = np.linalg.norm(b - a)  # at the longest of the check's poses, the audit's included
+            assert s["coil_max_length"] * (1 - 1e-6) <= stretched <= 1.01 * s["coil_max_length"]
             assert s["cable_diameter"] == s["cable"]["diameter"] and s["cable"]["working_load_N"] > 0
     kinds = {p["kind"] for p in data["parts"]}
     assert {"spring", "cable", "pulley", "post", "belt"} <= kinds

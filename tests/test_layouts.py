@@ -62,9 +62,11 @@ def test_the_clearance_is_pinocchios_on_the_same_urdf(ur5):
             if own == body:
                 u = (b - a) / np.linalg.norm(b - a)
                 a, b = (a + allowance * u, b) if end == "a" else (a, b - allowance * u)
-        if np.linalg.norm(b - a) == 0:  # a pulley: a ball
-            z, x = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.0, 0.0])
-            capsule = coal.Sphere(piece.radius)
+        if piece.axis is not None:  # a pulley: a disc about its axle
+            z = piece.axis[pose]
+            x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
+            x /= np.linalg.norm(x)
+            capsule = coal.Cylinder(piece.radius, piece.width)
         else:
             z = (b - a) / np.linalg.norm(b - a)
             x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
@@ -137,3 +139,23 @@ def test_a_light_joint_left_out_makes_the_so101s_lifting_joints_a_planar_chain()
     assert trimmed.planar and model.joints.index("wrist_roll") in trimmed.unloaded
     assert "light" in trimmed.reasons[model.joints.index("wrist_roll")]
     assert not without_light(model, found, 0.0, q).planar  # the control: nothing left out, no planar chain
+
+
+def test_hardware_that_cannot_carry_the_design_is_flagged(ur5):
+    # negative controls on the UR5's passing belt design: each fault put into one spring is named
+    from springlab.design.buildable import cable_spring
+    from springlab.design.cables import CABLES
+
+    assert ur5.hardware_flags() == ()
+    fit, spring = ur5.coils[-1], ur5.realised[-1]
+    weak = dataclasses.replace(ur5, coils=(*ur5.coils[:-1], fit._replace(cable=CABLES[0])))
+    assert any("more than its working load" in f for f in weak.hardware_flags())
+    small = dataclasses.replace(ur5, realised=(*ur5.realised[:-1], dataclasses.replace(spring, pulley_radius=0.005)))
+    assert any("smaller than its cable" in f for f in small.hardware_flags())
+    long_coil, _ = cable_spring(spring.k, (fit.span[0], 3 * fit.span[1]))  # wound for three times the stroke
+    long = dataclasses.replace(ur5, coils=(*ur5.coils[:-1], fit._replace(coil=long_coil, ratio=1)))
+    assert any("longer than its link" in f for f in long.hardware_flags())
+    half = (0.5 * fit.span[0], 0.5 * fit.span[1])  # wound for half the paths the cable takes: overstressed
+    short_coil, _ = cable_spring(spring.k * fit.ratio**2, (half[0] / fit.ratio, half[1] / fit.ratio))
+    over = dataclasses.replace(ur5, coils=(*ur5.coils[:-1], fit._replace(coil=short_coil, span=half)))
+    assert any("above its wire's allowable" in f for f in over.hardware_flags())

@@ -1117,8 +1117,8 @@ class ArmDesign:
         return tuple(out)
 
     def hardware_flags(self) -> tuple:
-        """What its hardware cannot do: a spring stretched at a pose of :attr:`q` (the audit's worst poses
-        included) beyond what its coil was wound for; a cable spring with no stocked cable for its pull, a
+        """What its hardware cannot do: a coil stretched at a pose of :attr:`q` (the audit's worst poses
+        included) past what it was wound for and past its wire's allowable stress; a cable spring with no stocked cable for its pull, a
         cable pulled past its working load, a pulley smaller than its cable's D/d asks for, a coil longer
         in service than the link it lies on (:func:`springlab.design.hardware.link_length`)."""
         from springlab.design.hardware import link_length
@@ -1130,10 +1130,12 @@ class ArmDesign:
                 longest = length_range(self.model, r, R, o)[1]
             except GeometryError:
                 longest = float(fit.span[1])  # no line of action at some pose: flagged by the balance checks
-            if longest > fit.span[1] * (1 + 1e-6):
-                out.append(f"the realised spring {name} is stretched to {1e3 * longest:.1f} mm between its ends (its "
-                           f"cable's path) at a pose of the check, beyond the {1e3 * fit.span[1]:.1f} mm its coil was "
-                           "wound for")
+            stretched = float(fit.coil_length(longest)) if kind.startswith("cable") else longest
+            stress = float(fit.coil.stress(fit.coil.force(max(stretched, fit.coil.free_length))))
+            if longest > fit.span[1] and stress > fit.coil.allowable_stress:
+                out.append(f"the realised spring {name}'s coil is stretched to {1e3 * stretched:.1f} mm at a pose of the "
+                           f"check, beyond the {1e3 * fit.coil.max_length:.1f} mm it was wound for: {stress / 1e6:.0f} MPa, "
+                           f"above its wire's allowable {fit.coil.allowable_stress / 1e6:.0f} MPa")
             if not kind.startswith("cable"):
                 continue
             pull = r.k * max(float(fit.span[1]), longest)

@@ -144,9 +144,9 @@ def cable_by_name(name: str, *, option: str = "cable") -> Cable:
 
 
 def pulley_mass(cable: Cable, pulley_radius: float) -> float:
-    """kg: an aluminium sheave for ``cable`` at ``pulley_radius`` (m): a disc out to the groove's flanges
-    (the cable's radius plus its diameter beyond its centreline), as wide as four cable diameters and at
+    """kg: an aluminium sheave for ``cable`` at ``pulley_radius`` (m, the cable's centreline): a disc out to
+    the groove's flanges (a cable diameter beyond its centreline), as wide as four cable diameters and at
     least 4 mm."""
-    outer = pulley_radius + 1.5 * cable.diameter
+    outer = pulley_radius + cable.diameter
     width = max(4 * cable.diameter, 0.004)
     return ALUMINIUM * math.pi * outer**2 * width

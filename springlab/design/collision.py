@@ -214,6 +214,16 @@ def _capsules(coal, P0, P1, radius):
             for p, L in enumerate(length)]
 
 
+def _discs(coal, centres, axes, radius, width) -> list:
+    """Discs (coal cylinders) of the radius and width about ``axes`` at ``centres`` ((N, 3) each): per row,
+    its coal shape, rotation and centre."""
+    z = axes / np.maximum(np.linalg.norm(axes, axis=1), 1e-12)[:, None]
+    x = np.cross(z, np.where(np.abs(z[:, :1]) < 0.9, [[1.0, 0.0, 0.0]], [[0.0, 1.0, 0.0]]))
+    x /= np.maximum(np.linalg.norm(x, axis=1), 1e-12)[:, None]
+    frames = np.stack([x, np.cross(z, x), z], axis=2)
+    return [(coal.Cylinder(max(radius, 1e-6), max(width, 1e-6)), frames[p], centres[p]) for p in range(len(centres))]
+
+
 def _piece_capsules(coal, a, b, radius, trim=None) -> list:
     """A piece's capsules at each pose; ``trim`` (end 'a' or 'b', allowance m): without the allowance at
     that end (None at a pose where nothing is left)."""
@@ -247,15 +257,18 @@ def _signed(coal, item: _Item, Ti, shape, Ts, centre, margin: float) -> float:
 @dataclass(frozen=True)
 class Piece:
     """A part of a spring that must clear the links: a capsule from ``a`` to ``b`` (m, base frame,
-    (N, 3) over the poses) of ``radius`` (m). ``bodies`` are the bodies it is fixed to, each with the
-    length (m) at that end within which it may touch its own body (its hook and bracket): the piece is
-    checked against its own body only beyond it."""
+    (N, 3) over the poses) of ``radius`` (m); or, with ``axis`` ((N, 3) unit vectors), a disc (a pulley)
+    centred at ``a`` = ``b`` of ``radius`` and ``width`` (m) about that axis. ``bodies`` are the bodies it is
+    fixed to, each with the length (m) at that end within which it may touch its own body (its hook and
+    bracket): the piece is checked against its own body only beyond it (a disc: not at all)."""
 
     name: str
     a: np.ndarray
     b: np.ndarray
     radius: float
     bodies: tuple = ()  # ((body index, end 'a' or 'b', allowance m), ...)
+    axis: np.ndarray | None = None
+    width: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -305,8 +318,11 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Cl
         a, b = np.asarray(piece.a, dtype=float), np.asarray(piece.b, dtype=float)
         shapes = {}  # (body or None) -> per pose its capsule, trimmed for its own bodies
 
-        def exact(i, p, near, own=own, shapes=shapes, a=a, b=b, radius=piece.radius):
+        def exact(i, p, near, own=own, shapes=shapes, a=a, b=b, radius=piece.radius, piece=piece):
             key = items[i].body if items[i].body in own else None
+            if key not in shapes and piece.axis is not None:  # a disc: not against its own bodies
+                shapes[key] = ([None] * len(a) if key is not None else
+                               _discs(coal, a, np.asarray(piece.axis, dtype=float), radius, piece.width))
             if key not in shapes:
                 shapes[key] = _piece_capsules(coal, a, b, radius, own.get(key))
             found = shapes[key][p]

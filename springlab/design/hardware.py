@@ -53,13 +53,15 @@ def _lead(model: RevoluteChain, s, R, o, ia, A, B) -> np.ndarray:
 
 
 def link_length(model: RevoluteChain, body: int) -> float:
-    """The length (m) of a body: from its joint to the next joint (the last body: to its centre of mass; the
-    base: unbounded, a coil on it lies on the ground or the arm's stand)."""
+    """The length (m) of a body: from its joint to the next joint (the last body: to its centre of mass), or
+    its outline's longest side where that is longer (a body between two joints at one point still has a
+    size); the base: unbounded, a coil on it lies on the ground or the arm's stand."""
     if body == 0 or body > model.n:  # the base, or a belt's frame
         return float("inf")
-    if body < model.n:
-        return float(np.linalg.norm(model.placements[body][:3, 3]))
-    return float(np.linalg.norm(model.com[body]))
+    span = float(np.linalg.norm(model.placements[body][:3, 3] if body < model.n else model.com[body]))
+    if model.outline and len(model.outline[body]):
+        span = max(span, float(np.max(np.ptp(model.outline[body], axis=0))))
+    return span
 
 
 def _cable_diameter(fit) -> float:
@@ -125,9 +127,19 @@ def spring_pieces(model: RevoluteChain, realised, kinds, coils, names, q) -> lis
         run = rho + d if fit.ratio > 1 else d / 2  # a block's strands lie within its travelling sheave
         out.append(Piece(f"{name} cable", moving, at_pulley, run, ((ia, "b", ALLOWANCE),)))
         out.append(Piece(f"{name} cable", T, B, d / 2, ((ia, "a", ALLOWANCE), (ib, "b", ALLOWANCE))))
-        if rho > 0:  # the sheave: a ball of its flanges' radius, on its bracket (its own link not checked)
-            out.append(Piece(f"{name} pulley", A, A, rho + d, ((ia, "a", ALLOWANCE),)))
+        if rho > 0:  # the sheave: a disc out to its flanges, in the plane of the lead and B (its own link: its bracket)
+            lead = np.broadcast_to(R[:, ia] @ u, B.shape)
+            normal = np.cross(lead, B - A)
+            flat = np.linalg.norm(normal, axis=1) < 1e-9 * np.maximum(np.linalg.norm(B - A, axis=1), 1e-300)
+            normal[flat] = np.cross(lead[flat], [1.0, 0.0, 0.0] if abs(u[0]) < 0.9 else [0.0, 1.0, 0.0])
+            normal /= np.linalg.norm(normal, axis=1)[:, None]
+            out.append(Piece(f"{name} pulley", A, A, rho + d, ((ia, "a", ALLOWANCE),), normal, _width(d)))
     return out
+
+
+def _width(cable_diameter: float) -> float:
+    """m: a pulley's width (:func:`springlab.design.cables.pulley_mass`'s): four cable diameters, at least 4 mm."""
+    return max(4 * cable_diameter, 0.004)
 
 
 def _world(R, o, body: int, points) -> np.ndarray:

@@ -594,12 +594,17 @@ def _write_sheet(args, spec, chosen, out: Path) -> None:
 
 EPILOG = """\
 what a URDF arm's output says:
+  the first line: whether the realised springs, carrying their hardware, remove --target of each
+  loaded joint's peak (light joints aside); a missed target prints what fewer springs reach.
   the layout: belts (a level reference carried by 1:1 belts to each joint of a planar chain, one
   spring per link beside the links, its coil along the link) where the arm allows them, else springs
   between two links' points (--layout); the workspace is the poses within the limits where no two
   links collide and none passes below the mounting plane, its share of the limits' box printed; each
   realised spring's coil and cable are measured against the links' own collision shapes (coal) and
-  must keep --margin from them; the torque tables also show the arm carrying the springs' own mass.
+  must keep --margin from them; each cable is a stocked stainless rope that carries its pull five
+  times over, on a pulley its rope maker allows (D/d), and a coil too long for its link runs over a
+  2:1 or 3:1 pulley block; the parts table lists every coil, rope, pulley, post and belt with its
+  mass and loads, and the torque tables also show the arm carrying them.
   the best springs' note lists, after each spring the greedy search added, the share of the
   worst joint's scale removed ("1 spring 0.0 %, 2 springs 36.1 %, ..."): a joint's scale is its own
   peak gravity torque, or a tenth of the arm's largest for a light joint; the search stops when
@@ -611,7 +616,9 @@ what a URDF arm's output says:
 exit status: 0 a design that passes its own checks; 1 no design found; 2 bad input (one line
   naming it, nothing written); 3 a design written that fails its own checks (its JSON's "status"
   says which: no better than its negative control, a joint worse than gravity alone, a spring
-  with no line of action at a pose, a spring nearer a link than the margin); 4 an unexpected error (a defect: rerun with --debug).
+  with no line of action at a pose, a spring nearer a link than the margin, a rope past its working
+  load or on too small a pulley, a coil longer than its link); 4 an unexpected error (a defect:
+  rerun with --debug).
   The last line printed is the wall time of the whole command.
 """
 
