@@ -85,3 +85,16 @@ def test_a_bad_margin_is_refused_and_nothing_written(tmp_path, capsys, margin):
     out = tmp_path / "d.json"
     assert main(["design", str(robot_urdf("UR5")), "--margin", margin, "--json", str(out), "--quiet"]) == 2
     assert "--margin" in capsys.readouterr().err and not out.exists()
+
+
+def test_a_workspace_where_every_pose_collides_is_refused(tmp_path, capsys):
+    # the UR5 hanging straight down from its shoulder: every pose passes below the mounting plane. Within
+    # that narrowed workspace the links are always below it, which must not make them "below by construction"
+    from springlab.model.robots import robot_urdf
+    from springlab.workbench.cli import main
+
+    out = tmp_path / "x.json"
+    down = "shoulder_lift_joint=85:95,elbow_joint=-5:5"
+    assert main(["design", str(robot_urdf("UR5")), "--workspace", down, "--json", str(out), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert "no pose of the workspace is free" in err and err.count("\n") == 1 and not out.exists()

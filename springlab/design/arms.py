@@ -2063,7 +2063,8 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         _check_pulley(model, pulley_radius)
     ranges = workspace_ranges(model, workspace)
     rng = np.random.default_rng(seed)
-    sampler = Sampler(model, ranges, np.random.default_rng([seed, 17])) if collisions and has_geometry(model) else None
+    sampler = (Sampler(model, ranges, np.random.default_rng([seed, 17]), limits=workspace_ranges(model))
+               if collisions and has_geometry(model) else None)
 
     def draw(count):
         if sampler is None:

@@ -464,17 +464,19 @@ def _default_pose(ranges: np.ndarray) -> np.ndarray:
 
 class Sampler:
     """Random poses of the arm's workspace (see the module docstring): within ``ranges`` ((n, 2) rad), no
-    two links in collision but pairs that touch by construction (found on ``calibration`` poses of the
-    ranges and named in its ``notes``), no link below the mounting plane. An arm without collision
-    geometry samples the ranges' box.
+    two links in collision but pairs that touch by construction (found on ``calibration`` poses of
+    ``limits``, the joints' whole ranges, default ``ranges``, and named in its ``notes``: a narrowed
+    workspace in which two links always touch does not make them touch by construction), no link below
+    the mounting plane. An arm without collision geometry samples the ranges' box.
 
     :ivar notes: the pairs and links left unchecked because they touch by construction, a line each
     :ivar pairs: the pairs of bodies checked against each other (indices)
     :ivar below: the bodies checked against the mounting plane
     """
 
-    def __init__(self, model: RevoluteChain, ranges, rng, *, calibration: int = 400):
+    def __init__(self, model: RevoluteChain, ranges, rng, *, calibration: int = 400, limits=None):
         self.model, self.ranges = model, np.asarray(ranges, dtype=float)
+        limits = self.ranges if limits is None else np.asarray(limits, dtype=float)
         self.checked = has_geometry(model)
         self.drawn = self.kept = 0
         notes = []
@@ -484,8 +486,7 @@ class Sampler:
             self.pairs, self.below, self.notes = [], set(), tuple(notes)
             return
         pairs, names = _pairs(model), model.bodies
-        trial = np.vstack([_default_pose(self.ranges),
-                           rng.uniform(self.ranges[:, 0], self.ranges[:, 1], (calibration, model.n))])
+        trial = np.vstack([_default_pose(limits), rng.uniform(limits[:, 0], limits[:, 1], (calibration, model.n))])
         hit, low = collision_masks(model, trial, pairs=pairs)
         self.pairs = []
         for k, (a, b) in enumerate(pairs):
