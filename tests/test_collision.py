@@ -9,7 +9,14 @@ pytest.importorskip("coal")
 
 
 from springlab.design.arms import workspace_ranges  # noqa: E402
-from springlab.design.collision import MARGIN, Piece, Sampler, clearances, collision_masks  # noqa: E402
+from springlab.design.collision import (  # noqa: E402
+    MARGIN,
+    Piece,
+    Sampler,
+    clearances,
+    collision_masks,
+    mounting_plane,
+)
 from springlab.model.revolute import body_frames, world_points  # noqa: E402
 from springlab.model.robots import load_robot, robot_urdf  # noqa: E402
 from springlab.workbench.cli import main  # noqa: E402
@@ -32,10 +39,15 @@ def _through(model, q, link, offset):
 def test_a_cable_moved_through_a_link_is_caught(ur5):
     q = np.zeros((3, ur5.n))  # the UR5 stretched out level: its upper arm along the base's y axis
     found = clearances(ur5, [_through(ur5, q, "upper_arm_link", 0.0), _through(ur5, q, "upper_arm_link", 0.5)], q)
-    gap, body, _ = found.worst(0)
+    gaps = found.gaps[0][:, :-1]  # the links (the mounting plane is the last column)
+    pose, body = np.unravel_index(int(np.argmin(gaps)), gaps.shape)
+    gap = gaps[pose, body]
     assert ur5.bodies[body] == "upper_arm_link" and gap < -0.02  # through the link: a depth in m
-    assert found.failures() == [("S9 cable", "upper_arm_link", 0, gap)]
-    assert found.worst(1)[0] > MARGIN  # the control: the same cable half a metre aside clears
+    links = [f for f in found.failures() if f[1] != "the mounting plane"]
+    assert links == [("S9 cable", "upper_arm_link", 0, gap)]
+    lowest = min(found.pieces[0].a[0] @ ur5.up, found.pieces[0].b[0] @ ur5.up) - 0.0006  # the cable's lowest point
+    assert found.gaps[0][0, -1] == pytest.approx(lowest - mounting_plane(ur5))  # its height above the table
+    assert np.min(found.gaps[1][:, :-1]) > MARGIN  # the control: the same cable half a metre aside clears the links
 
 
 def test_a_piece_wholly_inside_a_mesh_is_caught_although_it_touches_no_triangle(ur5):

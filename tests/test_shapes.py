@@ -190,7 +190,7 @@ def test_the_cli_takes_package_dirs_and_refuses_a_missing_one(tmp_path, capsys):
     assert data["inputs"]["package_dirs"] == [str(share)] and data["inputs"]["reach_m"] == 0.0
     flags = data["status"]["flags"]
     assert any("cannot be mounted" in f for f in flags)  # the meshes found: clearance measured
-    assert all("cannot be mounted" in f or "longer than its link" in f for f in flags)
+    assert all("cannot be mounted" in f or "reaches past the joint" in f for f in flags)
     assert "outline (the bounding box of its URDF geometry) and 0 cm beyond it" in capsys.readouterr().out
     out.unlink()
     code = main(["design", str(robot_urdf("UR5")), "--tip", "wrist_3_link", "--package-dir",

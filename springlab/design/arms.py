@@ -1120,8 +1120,8 @@ class ArmDesign:
         """What its hardware cannot do: a coil stretched at a pose of :attr:`q` (the audit's worst poses
         included) past what it was wound for and past its wire's allowable stress; a cable spring with no stocked cable for its pull, a
         cable pulled past its working load, a pulley smaller than its cable's D/d asks for, a coil longer
-        in service than the link it lies on (:func:`springlab.design.hardware.link_length`)."""
-        from springlab.design.hardware import link_length
+        in service than its link has between its pulley and its joint (it would reach past the joint)."""
+        from springlab.design.hardware import HOOK_GAP
 
         out = []
         R, o = body_frames(self.model, self.q)
@@ -1149,10 +1149,13 @@ class ArmDesign:
                 out.append(f"the realised spring {name}'s pulley ({1e3 * r.pulley_radius:g} mm to the cable's centre) is "
                            f"smaller than its cable ({fit.cable.name}) asks for, {1e3 * fit.cable.pulley_radius:g} mm "
                            f"(D/d {fit.cable.ratio:g}): give a larger --pulley-radius, or leave it to be sized")
-            room = link_length(self.model, self.model.locate(r.link_a, r.point_a)[0])
+            body, at = self.model.locate(r.link_a, r.point_a)
+            behind = r.pulley_radius + HOOK_GAP + (2 * (r.pulley_radius + fit.cable.diameter) if fit.ratio > 1 else 0.0)
+            room = float(np.linalg.norm(at)) - behind if 0 < body <= self.model.n else float("inf")
             if fit.coil.max_length > room * (1 + 1e-9):
                 out.append(f"the realised spring {name}'s coil is {1e3 * fit.coil.max_length:.0f} mm long in service, "
-                           f"longer than its link {r.link_a} ({1e3 * room:.0f} mm from its joint to the next)")
+                           f"longer than the {1e3 * room:.0f} mm its link {r.link_a} has between its pulley and its "
+                           "joint: it reaches past the joint")
         return tuple(out)
 
     def removed_by(self, springs) -> np.ndarray:

@@ -273,8 +273,9 @@ class Piece:
 
 @dataclass(frozen=True)
 class Clearances:
-    """The clearance (m) of each piece from each body at each pose, (pieces, N, n + 1); +inf where a body
-    has no geometry or is not checked."""
+    """The clearance (m) of each piece from each body at each pose, and last from the mounting plane (the
+    table or floor the base stands on), (pieces, N, n + 2); +inf where a body has no geometry or is not
+    checked."""
 
     pieces: tuple
     gaps: np.ndarray
@@ -307,7 +308,8 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Cl
     pieces = tuple(pieces)
     items = _items(model)
     R, o = body_frames(model, q)
-    gaps = np.full((len(pieces), q.shape[0], model.n + 1), np.inf)
+    gaps = np.full((len(pieces), q.shape[0], model.n + 2), np.inf)
+    plane, up = mounting_plane(model), np.asarray(model.up, dtype=float)
     placed = []
     for item in items:
         Ri = R[:, item.body] @ item.frame[:3, :3]
@@ -351,7 +353,12 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Cl
             G[i, p], known[i, p] = exact(i, p, np.inf), True
         for i, item in enumerate(items):
             gaps[k, :, item.body] = np.minimum(gaps[k, :, item.body], G[i])
-    return Clearances(pieces, gaps, tuple(model.bodies))
+        if piece.axis is None:  # a capsule's lowest point; a disc's: its rim's, tilted by its axis
+            gaps[k, :, -1] = np.minimum(a @ up, b @ up) - piece.radius - plane
+        else:
+            tilt = np.sqrt(np.clip(1 - (np.asarray(piece.axis, dtype=float) @ up) ** 2, 0.0, 1.0))
+            gaps[k, :, -1] = a @ up - piece.radius * tilt - 0.5 * piece.width * np.abs(piece.axis @ up) - plane
+    return Clearances(pieces, gaps, (*model.bodies, "the mounting plane"))
 
 
 def _pairs(model: RevoluteChain) -> list[tuple[int, int]]:

@@ -1,25 +1,30 @@
-"""A realised design as hardware on the arm: where each spring's coil and cable are at every pose, how
-near they come to the links (:mod:`springlab.design.collision`, on the URDF's own shapes), and the
-springs' own mass carried by the links.
+"""A realised design as hardware on the arm: where each spring's coil, cable and pulley are at every
+pose, how near they come to the links (:mod:`springlab.design.collision`, on the URDF's own shapes),
+the parts a maker builds it from (:func:`parts`: coils, ropes, pulleys, posts and belts, with their
+sizes, masses and loads) and their mass carried by the links.
 
 **Where a realised spring is** (:func:`spring_pieces`), in the base frame at each pose:
 
 * a *zero-length spring* is its coil from A to B (the hooks on the brackets at A and B), a capsule of
   the coil's outer diameter;
 * a *cable over a pulley* is its cable from the point T where it leaves the pulley to B (route 2's
-  cable path, :func:`~springlab.energy.geometry.cable_geometry`), a capsule of :data:`CABLE_DIAMETER`;
-  its coil lies on link_a behind the pulley, along the lead: its fixed hook at
-  :data:`HOOK_GAP` + the pulley's radius + the coil's longest length from A, its moving hook as far
-  from the fixed one as the coil is long at that pose (the cable's path plus its offset
-  L_0 - F_i / k), and the cable runs from the moving hook along the lead to the pulley.
+  cable path, :func:`~springlab.energy.geometry.cable_geometry`), a capsule of its rope's diameter
+  (:mod:`springlab.design.cables`; :data:`CABLE_DIAMETER` where none is named); its pulley a disc out
+  to its flanges in the plane of the lead and B; its coil lies on link_a behind the pulley, along the
+  lead: its fixed hook at :data:`HOOK_GAP` + the pulley's radius (+ a block's travelling sheave) + the
+  coil's longest length from A, its moving hook as far from the fixed one as the coil is long at that
+  pose (the cable's path over the block's ratio plus its offset L_0 - F_i / k), and the cable runs
+  from the moving hook along the lead to the pulley (over a block, its strands within the sheave's
+  width).
 
 Each piece may touch the link it is fixed to within :data:`ALLOWANCE` of its fixed end (its hook and
 bracket); everywhere else it must clear every link by the margin.
 
-**Their mass** (:func:`with_spring_mass`): a zero-length spring's coil, stretched evenly between A and
-B, has its centre of mass at (A + B) / 2, the same potential energy as half its mass at A and half at
-B, exactly; a cable spring's coil rides on link_a, its mass at its centre at mid-stroke (its centre
-moves by a quarter of the stroke, which this leaves out). Lengths in m, masses in kg.
+**Their mass** (:func:`with_spring_mass`, every part's as :func:`parts` places it): a zero-length
+spring's coil, stretched evenly between A and B, has its centre of mass at (A + B) / 2, the same
+potential energy as half its mass at A and half at B, exactly; a cable spring's coil rides on link_a,
+its mass at its centre at mid-stroke (its centre moves by a quarter of the stroke, which this leaves
+out). Lengths in m, masses in kg.
 """
 
 from __future__ import annotations
@@ -177,7 +182,7 @@ def spring_clearance(model: RevoluteChain, realised, kinds, coils, names, q, *, 
         spring, _, part = piece.name.partition(" ")
         gap, body, pose = found.worst(k)
         if spring not in best or gap < best[spring][4]:
-            best[spring] = (spring, part, model.bodies[body], pose, gap)
+            best[spring] = (spring, part, found.links[body], pose, gap)
     return SpringClearance(tuple(best[n] for n in names if n in best), float(margin), int(np.asarray(q).shape[0]))
 
 

@@ -13,8 +13,10 @@ Each spring spans one joint, so it stays as short as its lever: between |p| - |c
 In the plane (complex coordinates, :func:`~springlab.design.arms.planar_moments`) link k's gravity
 energy is g Re(conj(i) e^{i theta_k} G_k) and the spring's k Re(conj(c_0) c_k e^{i theta_k}) with
 c_0 = -p: their sum is constant when k conj(c_0) c_k = -g conj(i) G_k. Only the product is fixed;
-this module takes |c| = :data:`LEVER` of the link's length and |p| = :data:`POST` of it, so that the
-spring's longest length is 0.95 of the link's. Both ends move along the joint's axis together
+this module takes |c| = :data:`LEVER` of the link's length and |p| = :data:`POST` of it: the pulley
+near the link's far end, so that the coil lies along the link between it and the joint (over a pulley
+block where it would be longer), and the cable's path spans 0.6 to 1.1 of the link's length. Both ends
+move along the joint's axis together
 (which changes no length's variation) to one side of the links, :data:`AXIAL_GAP` beyond the
 farther of the two links' shapes, so that the spring and its post run beside the links.
 
@@ -44,8 +46,9 @@ from springlab.rounding import significant
 SHARE = 0.02
 """Joints whose peak gravity torque is below this share of the arm's largest get no spring by default."""
 
-LEVER = 0.6
-"""The spring's point on its link lies this share of the link's length from the link's joint."""
+LEVER = 0.85
+"""The spring's point (its pulley) on its link lies this share of the link's length from the link's joint:
+the coil lies between it and the joint, so that it stays on its own link."""
 
 POST = 0.25
 """The post on the level frame reaches this share of the link's length above the joint."""
@@ -233,7 +236,7 @@ FIT_PULL = 1e-3
 lengths relative to theirs, angles in rad): the torque alone leaves a shallow valley of equally good
 fits, where another CPU's round-off would land elsewhere."""
 
-LEAD_TURN = np.radians(60.0)
+LEAD_TURN = np.radians(15.0)
 """rad: the pulley compensation may turn the coil's lead this far in the spring's plane from the line
 through the joint (the coil then lies across its link at up to that angle)."""
 
@@ -316,10 +319,11 @@ BLOCKS = (1, 2, 3)
 path at n times its pull."""
 
 
-def coil_for(k: float, lengths, room: float, material: str):
+def coil_for(k: float, lengths, room: float, material: str, *, block: float = 0.0):
     """The coil, pulley block and side-by-side count for a cable spring of rate ``k`` (N/m) over cable paths
     ``lengths`` (m): the fewest side by side (up to :data:`~springlab.design.arms.MAX_PARALLEL`), then the
-    least block (:data:`BLOCKS`) whose coil is no longer than ``room`` (m) in service; where none fits, the
+    least block (:data:`BLOCKS`) whose coil is no longer than ``room`` (m) in service (less ``block``, m,
+    what a block's travelling sheave takes, for a block); where none fits, the
     shortest coil of the fewest side by side (the design's flags then say so). Returns (coil, ratio, parallel) or (None, why)."""
     from springlab.design.arms import MAX_PARALLEL
     from springlab.design.buildable import cable_spring
@@ -332,12 +336,18 @@ def coil_for(k: float, lengths, room: float, material: str):
             why = why or reason
             if coil is None:
                 continue
-            if coil.max_length <= room:
+            if coil.max_length <= room - (block if n > 1 else 0.0):
                 return coil, n, parallel
             if best is None or (parallel, coil.max_length) < (best[2], best[0].max_length):
                 best = (coil, n, parallel)  # none fits: the fewest side by side, the shortest of those
     return best if best is not None else (None, why)
 
+
+
+def _offset(plane: SpringPlane, point) -> complex:
+    """A point of the link (m, its frame) as a complex offset from the joint in the spring's plane."""
+    at = np.asarray(plane.R0[plane.link]) @ np.asarray(point) + plane.o0[plane.link] - plane.joint_at
+    return complex(at @ plane.h, at @ plane.up)
 
 
 def cable_for(pull: float, given: float | None):
@@ -376,6 +386,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
     """
     from springlab.design.arms import length_range
     from springlab.design.buildable import Fitted
+    from springlab.design.hardware import HOOK_GAP
     from springlab.model.revolute import body_frames
 
     model = layout.model
@@ -398,12 +409,14 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
                 chosen = cable_for(pull, given)
             rho = chosen.pulley_radius if given is None else given
             s, towards = ideal, ideal_towards
+            reach = abs(_offset(plane, ideal.point_a))  # m: from the joint to the pulley, in the plane
             if rho > 0:  # the pulley adds k rho (its wrap's change): c, p and k re-fitted for it
                 point = np.asarray(plane.R0[plane.link]) @ np.asarray(s.point_a) + plane.o0[plane.link] - plane.joint_at
                 post = plane.level_rotation @ np.asarray(s.point_b) + plane.level_origin - plane.joint_at
                 c0, p0 = complex(point @ plane.h, point @ plane.up), complex(post @ plane.h, post @ plane.up)
                 c, p, k, phi = compensate_pulley(plane, c0, p0, s.k, rho, _link_angles(plane, R))
                 s = plane.spring(model, c, p, k)
+                reach = abs(c) * np.cos(phi)  # the coil runs from the pulley along the lead towards the joint
                 z = c / abs(c) * np.exp(1j * phi)  # the lead's direction in the plane
                 towards = tuple(plane.R0[plane.link].T @ (-(z.real * plane.h + z.imag * plane.up)))
             lead = tuple(-np.cos(LEAD_TILT) * np.asarray(towards) - np.sin(LEAD_TILT) * np.asarray(out_a))  # from
@@ -411,7 +424,9 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
             led = PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, pulley_radius=rho,
                               lead=lead if rho > 0 else None)
             lengths = length_range(model, led, R, o)
-            found = coil_for(s.k, lengths, room, material)
+            d = chosen.diameter if rho > 0 else 0.0
+            room = min(room, reach - rho - HOOK_GAP - d)  # between the pulley and the joint, on its own link
+            found = coil_for(s.k, lengths, room, material, block=2 * (rho + d))
             if found[0] is None:
                 raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, even "
                                      f"side by side or over a pulley block ({found[1]})")

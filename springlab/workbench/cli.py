@@ -381,7 +381,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
                  "the springs' clearance from the links is not among these checks (no link shapes): see its table")
         print("\nstatus: passed (better than its negative control; no joint left worse than gravity alone; every "
               f"spring with a line of action at every pose checked, no cable's end crossing its pulley's lead; every "
-              "cable within its working load over a pulley its rope maker allows; every coil no longer than its link; "
+              "cable within its working load over a pulley its rope maker allows; every coil between its pulley and its joint; "
               f"{clear})")
         return 0
     print(f"\nstatus: flagged, {len(flags)} of the design's own checks fail:")
@@ -617,7 +617,7 @@ exit status: 0 a design that passes its own checks; 1 no design found; 2 bad inp
   naming it, nothing written); 3 a design written that fails its own checks (its JSON's "status"
   says which: no better than its negative control, a joint worse than gravity alone, a spring
   with no line of action at a pose, a spring nearer a link than the margin, a rope past its working
-  load or on too small a pulley, a coil longer than its link); 4 an unexpected error (a defect:
+  load or on too small a pulley, a coil reaching past its joint); 4 an unexpected error (a defect:
   rerun with --debug).
   The last line printed is the wall time of the whole command.
 """

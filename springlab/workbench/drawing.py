@@ -64,6 +64,9 @@ class Scene:
     :ivar ground: the legend's name of the base column
     :ivar shells: each body's outline, (N, k, 3) points whose hull is the body (a URDF's geometry):
         drawn as light grey silhouettes behind the links
+    :ivar cables: {spring label: [(P (N, 3), Q (N, 3)), ...]}: a realised spring's cable runs, drawn as thin
+        lines in its colour (its ``springs`` entry is then its coil)
+    :ivar pulleys: {spring label: (centre (N, 3), radius m)}: its pulley, drawn as a circle of its radius
     """
 
     up: np.ndarray
@@ -76,6 +79,8 @@ class Scene:
     masses: np.ndarray | None = None
     ground: str = "ground (link 1)"
     shells: list = field(default_factory=list)
+    cables: dict = field(default_factory=dict)
+    pulleys: dict = field(default_factory=dict)
 
     @property
     def poses(self) -> int:
@@ -110,6 +115,7 @@ class Scene:
     def all_points(self) -> np.ndarray:
         parts = [link.reshape(-1, 3) for link in self.links]
         parts += [np.vstack(ab) for ab in self.springs.values()]
+        parts += [np.vstack(run) for runs in self.cables.values() for run in runs]
         parts += [e.reshape(-1, 3) for e in self.extras.values()]
         parts += [b.reshape(-1, 3) for b in (self.brackets, self.masses) if b is not None]
         parts += [shell.reshape(-1, 3) for shell in self.shells]
@@ -191,6 +197,29 @@ def revolute_scene(model, springs, q) -> Scene:
     return Scene(np.asarray(up, dtype=float), [joints], springs_at, column,
                  brackets=np.stack(brackets, axis=1) if brackets else None, masses=coms,
                  ground=f"base ({model.bodies[0]})", shells=shells)
+
+
+def hardware_scene(design, q) -> Scene:
+    """A URDF arm's design (:class:`springlab.design.arms.ArmDesign`) at joint angles ``q`` (N, n) rad with
+    its realised springs as built (:func:`springlab.design.hardware.spring_pieces`): each coil between its
+    hooks (drawn as the spring), its cable runs, and its pulley; named as the design names them."""
+    from dataclasses import replace
+
+    from springlab.design.hardware import spring_pieces
+
+    q = design.model.check_q(q)
+    scene = revolute_scene(design.model, design.realised, q)
+    pieces = spring_pieces(design.model, design.realised, design.kinds, design.coils, design.realised_names, q)
+    springs, cables, pulleys = {}, {}, {}
+    for piece in pieces:
+        name, _, part = piece.name.partition(" ")
+        if part == "coil":
+            springs[name] = (piece.a, piece.b)
+        elif part == "cable":
+            cables.setdefault(name, []).append((piece.a, piece.b))
+        elif part == "pulley":
+            pulleys[name] = (piece.a, piece.radius)
+    return replace(scene, springs=springs, cables=cables, pulleys=pulleys)
 
 
 def pseudobase_scene(arm, springs, q) -> Scene:
@@ -290,6 +319,17 @@ def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=
         artists += ax.plot(*pts.T, color=colour, linewidth=1.5, zorder=4, label=label)
         artists += ax.plot(*np.array([P, Q]).T, "o", color="k", markersize=3.2, zorder=6,
                            label="attachment points" if k == 0 else None)
+    for k, (label, runs) in enumerate(scene.cables.items()):
+        colour = _colour(label, list(scene.springs).index(label) if label in scene.springs else k, colours)
+        for m, (P, Q) in enumerate(runs):
+            artists += ax.plot(*scene.project(np.array([P[pose], Q[pose]]), view).T, color=colour, linewidth=0.8,
+                               zorder=4, label="cables" if k == 0 and m == 0 else None)
+    for k, (label, (centre, radius)) in enumerate(scene.pulleys.items()):
+        colour = _colour(label, list(scene.springs).index(label) if label in scene.springs else k, colours)
+        turn = np.linspace(0.0, 2 * np.pi, 41)
+        circle = scene.project(centre[pose], view) + radius * np.stack([np.cos(turn), np.sin(turn)], axis=1)
+        artists += ax.plot(*circle.T, color=colour, linewidth=0.9, zorder=4,
+                           label="pulleys (circles of their radius)" if k == 0 else None)
     if scene.path is not None:
         artists += ax.plot(*scene.project(scene.path, view).T, color="tab:blue", linewidth=0.9,
                            linestyle="--", label="end-point path", zorder=2)

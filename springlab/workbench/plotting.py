@@ -225,14 +225,15 @@ def arm_figure(chain, springs, X_frames, tip_path=None, *, title: str = "", titl
                             label_style={"fontsize": 8, "gap": 5.0, "clear": (3.0, 12.0)})
 
 
-def real_arm_figure(design, pose=None, *, title: str = ""):
+def real_arm_figure(design, pose=None, *, title: str = "", hardware: bool = False):
     """An arm of the general model with its springs at one pose (default the design's first
     workspace pose), in front, side and top views at one scale
-    (:func:`springlab.workbench.drawing.revolute_scene`)."""
-    from springlab.workbench.drawing import mechanism_figure, revolute_scene
+    (:func:`springlab.workbench.drawing.revolute_scene`); ``hardware=True``: its realised springs as
+    built, coils, cables and pulleys (:func:`springlab.workbench.drawing.hardware_scene`)."""
+    from springlab.workbench.drawing import hardware_scene, mechanism_figure, revolute_scene
 
     q = design.q[:1] if pose is None else np.atleast_2d(pose)
-    scene = revolute_scene(design.model, design.ideal, q)
+    scene = hardware_scene(design, q) if hardware else revolute_scene(design.model, design.ideal, q)
     return mechanism_figure(scene, [0], views=("front", "side", "top"), columns=2,
                             titles=[design.model.name], title=title)
 
