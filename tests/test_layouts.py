@@ -162,3 +162,25 @@ def test_hardware_that_cannot_carry_the_design_is_flagged(ur5):
     short_coil, _ = cable_spring(spring.k * fit.ratio**2, (half[0] / fit.ratio, half[1] / fit.ratio))
     over = dataclasses.replace(ur5, coils=(*ur5.coils[:-1], fit._replace(coil=short_coil, span=half)))
     assert any("above its wire's allowable" in f for f in over.hardware_flags())
+
+
+def test_the_drawing_shows_each_spring_as_built(ur5):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from springlab.workbench.drawing import hardware_scene
+    from springlab.workbench.plotting import real_arm_figure
+
+    scene = hardware_scene(ur5, ur5.q[:1])
+    assert list(scene.springs) == list(ur5.realised_names) == list(scene.pulleys)
+    assert all(len(runs) == 2 for runs in scene.cables.values())  # coil to pulley, pulley to post
+    for name, (a, b) in scene.springs.items():  # the coil drawn between its hooks, as long as it is there
+        fit = ur5.coils[ur5.realised_names.index(name)]
+        assert fit.coil.free_length <= np.linalg.norm(b[0] - a[0]) <= fit.coil.max_length * 1.01
+    fig = real_arm_figure(ur5, hardware=True)
+    labels = {t.get_text() for t in fig.legends[0].get_texts()} if fig.legends else set()
+    labels |= {h.get_label() for ax in fig.axes for h in ax.get_lines()}
+    assert {"cables", "pulleys (circles of their radius)"} <= labels
+    plt.close(fig)
