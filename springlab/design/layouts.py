@@ -46,7 +46,7 @@ from springlab.rounding import significant
 SHARE = 0.02
 """Joints whose peak gravity torque is below this share of the arm's largest get no spring by default."""
 
-LEVER = 0.85
+LEVER = 0.9
 """The spring's point (its pulley) on its link lies this share of the link's length from the link's joint:
 the coil lies between it and the joint, so that it stays on its own link."""
 
@@ -314,7 +314,7 @@ def _link_angles(plane: SpringPlane, R) -> np.ndarray:
     return np.radians(np.unique(np.round(theta)))
 
 
-BLOCKS = (1, 2, 3)
+BLOCKS = (1, 2, 3, 4)
 """The pulley blocks a coil too long for its link is tried with, in turn: the coil moves 1 / n of the cable's
 path at n times its pull."""
 
@@ -369,7 +369,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
     """Each spring of a layout as a coil on its link behind a pulley at its point, the cable running to the
     post (:func:`springlab.design.buildable.cable_spring`; up to
     :data:`~springlab.design.arms.MAX_PARALLEL` side by side where one wire is too weak, and over a pulley
-    block, :data:`BLOCKS`, where the coil would be longer than its link). Returns the realised springs,
+    block, :data:`BLOCKS`, where the coil would reach past its joint). Returns the realised springs,
     their kinds, their coils (:class:`~springlab.design.buildable.Fitted`: the coil, the cable's paths, the
     block and the cable) and the index of the layout's spring each realises, as
     :func:`~springlab.design.arms.realise_springs` does; the coil lies along the link towards the joint

@@ -603,7 +603,7 @@ what a URDF arm's output says:
   realised spring's coil and cable are measured against the links' own collision shapes (coal) and
   must keep --margin from them; each cable is a stocked stainless rope that carries its pull five
   times over, on a pulley its rope maker allows (D/d), and a coil too long for its link runs over a
-  2:1 or 3:1 pulley block; the parts table lists every coil, rope, pulley, post and belt with its
+  pulley block (2:1 to 4:1); the parts table lists every coil, rope, pulley, post and belt with its
   mass and loads, and the torque tables also show the arm carrying them.
   the best springs' note lists, after each spring the greedy search added, the share of the
   worst joint's scale removed ("1 spring 0.0 %, 2 springs 36.1 %, ..."): a joint's scale is its own
