@@ -1157,9 +1157,10 @@ class ArmDesign:
             else:
                 room = float("inf")
             if fit.coil.max_length > room * (1 + 1e-9):
+                space = (f"longer than the {1e3 * room:.0f} mm its link {r.link_a} has between its pulley and its joint"
+                         if room > 0 else f"and its pulley leaves it no room on its link {r.link_a} before the joint")
                 out.append(f"the realised spring {name}'s coil is {1e3 * fit.coil.max_length:.0f} mm long in service, "
-                           f"longer than the {1e3 * room:.0f} mm its link {r.link_a} has between its pulley and its "
-                           "joint: it reaches past the joint")
+                           f"{space}: it reaches past the joint")
         return tuple(out)
 
     def removed_by(self, springs) -> np.ndarray:
