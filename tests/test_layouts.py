@@ -19,7 +19,7 @@ from springlab.workbench.cli import main
 
 @pytest.fixture(scope="module")
 def ur5():
-    return design_model(load_robot("UR5"), pulley_radius=None, layout="belts", samples=2000)
+    return design_model(load_robot("UR5"), pulley_radius=None, layout="belts", samples=600)
 
 
 def test_the_ur5s_belt_springs_clear_its_links_and_hold_it_with_their_own_weight(ur5):
@@ -118,7 +118,17 @@ def test_mujoco_holds_the_realised_belt_springs_as_route_2_does(ur5):
 def test_the_cli_designs_belts_and_refuses_what_it_cannot(tmp_path, capsys):
     out = tmp_path / "ur5.json"
     assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--quiet"]) == 0  # the default: auto
+    assert "target 90 % reached" in capsys.readouterr().out.splitlines()[0]
     data = json.loads(out.read_text())
+    assert data["target"]["reached"] and data["target"]["missed"] == []
+    for s in data["realised"]:  # the contract's hardware: the coil's hooks, both on link_a, as far apart as
+        a, b = np.array(s["coil_a"]["point"]), np.array(s["coil_b"]["point"])  # the coil at the check's longest
+        assert s["coil_a"]["link"] == s["coil_b"]["link"] == s["link_a"]
+        assert s["coil_max_length"] * (1 - 1e-6) <= np.linalg.norm(b - a) <= 1.01 * s["coil_max_length"]
+        assert s["cable_diameter"] == s["cable"]["diameter"] and s["cable"]["working_load_N"] > 0
+    assert {"spring", "cable", "pulley", "post", "belt"} <= {p["kind"] for p in data["parts"]}
+    assert data["hardware_mass_kg"] == pytest.approx(sum(p["mass_kg"] for p in data["parts"]))
+    assert data["spring_mass_kg"] < data["hardware_mass_kg"]
     assert data["status"]["verdict"] == "passed" and data["inputs"]["layout"] == "auto"
     assert data["method"].startswith("belts") and len(data["ideal"]) == 2
     assert data["clearance"]["clears"] and data["spring_mass_kg"] < 0.2 * 16.99  # under a fifth of the arm
