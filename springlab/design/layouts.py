@@ -251,23 +251,43 @@ def _cable_energy(x, rho: float, theta: np.ndarray, gG: complex) -> np.ndarray:
     joint's side) to the post p = x[3] + i x[4]; route 2's path over the pulley
     (:func:`springlab.energy.geometry.cable_geometry`: the angle alpha between the lead and B - A). ``x``
     may hold several designs, (M, 5): the energies are then (M, len(theta))."""
+    return _cable_terms(x, rho, theta, gG)[0]
+
+
+def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_cable_energy` (J) and its derivative dV/dtheta (N m, the torque), the latter in closed form: a
+    finite difference would lose some ten digits to cancellation, and the compass search compares its
+    values to nine."""
     x = np.asarray(x, dtype=float)
     k, c, p = x[..., 0, None], (x[..., 1] + 1j * x[..., 2])[..., None], (x[..., 3] + 1j * x[..., 4])[..., None]
     phi = x[..., 5, None] if x.shape[-1] > 5 else 0.0
     turn = np.exp(1j * theta)
     A = turn * c
     D = p - A
+    dD = -1j * A  # d/dtheta
     L = np.abs(D)
-    along = np.cos(LEAD_TILT) * np.real(np.conj(turn * c / np.abs(c) * np.exp(1j * phi)) * D)  # the lead, in plane
-    alpha = np.arccos(np.clip(along / L, -1.0, 1.0))
-    path = rho * (alpha + np.arcsin(np.clip(rho / L, -1, 1))) + np.sqrt(np.maximum(L**2 - rho**2, 0.0))
-    return np.real(np.conj(1j) * turn * gG) + 0.5 * k * path**2
+    dL = np.real(np.conj(D) * dD) / L
+    u = turn * c / np.abs(c) * np.exp(1j * phi)  # the lead's direction in the plane, turning with the link
+    along = np.cos(LEAD_TILT) * np.real(np.conj(u) * D)
+    d_along = np.cos(LEAD_TILT) * np.real(np.conj(1j * u) * D + np.conj(u) * dD)
+    ratio = np.clip(along / L, -1.0, 1.0)
+    alpha = np.arccos(ratio)
+    d_ratio = (d_along * L - along * dL) / L**2
+    d_alpha = -d_ratio / np.sqrt(np.maximum(1 - ratio**2, 1e-300))
+    s = np.clip(rho / L, -1, 1)
+    straight = np.sqrt(np.maximum(L**2 - rho**2, 0.0))
+    path = rho * (alpha + np.arcsin(s)) + straight
+    d_path = rho * d_alpha - rho * (rho / L**2) * dL / np.sqrt(np.maximum(1 - s**2, 1e-300)) + L * dL / np.maximum(
+        straight, 1e-300)
+    gravity = np.real(np.conj(1j) * turn * gG)
+    d_gravity = np.real(np.conj(1j) * 1j * turn * gG)
+    return gravity + 0.5 * k * path**2, d_gravity + k * path * d_path
 
 
 def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho: float,
                       angles=None) -> tuple[complex, complex, float, float]:
     """The offsets, rate and lead (c, p, k, phi) that hold the link best with a pulley of radius ``rho`` (m):
-    the least L8 norm (near the largest) of the torque dV/dtheta over the link's angles ``angles`` (rad;
+    the least mean square of the torque dV/dtheta (in closed form) over the link's angles ``angles`` (rad;
     default a full turn, :data:`ANGLES`; its gravity term and its
     spring's energy depend on that angle alone), with a small pull (:data:`FIT_PULL`) towards the
     point-pulley design it starts from, the lever's and the post's lengths within :data:`REFIT` of theirs,
@@ -280,7 +300,6 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
     from springlab.design.arms import compass_search
 
     theta = np.linspace(0.0, 2 * np.pi, ANGLES, endpoint=False) if angles is None else np.asarray(angles, float)
-    step = 1e-6
 
     def cartesian(v):  # (k / k0, |c| / |c0|, arg c, |p| / |p0|, arg p, phi), (6,) or (M, 6)
         v = np.asarray(v, dtype=float)
@@ -288,10 +307,8 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
         p_ = v[..., 3] * abs(p) * np.exp(1j * v[..., 4])
         return np.stack([v[..., 0] * k, c_.real, c_.imag, p_.real, p_.imag, v[..., 5]], axis=-1)
 
-    def torque(v):  # dV/dtheta over |g G| at each angle, (M, len(theta)) for designs v (M, 5)
-        x = cartesian(v)
-        return (_cable_energy(x, rho, theta + step, plane.gG) - _cable_energy(x, rho, theta - step, plane.gG)) / (
-            2 * step * abs(plane.gG))
+    def torque(v):  # dV/dtheta over |g G| at each angle, (M, len(theta)) for designs v (M, 6)
+        return _cable_terms(cartesian(v), rho, theta, plane.gG)[1] / abs(plane.gG)
 
     start = np.array([1.0, 1.0, np.angle(c), 1.0, np.angle(p), 0.0])
     lo = np.array([0.5, 1.0 - REFIT, start[2] - np.pi, 1.0 - REFIT, start[4] - np.pi, -LEAD_TURN])
@@ -299,7 +316,7 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
 
     def value(trials):  # the compass search maximises: minus the torques' mean square, and a pull to the start
         trials = np.atleast_2d(trials)
-        return -(np.mean(torque(trials) ** 8, axis=1) ** 0.25 + FIT_PULL**2 * np.sum((trials - start) ** 2, axis=1))
+        return -(np.mean(torque(trials) ** 2, axis=1) + FIT_PULL**2 * np.sum((trials - start) ** 2, axis=1))
 
     v, _ = compass_search(value, start, lo, hi, max_steps=FIT_STEPS)
     x = cartesian(v)
