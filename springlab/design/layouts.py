@@ -236,9 +236,10 @@ FIT_PULL = 1e-3
 lengths relative to theirs, angles in rad): the torque alone leaves a shallow valley of equally good
 fits, where another CPU's round-off would land elsewhere."""
 
-LEAD_TURN = np.radians(15.0)
-"""rad: the pulley compensation may turn the coil's lead this far in the spring's plane from the line
-through the joint (the coil then lies across its link at up to that angle)."""
+LEAD_TURN = 0.0
+"""rad: how far the pulley compensation may turn the coil's lead in the spring's plane from the line
+through the joint. None: a lead turned by 15 deg gained a few tenths of a point and laid the coil across
+its link, below it (the UR10's shoulder coils then reached the table)."""
 
 ANGLES = 360
 """The link's angles (a full turn) a pulley's compensation is fitted on."""
