@@ -245,20 +245,15 @@ ANGLES = 360
 """The link's angles (a full turn) a pulley's compensation is fitted on."""
 
 
-def _cable_energy(x, rho: float, theta: np.ndarray, gG: complex) -> np.ndarray:
+def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex) -> tuple[np.ndarray, np.ndarray]:
     """The link's gravity energy plus its cable spring's (J) at the link's angles ``theta`` (rad): the
     spring k (x[0]) from a pulley of radius ``rho`` centred at c = x[1] + i x[2] on the link (its cable
     arriving along the lead, :data:`LEAD_TILT` out of the plane from c's direction: from the coil on the
     joint's side) to the post p = x[3] + i x[4]; route 2's path over the pulley
     (:func:`springlab.energy.geometry.cable_geometry`: the angle alpha between the lead and B - A). ``x``
-    may hold several designs, (M, 5): the energies are then (M, len(theta))."""
-    return _cable_terms(x, rho, theta, gG)[0]
-
-
-def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_cable_energy` (J) and its derivative dV/dtheta (N m, the torque), the latter in closed form: a
-    finite difference would lose some ten digits to cancellation, and the compass search compares its
-    values to nine."""
+    may hold several designs, (M, 6): the energies are then (M, len(theta)). Returns the energy and
+    its derivative dV/dtheta (N m, the torque) in closed form: a finite difference would lose some ten digits
+    to cancellation, and the compass search compares its values to nine."""
     x = np.asarray(x, dtype=float)
     k, c, p = x[..., 0, None], (x[..., 1] + 1j * x[..., 2])[..., None], (x[..., 3] + 1j * x[..., 4])[..., None]
     phi = x[..., 5, None] if x.shape[-1] > 5 else 0.0
