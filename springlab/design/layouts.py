@@ -15,7 +15,7 @@ energy is g Re(conj(i) e^{i theta_k} G_k) and the spring's k Re(conj(c_0) c_k e^
 c_0 = -p: their sum is constant when k conj(c_0) c_k = -g conj(i) G_k. Only the product is fixed;
 this module takes |c| = :data:`LEVER` of the link's length and |p| = :data:`POST` of it: the pulley
 near the link's far end, so that the coil lies along the link between it and the joint (over a pulley
-block where it would be longer), and the cable's path spans 0.6 to 1.1 of the link's length. Both ends
+block where it would be longer), and the cable's path spans 0.65 to 1.15 of the link's length. Both ends
 move along the joint's axis together
 (which changes no length's variation) to one side of the links, :data:`AXIAL_GAP` beyond the
 farther of the two links' shapes, so that the spring and its post run beside the links.
@@ -236,11 +236,6 @@ FIT_PULL = 1e-3
 lengths relative to theirs, angles in rad): the torque alone leaves a shallow valley of equally good
 fits, where another CPU's round-off would land elsewhere."""
 
-LEAD_TURN = 0.0
-"""rad: how far the pulley compensation may turn the coil's lead in the spring's plane from the line
-through the joint. None: a lead turned by 15 deg gained a few tenths of a point and laid the coil across
-its link, below it (the UR10's shoulder coils then reached the table)."""
-
 ANGLES = 360
 """The link's angles (a full turn) a pulley's compensation is fitted on."""
 
@@ -251,19 +246,18 @@ def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex) -> tuple[np.ndar
     arriving along the lead, :data:`LEAD_TILT` out of the plane from c's direction: from the coil on the
     joint's side) to the post p = x[3] + i x[4]; route 2's path over the pulley
     (:func:`springlab.energy.geometry.cable_geometry`: the angle alpha between the lead and B - A). ``x``
-    may hold several designs, (M, 6): the energies are then (M, len(theta)). Returns the energy and
+    may hold several designs, (M, 5): the energies are then (M, len(theta)). Returns the energy and
     its derivative dV/dtheta (N m, the torque) in closed form: a finite difference would lose some ten digits
     to cancellation, and the compass search compares its values to nine."""
     x = np.asarray(x, dtype=float)
     k, c, p = x[..., 0, None], (x[..., 1] + 1j * x[..., 2])[..., None], (x[..., 3] + 1j * x[..., 4])[..., None]
-    phi = x[..., 5, None] if x.shape[-1] > 5 else 0.0
     turn = np.exp(1j * theta)
     A = turn * c
     D = p - A
     dD = -1j * A  # d/dtheta
     L = np.abs(D)
     dL = np.real(np.conj(D) * dD) / L
-    u = turn * c / np.abs(c) * np.exp(1j * phi)  # the lead's direction in the plane, turning with the link
+    u = turn * c / np.abs(c)  # the lead's direction in the plane, turning with the link
     along = np.cos(LEAD_TILT) * np.real(np.conj(u) * D)
     d_along = np.cos(LEAD_TILT) * np.real(np.conj(1j * u) * D + np.conj(u) * dD)
     ratio = np.clip(along / L, -1.0, 1.0)
@@ -281,34 +275,34 @@ def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex) -> tuple[np.ndar
 
 
 def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho: float,
-                      angles=None) -> tuple[complex, complex, float, float]:
-    """The offsets, rate and lead (c, p, k, phi) that hold the link best with a pulley of radius ``rho`` (m):
+                      angles=None) -> tuple[complex, complex, float]:
+    """The offsets and rate (c, p, k) that hold the link best with a pulley of radius ``rho`` (m):
     the least mean square of the torque dV/dtheta (in closed form) over the link's angles ``angles`` (rad;
     default a full turn, :data:`ANGLES`; its gravity term and its
     spring's energy depend on that angle alone), with a small pull (:data:`FIT_PULL`) towards the
     point-pulley design it starts from, the lever's and the post's lengths within :data:`REFIT` of theirs,
-    their directions, the rate and the lead's turn phi in the plane (within :data:`LEAD_TURN`) free. The
+    their directions and the rate free; the lead stays on the line from the pulley to the joint. The
     search is a compass search that compares to 9 significant digits
     (:func:`springlab.design.arms.compass_search`), so another CPU's round-off takes no other step.
-    Returns them unchanged (phi = 0) for rho = 0."""
+    Returns them unchanged for rho = 0."""
     if rho == 0:
-        return c, p, k, 0.0
+        return c, p, k
     from springlab.design.arms import compass_search
 
     theta = np.linspace(0.0, 2 * np.pi, ANGLES, endpoint=False) if angles is None else np.asarray(angles, float)
 
-    def cartesian(v):  # (k / k0, |c| / |c0|, arg c, |p| / |p0|, arg p, phi), (6,) or (M, 6)
+    def cartesian(v):  # (k / k0, |c| / |c0|, arg c, |p| / |p0|, arg p), (5,) or (M, 5)
         v = np.asarray(v, dtype=float)
         c_ = v[..., 1] * abs(c) * np.exp(1j * v[..., 2])
         p_ = v[..., 3] * abs(p) * np.exp(1j * v[..., 4])
-        return np.stack([v[..., 0] * k, c_.real, c_.imag, p_.real, p_.imag, v[..., 5]], axis=-1)
+        return np.stack([v[..., 0] * k, c_.real, c_.imag, p_.real, p_.imag], axis=-1)
 
-    def torque(v):  # dV/dtheta over |g G| at each angle, (M, len(theta)) for designs v (M, 6)
+    def torque(v):  # dV/dtheta over |g G| at each angle, (M, len(theta)) for designs v (M, 5)
         return _cable_terms(cartesian(v), rho, theta, plane.gG)[1] / abs(plane.gG)
 
-    start = np.array([1.0, 1.0, np.angle(c), 1.0, np.angle(p), 0.0])
-    lo = np.array([0.5, 1.0 - REFIT, start[2] - np.pi, 1.0 - REFIT, start[4] - np.pi, -LEAD_TURN])
-    hi = np.array([2.0, 1.0 + REFIT, start[2] + np.pi, 1.0 + REFIT, start[4] + np.pi, LEAD_TURN])
+    start = np.array([1.0, 1.0, np.angle(c), 1.0, np.angle(p)])
+    lo = np.array([0.5, 1.0 - REFIT, start[2] - np.pi, 1.0 - REFIT, start[4] - np.pi])
+    hi = np.array([2.0, 1.0 + REFIT, start[2] + np.pi, 1.0 + REFIT, start[4] + np.pi])
 
     def value(trials):  # the compass search maximises: minus the torques' mean square, and a pull to the start
         trials = np.atleast_2d(trials)
@@ -316,7 +310,7 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
 
     v, _ = compass_search(value, start, lo, hi, max_steps=FIT_STEPS)
     x = cartesian(v)
-    return complex(x[1], x[2]), complex(x[3], x[4]), float(x[0]), float(x[5])
+    return complex(x[1], x[2]), complex(x[3], x[4]), float(x[0])
 
 
 def _link_angles(plane: SpringPlane, R) -> np.ndarray:
@@ -422,16 +416,15 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
                 chosen = cable_for(pull, given)
             rho = chosen.pulley_radius if given is None else given
             s, towards = ideal, ideal_towards
-            reach = abs(_offset(plane, ideal.point_a))  # m: from the joint to the pulley, in the plane
+            c0 = _offset(plane, ideal.point_a)
+            reach = abs(c0)  # m: from the joint to the pulley, in the plane: the coil lies along it
             if rho > 0:  # the pulley adds k rho (its wrap's change): c, p and k re-fitted for it
-                point = np.asarray(plane.R0[plane.link]) @ np.asarray(s.point_a) + plane.o0[plane.link] - plane.joint_at
                 post = plane.level_rotation @ np.asarray(s.point_b) + plane.level_origin - plane.joint_at
-                c0, p0 = complex(point @ plane.h, point @ plane.up), complex(post @ plane.h, post @ plane.up)
-                c, p, k, phi = compensate_pulley(plane, c0, p0, s.k, rho, _link_angles(plane, R))
+                c, p, k = compensate_pulley(plane, c0, complex(post @ plane.h, post @ plane.up), s.k, rho,
+                                            _link_angles(plane, R))
                 s = plane.spring(model, c, p, k)
-                reach = abs(c) * np.cos(phi)  # the coil runs from the pulley along the lead towards the joint
-                z = c / abs(c) * np.exp(1j * phi)  # the lead's direction in the plane
-                towards = tuple(plane.R0[plane.link].T @ (-(z.real * plane.h + z.imag * plane.up)))
+                reach = abs(c)
+                towards = tuple(plane.R0[plane.link].T @ (-(c.real * plane.h + c.imag * plane.up)) / abs(c))
             lead = tuple(-np.cos(LEAD_TILT) * np.asarray(towards) - np.sin(LEAD_TILT) * np.asarray(out_a))  # from
             # the coil, on the joint's side and out of the plane, the cable arrives at the pulley
             led = PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, pulley_radius=rho,
