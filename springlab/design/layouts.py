@@ -431,8 +431,8 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
                               lead=lead if rho > 0 else None)
             lengths = length_range(model, led, R, o)
             d = chosen.diameter if rho > 0 else 0.0
-            room = min(room, reach - rho - HOOK_GAP - d)  # between the pulley and the joint, on its own link
-            found = coil_for(s.k, lengths, room, material, block=2 * (rho + d))
+            fits_in = min(room, reach - rho - HOOK_GAP - d)  # between the pulley and the joint, on its own link
+            found = coil_for(s.k, lengths, fits_in, material, block=2 * (rho + d))
             if found[0] is None:
                 raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, even "
                                      f"side by side or over a pulley block ({found[1]})")
