@@ -77,8 +77,8 @@ class Cable:
 
     @property
     def mass_per_length(self) -> float:
-        """kg/m (:data:`ROPE_FILL`)."""
-        return ROPE_FILL * STEEL * math.pi * self.diameter**2 / 4
+        """kg/m (:func:`rope_mass`)."""
+        return rope_mass(self.diameter)
 
     def fits(self, pulley_radius: float) -> bool:
         """Whether a pulley whose cable wraps at ``pulley_radius`` (m) is at least its least pulley."""
@@ -143,10 +143,18 @@ def cable_by_name(name: str, *, option: str = "cable") -> Cable:
                          + ", ".join(f"{c.diameter * 1e3:.2f}" for c in CABLES))
 
 
+def rope_mass(diameter: float) -> float:
+    """kg/m: a wire rope of ``diameter`` (m), its metallic area :data:`ROPE_FILL` of its circle."""
+    return ROPE_FILL * STEEL * math.pi * diameter**2 / 4
+
+
+def pulley_width(diameter: float) -> float:
+    """m: the width of a pulley for a rope of ``diameter`` (m): four rope diameters, at least 4 mm."""
+    return max(4 * diameter, 0.004)
+
+
 def pulley_mass(cable: Cable, pulley_radius: float) -> float:
     """kg: an aluminium sheave for ``cable`` at ``pulley_radius`` (m, the cable's centreline): a disc out to
     the groove's flanges (a cable diameter beyond its centreline), as wide as four cable diameters and at
     least 4 mm."""
-    outer = pulley_radius + cable.diameter
-    width = max(4 * cable.diameter, 0.004)
-    return ALUMINIUM * math.pi * outer**2 * width
+    return ALUMINIUM * math.pi * (pulley_radius + cable.diameter) ** 2 * pulley_width(cable.diameter)

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from springlab.design.cables import pulley_width, rope_mass
 from springlab.design.collision import MARGIN, Piece, clearances
 from springlab.energy.geometry import cable_geometry
 from springlab.model.revolute import RevoluteChain, body_frames, world_points
@@ -138,13 +139,8 @@ def spring_pieces(model: RevoluteChain, realised, kinds, coils, names, q) -> lis
             flat = np.linalg.norm(normal, axis=1) < 1e-9 * np.maximum(np.linalg.norm(B - A, axis=1), 1e-300)
             normal[flat] = np.cross(lead[flat], [1.0, 0.0, 0.0] if abs(u[0]) < 0.9 else [0.0, 1.0, 0.0])
             normal /= np.linalg.norm(normal, axis=1)[:, None]
-            out.append(Piece(f"{name} pulley", A, A, rho + d, ((ia, "a", ALLOWANCE),), normal, _width(d)))
+            out.append(Piece(f"{name} pulley", A, A, rho + d, ((ia, "a", ALLOWANCE),), normal, pulley_width(d)))
     return out
-
-
-def _width(cable_diameter: float) -> float:
-    """m: a pulley's width (:func:`springlab.design.cables.pulley_mass`'s): four cable diameters, at least 4 mm."""
-    return max(4 * cable_diameter, 0.004)
 
 
 def _world(R, o, body: int, points) -> np.ndarray:
@@ -281,8 +277,7 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
             run = float(np.linalg.norm(pa - hook))
             free = float(np.max(path))
             cable = fit.cable
-            m_cable = (fit.ratio * run + free) * (cable.mass_per_length if cable is not None else
-                                                  0.7 * 7900 * np.pi * CABLE_DIAMETER**2 / 4)
+            m_cable = (fit.ratio * run + free) * rope_mass(d)
             rating = {} if cable is None else {"cable": cable.name, "working_load_N": cable.working,
                                                "breaking_load_N": cable.breaking}
             out.append(Part("cable", f"{name} cable", s.link_a, tuple((hook + pa) / 2), m_cable,
