@@ -36,8 +36,8 @@ def test_the_ur5s_belt_springs_clear_its_links_and_hold_it_with_their_own_weight
     listed = sum(p.mass for p in parts(ur5.model, ur5.realised, ur5.kinds, ur5.coils, ur5.realised_names, q))
     assert np.sum(ur5.massed.mass) - np.sum(ur5.model.mass) == pytest.approx(listed, rel=1e-12)  # all of it carried
     for s in ur5.as_dict()["realised"]:
-        assert s.get("frame_b") == ({"at_joint": "elbow_joint", "axes_of": "shoulder_link"} if s["realises"] == "S2"
-                                    else None)
+        assert s.get("frame_b") == ({"at_joint": "elbow_joint", "axes_of": "shoulder_link", "along_axis": 0.0,
+                                     "kept_by": "belt"} if s["realises"] == "S2" else None)
 
 
 def test_the_clearance_is_pinocchios_on_the_same_urdf(ur5):

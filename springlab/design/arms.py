@@ -1318,14 +1318,19 @@ class ArmDesign:
 
 
 def belt_frames(model: RevoluteChain, spring) -> dict:
-    """For --json, each end a belt carries (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`):
-    ``frame_a`` (or ``frame_b``) = {"at_joint": the joint, "axes_of": the level link}, meaning that
-    ``point_a`` is given from that joint's origin in the axes of that link, which the belt keeps."""
+    """For --json, each end a belt or paper 001's RSSR modules carry
+    (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`, :meth:`~springlab.model.revolute.RevoluteChain.
+    with_pseudobase`): ``frame_a`` (or ``frame_b``) = {"at_joint": the joint, "axes_of": the level link,
+    "along_axis": d, "kept_by": "belt" or "RSSR modules"}, meaning that ``point_a`` is given from the point d (m)
+    along that joint's axis from its origin, in the axes of that link, which the belt keeps (the RSSR modules
+    keep its vertical line: the point lies on it)."""
     out = {}
     for end, link in (("a", spring.link_a), ("b", spring.link_b)):
         belt = next((b for b in model.belts if b.name == link), None)
         if belt is not None:
-            out[f"frame_{end}"] = {"at_joint": model.joints[belt.joint], "axes_of": model.bodies[belt.level]}
+            out[f"frame_{end}"] = {"at_joint": model.joints[belt.joint], "axes_of": model.bodies[belt.level],
+                                   "along_axis": belt.along, "kept_by": "belt" if belt.kind == "belt" else
+                                   "RSSR modules"}
     return out
 
 
@@ -2074,9 +2079,11 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     (``pulley_radius=None``) or of ``pulley_radius`` (m). ``'two-point'`` (default): springs between two
     links' points, exact for a planar chain, else the best springs, their cables over pulleys of
     ``pulley_radius`` (None: sized to the cable of the largest pull)."""
-    if layout not in ("two-point", "belts", "auto"):
+    if layout not in ("two-point", "belts", "pseudobases", "auto"):
         raise SpringlabError(f"layout = {layout!r}: give 'two-point' (springs between two links), 'belts' (a level "
-                             "reference carried to each loaded joint) or 'auto' (belts where the arm allows them)")
+                             "reference carried by belts to each joint of a planar chain), 'pseudobases' (carried "
+                             "by paper 001's RSSR modules, any arm) or 'auto' (belts, else pseudobases, where the "
+                             "arm has link shapes to clear)")
     from springlab.design.collision import MARGIN, Sampler, has_geometry
     from springlab.design.hardware import spring_clearance, with_spring_mass
 
@@ -2110,29 +2117,43 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         from springlab.design.layouts import SHARE, without_light
 
         trimmed = without_light(model, found, SHARE if share is None else share, check)
-        layout = "belts" if trimmed.planar and has_geometry(model) else "two-point"
-        notes.append("layout: " + ("belts, the loaded joints (the light ones left out) forming a planar chain" if
-                                   layout == "belts" else "two-point springs (no planar chain to carry a level "
-                                   "reference to, or no link shapes to clear)"))
+        layout = ("two-point" if not has_geometry(model) else "belts" if trimmed.planar else "pseudobases")
+        notes.append("layout: " + {"belts": "belts, the loaded joints (the light ones left out) forming a planar chain",
+                                   "pseudobases": "pseudobases (paper 001's RSSR modules), the loaded joints not "
+                                                  "forming a planar chain",
+                                   "two-point": "two-point springs (no link shapes to clear)"}[layout])
+    spatial = layout == "pseudobases"
+    if spatial:
+        layout = "belts"
     if layout == "belts":
         from springlab.design.layouts import SHARE, belt_layout, realise_layout
+        from springlab.design.pseudobases import pseudobase_layout
 
+        arrange = pseudobase_layout if spatial else belt_layout
         share = SHARE if share is None else share
-        lay = belt_layout(model, found, share=share, q=check)
+        lay = arrange(model, found, share=share, q=check)
         realised, kinds, coils, origins = realise_layout(lay, check, material=material, cable=cable,
                                                          pulley_radius=None if sized else pulley_radius)
         bare = (model.mass, model.com, model.inertia)
         for _ in range(CARRY_ROUNDS):  # the springs' own steel rides on the links: designed for too
             arm = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2])  # the arm alone, with the belts
             carried = replace(with_spring_mass(arm, realised, kinds, coils, check), belts=())
-            lay = belt_layout(carried, structure(carried, check), share=share, q=check)
+            lay = arrange(carried, structure(carried, check), share=share, q=check)
             realised, kinds, coils, origins = realise_layout(lay, check, material=material, cable=cable,
                                                              pulley_radius=None if sized else pulley_radius)
         model, ideal = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2]), lay.springs
-        method = "belts: a level reference carried to each loaded joint (paper 001's pseudobases)"
-        notes += [f"belts: {found.why}; one spring per loaded link, from a post on the level frame at its joint "
-                  "to the link, its coil along the link behind a pulley, designed for the arm carrying the springs' "
-                  f"own mass ({CARRY_ROUNDS} rounds)", *lay.notes]
+        if spatial:
+            method = "pseudobases: a vertical line carried to each loaded joint by paper 001's RSSR modules"
+            notes += [f"pseudobases: {found.why}; one spring per loaded link's subsystem (001 Eq. 5), from a post "
+                      "above a point of its joint's axis, on a pseudobase (or a belt's frame where the joints between "
+                      "are parallel), to the link along the subsystem's moment, its coil along the link behind a "
+                      f"pulley, designed for the arm carrying the springs' own mass ({CARRY_ROUNDS} rounds)",
+                      *lay.notes]
+        else:
+            method = "belts: a level reference carried to each loaded joint (paper 001's pseudobases)"
+            notes += [f"belts: {found.why}; one spring per loaded link, from a post on the level frame at its joint "
+                      "to the link, its coil along the link behind a pulley, designed for the arm carrying the "
+                      f"springs' own mass ({CARRY_ROUNDS} rounds)", *lay.notes]
         radii = sorted({r.pulley_radius for r in realised})
         if radii and radii[-1] > 0:
             sizes = ", ".join(f"{1e3 * r:.3g}" for r in radii)

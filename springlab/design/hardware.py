@@ -198,6 +198,22 @@ BELT_PULLEY = 0.15
 BELT_LEAST = 0.012
 """m: the least pitch diameter of a belt's pulley (and the least belt width, 6 mm, is half of it)."""
 
+RSSR_OFFSET = 0.15
+"""An RSSR module's parallelogram height (its auxiliary link's offset from the primary link, 001 Section 4.1)
+over the length of the link it runs along (at least :data:`BELT_LEAST`): the couple the module carries is its
+auxiliary link's force times this height."""
+
+ALUMINIUM_E = 69e9
+"""Pa: aluminium's Young's modulus: an RSSR module's auxiliary link (a tube between two ball joints) is sized to
+buckle at :data:`BUCKLING` times its largest force (Euler, pinned ends)."""
+
+BUCKLING = 3.0
+"""The safety factor on an auxiliary link's Euler buckling load."""
+
+BALL_JOINT = 0.01
+"""kg: a small ball joint's (rod end's) mass; an RSSR module has two on its auxiliary link and one at its
+pseudobase (001 Fig. 5)."""
+
 
 @dataclass(frozen=True)
 class Part:
@@ -243,10 +259,11 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
     R, o = body_frames(model, q)
     out = []
 
-    def on(name, point):  # where a point's mass is carried: a belt frame's at its joint's origin
+    def on(name, point):  # where a point's mass is carried: a belt frame's at its origin, on its joint's axis
         body, _ = model.locate(name, point)
         if body > model.n:
-            return model.bodies[model.belts[body - model.n - 1].joint + 1], (0.0, 0.0, 0.0)
+            belt = model.belts[body - model.n - 1]
+            return model.bodies[belt.joint + 1], tuple(belt.along * model.axes[belt.joint])
         return name, tuple(point)
 
     moments = {b.name: np.zeros(len(q)) for b in model.belts}
@@ -309,17 +326,22 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
             force = pull[:, None] * direction
             if belt is not None:
                 w = R[:, joint + 1] @ model.axes[joint]
-                moments[belt.name] = moments[belt.name] + np.einsum("pi,pi->p", w, np.cross(at - o[:, joint + 1], force))
+                couple = np.cross(at - o[:, ib], force)  # about the frame's origin: the belt carries its part
+                moments[belt.name] = moments[belt.name] + (np.einsum("pi,pi->p", w, couple) if belt.kind == "belt" else
+                                                           np.linalg.norm(couple, axis=1))  # the modules all of it
             length = float(np.linalg.norm(np.asarray(pb) - root))
             F = float(np.max(pull))
             dia = _rod(F, length)
             m = ALUMINIUM * np.pi * dia**2 / 4 * length
             centre = tuple((np.asarray(pb) + root) / 2)
-            carried = (model.bodies[joint + 1], (0.0, 0.0, 0.0), m) if belt is not None else (s.link_b, centre, m)
+            carried = on(s.link_b, centre) + (m,) if belt is not None else (s.link_b, centre, m)
             out.append(Part("post", f"{name} post", s.link_b, centre, m, {"length": length, "rod_diameter": dia},
                             {"largest_force_N": F, "root_moment_Nm": F * length}, (carried,)))
     for belt in model.belts:
         moment = float(np.max(np.abs(moments[belt.name])))
+        if belt.kind != "belt":
+            out += _modules(model, belt, moment)
+            continue
         for t in range(belt.level, belt.joint):  # a belt per joint crossed, riding on the link after it
             span = model.placements[t + 1][:3, 3]
             pitch = max(BELT_LEAST, BELT_PULLEY * float(np.linalg.norm(span)))
@@ -337,6 +359,31 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
                             ((link, tuple(span / 2), m_belt), (link, (0.0, 0.0, 0.0), m_pulley),
                              (link, tuple(span), m_pulley))))
     return tuple(out)
+
+
+def _modules(model: RevoluteChain, belt, moment: float) -> list:
+    """The RSSR modules (001 Section 4, Fig. 6) that keep a pseudobase's vertical line across the links from
+    its level body to its joint, carrying ``moment`` (N m, the largest couple of its spring's post): one per
+    link crossed, its auxiliary link a tube as long as the link, offset :data:`RSSR_OFFSET` of it, sized to
+    buckle at :data:`BUCKLING` times the couple over the offset, with two ball joints, and the pseudobase's."""
+    from springlab.design.cables import ALUMINIUM
+
+    out = []
+    for t in range(belt.level, belt.joint):
+        span = model.placements[t + 1][:3, 3]
+        length = max(float(np.linalg.norm(span)), BELT_LEAST)
+        offset = max(BELT_LEAST, RSSR_OFFSET * length)
+        force = moment / offset
+        tube = max(0.004, float((64 * BUCKLING * force * length**2 / (np.pi**3 * ALUMINIUM_E)) ** 0.25))
+        m_tube = ALUMINIUM * np.pi * tube**2 / 4 * length
+        balls = (3 if t == belt.joint - 1 else 2) * BALL_JOINT
+        link = model.bodies[t + 1]
+        out.append(Part("rssr", f"{belt.name} module ({model.joints[t]} to {model.joints[t + 1]})", link,
+                        tuple(span / 2), m_tube + balls,
+                        {"length": length, "offset": offset, "rod_diameter": tube, "ball_joints_mass_kg": balls},
+                        {"largest_moment_Nm": moment, "largest_force_N": force},
+                        ((link, tuple(span / 2), m_tube + balls),)))
+    return out
 
 
 def with_spring_mass(model: RevoluteChain, realised, kinds, coils, q) -> RevoluteChain:

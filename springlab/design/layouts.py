@@ -57,6 +57,12 @@ AXIAL_GAP = 0.02
 """m: how far beyond the farther of the two links' shapes, along the joint's axis, the spring runs."""
 
 
+LEAD_TILT = np.radians(10.0)
+"""rad: the coil lies along its link towards the joint, tilted this far out of the spring's plane (away
+from the links): the post then never comes onto the lead's line behind the pulley, where the pulley would
+have to swivel half a turn at once (the post sweeps a circle about the joint that the lead's line in the
+plane would cross)."""
+
 def _on_grid(x) -> tuple:
     """Coordinates (m, or a direction's components) rounded to :data:`~springlab.design.arms.END_GRID`, as
     the search keeps its ends: another CPU's round-off then moves none of them."""
@@ -93,6 +99,23 @@ class SpringPlane:
         on_level = self.level_rotation.T @ (post - self.level_origin)
         return PointSpring(model.bodies[self.link], _on_grid(on_link), self.level, _on_grid(on_level),
                            significant(k, RATE_DIGITS))
+
+    turn = True  # the compensation may turn the lever and the post (compensate_pulley)
+    tilt = LEAD_TILT  # rad: the lead's out of the plane
+
+    def offsets(self, spring) -> tuple[complex, complex]:
+        """A spring's point and post as complex offsets (m) from the joint in the plane."""
+        at = np.asarray(self.R0[self.link]) @ np.asarray(spring.point_a) + self.o0[self.link] - self.joint_at
+        post = self.level_rotation @ np.asarray(spring.point_b) + self.level_origin - self.joint_at
+        return complex(at @ self.h, at @ self.up), complex(post @ self.h, post @ self.up)
+
+    def towards(self, c: complex) -> tuple:
+        """The unit direction (link's frame) from the point c back towards the joint: where the coil lies."""
+        return tuple(self.R0[self.link].T @ (-(c.real * self.h + c.imag * self.up)) / abs(c))
+
+    def angles(self, R) -> np.ndarray:
+        """The link's angles (rad) in the plane at the poses of ``R`` (:func:`_link_angles`)."""
+        return _link_angles(self, R)
 
 
 @dataclass(frozen=True)
@@ -217,12 +240,6 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE,
     return Layout(out, tuple(springs), tuple(leads), tuple(notes), tuple(outward), tuple(planes), tuple(rooms))
 
 
-LEAD_TILT = np.radians(10.0)
-"""rad: the coil lies along its link towards the joint, tilted this far out of the spring's plane (away
-from the links): the post then never comes onto the lead's line behind the pulley, where the pulley would
-have to swivel half a turn at once (the post sweeps a circle about the joint that the lead's line in the
-plane would cross)."""
-
 REFIT = 0.3
 """A pulley's compensation moves the lever and the post by at most this share of their lengths (the coil's
 stroke and the spring's proportion stay the layout's)."""
@@ -240,10 +257,11 @@ ANGLES = 360
 """The link's angles (a full turn) a pulley's compensation is fitted on."""
 
 
-def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex) -> tuple[np.ndarray, np.ndarray]:
+def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex,
+                 tilt: float = LEAD_TILT) -> tuple[np.ndarray, np.ndarray]:
     """The link's gravity energy plus its cable spring's (J) at the link's angles ``theta`` (rad): the
     spring k (x[0]) from a pulley of radius ``rho`` centred at c = x[1] + i x[2] on the link (its cable
-    arriving along the lead, :data:`LEAD_TILT` out of the plane from c's direction: from the coil on the
+    arriving along the lead, ``tilt`` (rad, default :data:`LEAD_TILT`) out of the plane from c's direction: from the coil on the
     joint's side) to the post p = x[3] + i x[4]; route 2's path over the pulley
     (:func:`springlab.energy.geometry.cable_geometry`: the angle alpha between the lead and B - A). ``x``
     may hold several designs, (M, 5): the energies are then (M, len(theta)). Returns the energy and
@@ -258,8 +276,8 @@ def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex) -> tuple[np.ndar
     L = np.abs(D)
     dL = np.real(np.conj(D) * dD) / L
     u = turn * c / np.abs(c)  # the lead's direction in the plane, turning with the link
-    along = np.cos(LEAD_TILT) * np.real(np.conj(u) * D)
-    d_along = np.cos(LEAD_TILT) * np.real(np.conj(1j * u) * D + np.conj(u) * dD)
+    along = np.cos(tilt) * np.real(np.conj(u) * D)
+    d_along = np.cos(tilt) * np.real(np.conj(1j * u) * D + np.conj(u) * dD)
     ratio = np.clip(along / L, -1.0, 1.0)
     alpha = np.arccos(ratio)
     d_ratio = (d_along * L - along * dL) / L**2
@@ -275,13 +293,15 @@ def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex) -> tuple[np.ndar
 
 
 def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho: float,
-                      angles=None) -> tuple[complex, complex, float]:
+                      angles=None, *, turn: bool = True, tilt: float = LEAD_TILT) -> tuple[complex, complex, float]:
     """The offsets and rate (c, p, k) that hold the link best with a pulley of radius ``rho`` (m):
     the least mean square of the torque dV/dtheta (in closed form) over the link's angles ``angles`` (rad;
     default a full turn, :data:`ANGLES`; its gravity term and its
     spring's energy depend on that angle alone), with a small pull (:data:`FIT_PULL`) towards the
     point-pulley design it starts from, the lever's and the post's lengths within :data:`REFIT` of theirs,
     their directions and the rate free; the lead stays on the line from the pulley to the joint. The
+    ``turn=False`` keeps both directions (only the rate and the two lengths move: paper 001's post stays on
+    the vertical and the point on sigma, Eqs. 13-14); ``tilt`` is the lead's out of the plane (rad). The
     search is a compass search that compares to 9 significant digits
     (:func:`springlab.design.arms.compass_search`), so another CPU's round-off takes no other step.
     Returns them unchanged for rho = 0."""
@@ -298,11 +318,12 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
         return np.stack([v[..., 0] * k, c_.real, c_.imag, p_.real, p_.imag], axis=-1)
 
     def torque(v):  # dV/dtheta over |g G| at each angle, (M, len(theta)) for designs v (M, 5)
-        return _cable_terms(cartesian(v), rho, theta, plane.gG)[1] / abs(plane.gG)
+        return _cable_terms(cartesian(v), rho, theta, plane.gG, tilt)[1] / abs(plane.gG)
 
     start = np.array([1.0, 1.0, np.angle(c), 1.0, np.angle(p)])
-    lo = np.array([0.5, 1.0 - REFIT, start[2] - np.pi, 1.0 - REFIT, start[4] - np.pi])
-    hi = np.array([2.0, 1.0 + REFIT, start[2] + np.pi, 1.0 + REFIT, start[4] + np.pi])
+    swing = np.pi if turn else 0.0
+    lo = np.array([0.5, 1.0 - REFIT, start[2] - swing, 1.0 - REFIT, start[4] - swing])
+    hi = np.array([2.0, 1.0 + REFIT, start[2] + swing, 1.0 + REFIT, start[4] + swing])
 
     def value(trials):  # the compass search maximises: minus the torques' mean square, and a pull to the start
         trials = np.atleast_2d(trials)
@@ -349,12 +370,6 @@ def coil_for(k: float, lengths, room: float, material: str, *, block: float = 0.
                 best = (coil, n, parallel)  # none fits: the fewest side by side, the shortest of those
     return best if best is not None else (None, why)
 
-
-
-def _offset(plane: SpringPlane, point) -> complex:
-    """A point of the link (m, its frame) as a complex offset from the joint in the spring's plane."""
-    at = np.asarray(plane.R0[plane.link]) @ np.asarray(point) + plane.o0[plane.link] - plane.joint_at
-    return complex(at @ plane.h, at @ plane.up)
 
 
 def cable_for(pull: float, given: float | None):
@@ -416,16 +431,15 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
                 chosen = cable_for(pull, given)
             rho = chosen.pulley_radius if given is None else given
             s, towards = ideal, ideal_towards
-            c0 = _offset(plane, ideal.point_a)
+            c0, p0 = plane.offsets(ideal)
             reach = abs(c0)  # m: from the joint to the pulley, in the plane: the coil lies along it
             if rho > 0:  # the pulley adds k rho (its wrap's change): c, p and k re-fitted for it
-                post = plane.level_rotation @ np.asarray(s.point_b) + plane.level_origin - plane.joint_at
-                c, p, k = compensate_pulley(plane, c0, complex(post @ plane.h, post @ plane.up), s.k, rho,
-                                            _link_angles(plane, R))
+                c, p, k = compensate_pulley(plane, c0, p0, s.k, rho, plane.angles(R), turn=plane.turn,
+                                            tilt=plane.tilt)
                 s = plane.spring(model, c, p, k)
                 reach = abs(c)
-                towards = tuple(plane.R0[plane.link].T @ (-(c.real * plane.h + c.imag * plane.up)) / abs(c))
-            lead = tuple(-np.cos(LEAD_TILT) * np.asarray(towards) - np.sin(LEAD_TILT) * np.asarray(out_a))  # from
+                towards = plane.towards(c)
+            lead = tuple(-np.cos(plane.tilt) * np.asarray(towards) - np.sin(plane.tilt) * np.asarray(out_a))  # from
             # the coil, on the joint's side and out of the plane, the cable arrives at the pulley
             led = PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, pulley_radius=rho,
                               lead=lead if rho > 0 else None)

@@ -298,8 +298,8 @@ def _loads(model: RevoluteChain, springs, q, *, gravity: bool = True):
         F[:, ia] -= f_b
         M[:, ia] -= m_a
     for j, belt in enumerate(model.belts):  # a belt's frame: its pulley turns on the joint's parent body about
-        at = o[:, belt.joint + 1]  # the joint's origin, and the belt holds it to the level body: the force on the
-        f = F[:, n1 + j]  # frame goes to the parent at the joint's origin, its moment about there to the level body
+        at = o[:, n1 + j]  # a point of the joint's axis, and the belt (or the RSSR modules) holds it to the level
+        f = F[:, n1 + j]  # body: the force on the frame goes to the parent there, its moment about there to the level
         F[:, belt.joint] += f
         M[:, belt.joint] += np.cross(at, f)
         M[:, belt.level] += M[:, n1 + j] - np.cross(at, f)

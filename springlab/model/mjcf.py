@@ -83,6 +83,11 @@ def to_mjcf(model: RevoluteChain, springs=(), *, name: str | None = None) -> str
     rates in N/m). ``springs``: the :class:`~springlab.model.springs.PointSpring` springs (ideal or
     realised: each with its rate, free length and initial tension, a cable's over its pulley)."""
     _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
+    spatial = [b.name for b in model.belts if b.kind != "belt"]
+    if spatial:
+        raise SpringlabError(f"{', '.join(spatial)}: paper 001's pseudobases ride on spatial parallelogram RSSR "
+                             "modules, which this MJCF writer does not export (a belt's frame it does): check such a "
+                             "design with route 2 (springlab.energy.geometry) and its audit")
     springs = check_point_springs(model, springs)
     for s in springs:
         if s.effective_free_length < 0:
@@ -166,7 +171,8 @@ def _belts(model: RevoluteChain, parents: list, names) -> list:
     for belt in model.belts:
         axis, signs = model.belt_turns(belt)
         P = model.placements[belt.joint]
-        body = ET.SubElement(parents[belt.joint], "body", name=names.take(belt.name), pos=_vec(P[:3, 3]),
+        at = P[:3, 3] + belt.along * (P[:3, :3] @ model.axes[belt.joint])  # on the joint's axis
+        body = ET.SubElement(parents[belt.joint], "body", name=names.take(belt.name), pos=_vec(at),
                              quat=_vec(_quat(R0[0, belt.joint].T @ R0[0, belt.level])))
         _comment(body, f"belt frame '{belt.name}': a pulley on joint {model.joints[belt.joint]}'s axis, held by a 1:1 "
                        f"belt to {model.bodies[belt.level]}'s axes (set its hinge to minus the signed sum of the joints "

@@ -55,12 +55,17 @@ good to about 1e-6 rad)."""
 
 @dataclass(frozen=True)
 class Belt:
-    """A frame a 1:1 belt carries (:meth:`RevoluteChain.with_belt`): at the origin of joint ``joint``
-    (0-based; its child body's origin), with the axes of body ``level`` (an index, at most ``joint``)."""
+    """A frame a 1:1 belt carries (:meth:`RevoluteChain.with_belt`), or a chain of paper 001's spatial
+    parallelogram RSSR modules (:meth:`RevoluteChain.with_pseudobase`): at the origin of joint ``joint``
+    (0-based; its child body's origin), moved ``along`` (m) its axis, with the axes of body ``level`` (an
+    index, at most ``joint``). ``kind`` is ``'belt'`` (every joint between turns about a parallel axis) or
+    ``'rssr'`` (any axes: the modules keep the frame's vertical line vertical, 001 Section 4)."""
 
     name: str
     joint: int
     level: int
+    along: float = 0.0
+    kind: str = "belt"
 
 
 @dataclass(frozen=True, eq=False)
@@ -179,8 +184,10 @@ class RevoluteChain:
         object.__setattr__(self, "solids", solids)
         belts = tuple(self.belts)
         for b in belts:
-            if not isinstance(b, Belt) or not 0 <= b.joint < n or not 0 <= b.level <= b.joint:
-                raise SpringlabError(f"belt {b!r}: give a Belt at a joint (0..{n - 1}) whose axes are a body's before it")
+            if (not isinstance(b, Belt) or not 0 <= b.joint < n or not 0 <= b.level <= b.joint
+                    or b.kind not in ("belt", "rssr") or not np.isfinite(b.along)):
+                raise SpringlabError(f"belt {b!r}: give a Belt at a joint (0..{n - 1}) whose axes are a body's before it, "
+                                     "of kind 'belt' or 'rssr', a finite distance along the joint's axis")
         object.__setattr__(self, "belts", belts)
         for name, value in (("bodies", bodies), ("joints", joints), ("placements", placements), ("axes", axes),
                             ("mass", mass), ("com", com), ("inertia", inertia), ("gravity", gravity),
@@ -207,10 +214,11 @@ class RevoluteChain:
         """Every name a spring may attach to: the bodies, the fixed frames, then the belts' frames."""
         return self.bodies + tuple(self.fixed) + tuple(b.name for b in self.belts)
 
-    def with_belt(self, joint: str, level: str, name: str | None = None) -> RevoluteChain:
+    def with_belt(self, joint: str, level: str, name: str | None = None, *, along: float = 0.0) -> RevoluteChain:
         """The same chain with a frame a 1:1 belt carries to ``joint``'s origin, its axes those of body
-        ``level`` (a body before the joint): a pulley on the joint's axis, turning on the joint's parent
-        body, tied by belts (one per joint between) to a pulley fixed to ``level``. Named ``name``
+        ``level`` (a body before the joint): a pulley on the joint's axis (``along`` it, m, from the joint's
+        origin), turning on the joint's parent body, tied by belts (one per joint between) to a pulley fixed to
+        ``level``. Named ``name``
         (default '<joint> belt'). Every joint between ``level`` and ``joint`` must turn about an axis
         parallel to the joint's: only then can a belt keep the frame's axes those of ``level``.
 
@@ -235,13 +243,45 @@ class RevoluteChain:
         name = f"{joint} belt" if name is None else name
         if name in self.frame_names:
             raise SpringlabError(f"name = {name!r} is already a frame of {self.name!r}: give the belt another name")
-        return replace(self, belts=(*self.belts, Belt(name, i, L)))
+        return replace(self, belts=(*self.belts, Belt(name, i, L, float(_checks.number("along", along)))))
+
+    def with_pseudobase(self, joint: str, level: str, *, along: float = 0.0, name: str | None = None) -> RevoluteChain:
+        """The same chain with paper 001's pseudobase at ``joint``: a frame at the point ``along`` (m) the joint's
+        axis from its origin (a point of the joint's parent and child bodies alike: the module's spherical
+        joint C_i), whose vertical line a chain of spatial parallelogram RSSR modules keeps vertical across any
+        joints (001 Section 4, Fig. 6). The frame is given the axes of body ``level``, a body that turns about
+        the vertical alone; the modules keep only its vertical line, the frame's spin about it idle (001
+        Eq. 19), so a point on it must lie on that line, as a spring's post A_i does (001 Eq. 13). Named
+        ``name`` (default '<joint> pseudobase').
+
+        :raises SpringlabError: naming the joint or the body that prevents it
+        """
+        if joint not in self.joints:
+            raise SpringlabError(f"joint = {joint!r} is not a joint of {self.name!r}: give one of {', '.join(self.joints)}")
+        if level not in self.bodies:
+            raise SpringlabError(f"level = {level!r} is not a body of {self.name!r}: give one of {', '.join(self.bodies)}")
+        i, L = self.joints.index(joint), self.bodies.index(level)
+        if L > i:
+            raise SpringlabError(f"level = {level!r} lies beyond joint {joint!r}: a pseudobase keeps the axes of a body "
+                                 f"before the joint (one of {', '.join(self.bodies[:i + 1])})")
+        R, _ = body_frames(self, np.zeros(self.n))
+        for t in range(L):
+            if np.linalg.norm(np.cross(R[0, t + 1] @ self.axes[t], self.up)) > BELT_PARALLEL:
+                raise SpringlabError(f"joint {self.joints[t]!r} before {level!r} turns about a non-vertical axis: "
+                                     f"{level!r} does not stay level; choose a body before it")
+        name = f"{joint} pseudobase" if name is None else name
+        if name in self.frame_names:
+            raise SpringlabError(f"name = {name!r} is already a frame of {self.name!r}: give the pseudobase another name")
+        along = _checks.number("along", along)
+        return replace(self, belts=(*self.belts, Belt(name, i, L, float(along), "rssr")))
 
     def belt_turns(self, belt: Belt) -> tuple[np.ndarray, np.ndarray]:
         """How a belt's pulley turns on its joint's parent body: its axis (unit, in the level body's frame)
         and, per joint between the level body and the belt's joint, the sign s_t (+1 or -1) such that the
         pulley's angle about that axis, relative to the parent body, is -sum_t s_t q_t (the joints' axes
         are parallel to it, along or against)."""
+        if belt.kind != "belt":
+            raise SpringlabError(f"{belt.name!r} is kept by RSSR modules, not by a belt: it has no pulley to turn")
         R, _ = body_frames(self, np.zeros(self.n))
         w = R[0, belt.joint + 1] @ self.axes[belt.joint]
         signs = np.array([np.sign((R[0, t + 1] @ self.axes[t]) @ w) for t in range(belt.level, belt.joint)])
@@ -336,7 +376,7 @@ def body_frames(model: RevoluteChain, q) -> tuple[np.ndarray, np.ndarray]:
     """Every body's frame in the base frame at each pose: rotations (N, n+1, 3, 3) and origins
     (N, n+1, 3) (m); body 0 (the base) is the identity at the origin. A model with belts
     (:attr:`RevoluteChain.belts`) has their frames after the bodies' (N, n+1+b, ...): each at its
-    joint's origin, with its level body's axes.
+    joint's origin (moved ``along`` its axis), with its level body's axes.
 
     T_i = T_{i-1} @ placement_i @ Rot(axis_i, q_i) (see the module docstring).
 
@@ -361,8 +401,9 @@ def body_frames(model: RevoluteChain, q) -> tuple[np.ndarray, np.ndarray]:
         P = model.placements[i - 1]
         o[:, i] = o[:, i - 1] + R[:, i - 1] @ P[:3, 3]
         R[:, i] = (R[:, i - 1] @ P[:3, :3]) @ rot_axis(model.axes[i - 1], q[:, i - 1])
-    for j, b in enumerate(model.belts):  # at joint b.joint's origin (its child body's), level body's axes
-        R[:, n + 1 + j], o[:, n + 1 + j] = R[:, b.level], o[:, b.joint + 1]
+    for j, b in enumerate(model.belts):  # at joint b.joint's origin (its child body's), moved along its axis,
+        R[:, n + 1 + j] = R[:, b.level]  # with the level body's axes
+        o[:, n + 1 + j] = o[:, b.joint + 1] + b.along * (R[:, b.joint + 1] @ model.axes[b.joint])
     R.setflags(write=False)
     o.setflags(write=False)
     if key is not None:

@@ -125,9 +125,11 @@ def _check_arguments(args) -> None:
             raise SpringlabError(f"--share = {args.share:g}: give the share of the largest gravity peak below which a "
                                  "joint gets no spring, from 0 to 1 (e.g. 0.02)")
         if args.layout == "two-point":
-            raise SpringlabError("--share applies to the belt layout (the two-point springs balance every loaded joint)")
-    if args.layout == "belts" and args.payload_range is not None:
-        raise SpringlabError("--payload-range applies to the two-point layout: the belt layout has no payload dial yet")
+            raise SpringlabError("--share applies to the belt and pseudobase layouts (the two-point springs balance every "
+                             "loaded joint)")
+    if args.layout in ("belts", "pseudobases") and args.payload_range is not None:
+        raise SpringlabError(f"--payload-range applies to the two-point layout: the {args.layout} layout has no payload "
+                             "dial yet")
     if args.layout == "auto" and (args.payload_range is not None or args.reach is not None):
         args.layout = "two-point"  # the payload dial moves two-point springs' anchors; --reach sets their brackets
     if args.payload is not None:
@@ -344,7 +346,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     print(design.tolerance_table())
     study = None
     if args.tip and design.ideal and design.model.belts:
-        print("\nno payload dial: the belt layout has none yet (its springs' posts ride on the belts' frames)")
+        print("\nno payload dial: the belt and pseudobase layouts have none yet (their posts ride on belts' and "
+              "pseudobases' frames)")
     elif args.tip and design.ideal:
         from springlab.design.payload import payload_study
 
@@ -597,8 +600,10 @@ what a URDF arm's output says:
   the first line: whether the realised springs, carrying their hardware, remove --target of each
   loaded joint's peak (light joints aside); a missed target prints what fewer springs reach.
   the layout: belts (a level reference carried by 1:1 belts to each joint of a planar chain, one
-  spring per link beside the links, its coil along the link) where the arm allows them, else springs
-  between two links' points (--layout); the workspace is the poses within the limits where no two
+  spring per link beside the links, its coil along the link) where the arm allows them, else
+  pseudobases (paper 001: a vertical line carried to each joint by spatial parallelogram RSSR
+  modules, one spring per loaded link's subsystem), or springs between two links' points
+  (--layout); the workspace is the poses within the limits where no two
   links collide and none passes below the mounting plane, its share of the limits' box printed; each
   realised spring's coil and cable are measured against the links' own collision shapes (coal) and
   must keep --margin from them; each cable is a stocked stainless rope that carries its pull five
@@ -645,13 +650,15 @@ def main(argv=None) -> int:
                    help="also write the built springs' spec sheet beside the JSON (.sheet.csv, .sheet.md)")
     p.add_argument("--material", default="music wire", choices=("music wire", "stainless 302"),
                    help="spring wire for --sheet (default music wire)")
-    p.add_argument("--layout", default="auto", choices=("auto", "two-point", "belts"),
+    p.add_argument("--layout", default="auto", choices=("auto", "two-point", "belts", "pseudobases"),
                    help="a URDF arm's springs: 'belts' (a planar chain: one spring per loaded link, from a post on a "
-                        "level frame a 1:1 belt carries to its joint, its coil along the link; paper 001's pseudobases), "
-                        "'two-point' (between two links' points, exact for a planar chain) or 'auto' (default: belts "
-                        "where the arm allows them, else two-point; two-point with --payload-range or --reach)")
+                        "level frame a 1:1 belt carries to its joint, its coil along the link), 'pseudobases' (any "
+                        "arm: paper 001's RSSR modules keep a vertical post at each joint, one spring per loaded "
+                        "link's subsystem), 'two-point' (between two links' points, exact for a planar chain) or "
+                        "'auto' (default: belts where the loaded joints form a planar chain, else pseudobases; "
+                        "two-point with --payload-range or --reach, or without link shapes)")
     p.add_argument("--share", type=float, default=None,
-                   help="with --layout belts: joints whose gravity peak is below this share of the largest get no "
+                   help="with the belt or pseudobase layout: joints whose gravity peak is below this share of the largest get no "
                         "spring (default 0.02); the torque they keep is named")
     p.add_argument("--margin", default=None,
                    help="the clearance every realised spring's coil and cable keeps from the URDF's links, e.g. '5 mm' "

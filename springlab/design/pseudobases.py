@@ -1,0 +1,206 @@
+"""Paper 001's pseudobases on a spatial arm: one spring per loaded link, whatever its joints' axes.
+
+Where the loaded joints are not a planar chain (the Panda's upper-arm roll, the Z1's wrist yaw), no belt
+carries a level reference across them; paper 001 carries one by spatial parallelogram RSSR modules
+(Section 4, Fig. 6), which keep a vertical line vertical on a *pseudobase* jointed to each link at a point
+C_i. The arm's gravity energy is a sum of rotational subsystems, one per link, each a first moment fixed in
+its link (001 Eq. 5, :func:`springlab.mechanisms.pseudobase.subsystems.subsystem_moments`, the code the
+paper-001 chapter verifies), so each one is balanced alone, like a single-link equilibrator (001 Eqs. 9-18):
+a zero-free-length spring from A_i, ``l_CA`` above C_i on the pseudobase (001 Eq. 13), to B_i, ``l_CB``
+from C_i along the subsystem's moment sigma_i on the link (001 Eq. 14), with K l_CA l_CB = mu g sigma
+(001 Eq. 16).
+
+C_i may be any point of link i (001 Section 3); here it is a point of joint i's axis (a point of the link
+before it too, so that the moments chain, 001 Eq. 2), moved along the axis beyond the two links' shapes by
+:data:`~springlab.design.layouts.AXIAL_GAP`, on the nearer side, so that the spring and its post run beside
+the links. The part of a subsystem's moment along its joint's axis turns with the link before it alone:
+it is handed to that link's subsystem, so that a joint that carries little needs no spring (its term then
+left is the torque it keeps, named). The first loaded link's post stands on the body before it, which turns
+about the vertical alone; the others' stand on a pseudobase (:meth:`~springlab.model.revolute.RevoluteChain.
+with_pseudobase`), or a belt's frame where every joint between turns about a parallel axis
+(:meth:`~springlab.model.revolute.RevoluteChain.with_belt`).
+
+Each spring is a coil along its link behind a pulley at B_i, its cable to A_i
+(:func:`springlab.design.layouts.realise_layout`): the lead lies along sigma_i, from B_i towards C_i, so the
+cable's path, like the gravity term, depends on the angle phi between sigma_i and the vertical alone, and the
+pulley is compensated for in that plane (the lever and the post keep their directions, 001 Eqs. 13-14; the
+rate and their lengths move). The pulley swivels about its lead as the post goes round it.
+
+References
+----------
+Lin, P.-Y., Shieh, W.-B., Chen, D.-Z. (2010). Design of a gravity-balanced general spatial
+serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10.1115/1.4001816
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from springlab import _checks
+from springlab.design.arms import PARALLEL, RATE_DIGITS, Structure
+from springlab.design.layouts import (
+    AXIAL_GAP,
+    LEVER,
+    POST,
+    SHARE,
+    Layout,
+    _axial_extent,
+    _on_grid,
+    without_light,
+)
+from springlab.errors import SpringlabError
+from springlab.model.revolute import RevoluteChain
+from springlab.model.springs import PointSpring
+from springlab.rounding import significant
+
+
+@dataclass(frozen=True)
+class Subsystem:
+    """One link's subsystem and its spring's plane: C (world, zero pose, m), the moment's direction ``ghat``
+    (world, zero pose) and in the link's frame (``ghat_link``), the vertical ``up``, the link's body, the
+    frame the post stands on (its name, origin and axes at the zero pose), and g |mu sigma| (N m, ``gG``,
+    real: in the plane (sigma, up) the link's angle theta = pi/2 - phi)."""
+
+    C: np.ndarray
+    ghat: np.ndarray
+    ghat_link: np.ndarray
+    up: np.ndarray
+    link: int
+    level: str
+    level_origin: np.ndarray
+    level_rotation: np.ndarray
+    R0: np.ndarray
+    o0: np.ndarray
+    gG: complex
+
+    turn = False  # 001 Eqs. (13)-(14): the post on the vertical, the point on sigma
+    tilt = 0.0  # the lead along sigma: the cable's path depends on phi alone
+
+    def spring(self, model: RevoluteChain, c: complex, p: complex, k: float) -> PointSpring:
+        """The spring from |c| along sigma to |p| above C (m), rate k (N/m), its ends on the search's grid."""
+        point = self.C + abs(c) * self.ghat  # 001 Eq. (14)
+        post = self.C + abs(p) * self.up  # 001 Eq. (13)
+        on_link = self.R0[self.link].T @ (point - self.o0[self.link])
+        on_level = self.level_rotation.T @ (post - self.level_origin)
+        return PointSpring(model.bodies[self.link], _on_grid(on_link), self.level, _on_grid(on_level),
+                           significant(k, RATE_DIGITS))
+
+    def offsets(self, spring) -> tuple[complex, complex]:
+        """A spring's point and post as complex offsets (m) from C in the plane (sigma, up): |l_CB|, i |l_CA|."""
+        at = self.R0[self.link] @ np.asarray(spring.point_a) + self.o0[self.link] - self.C
+        post = self.level_rotation @ np.asarray(spring.point_b) + self.level_origin - self.C
+        return complex(float(np.linalg.norm(at)), 0.0), complex(0.0, float(np.linalg.norm(post)))
+
+    def towards(self, c: complex) -> tuple:
+        """From the point back towards C, in the link's frame: where the coil lies."""
+        return tuple(-self.ghat_link)
+
+    def angles(self, R) -> np.ndarray:
+        """theta = pi/2 - phi (rad) at the poses of ``R``, phi the angle between sigma and the vertical, on a
+        whole-degree grid (each once): where the workspace takes the subsystem."""
+        cos = np.clip(np.einsum("pij,j->pi", R[:, self.link], self.ghat_link) @ self.up, -1.0, 1.0)
+        return np.radians(np.unique(np.round(90.0 - np.degrees(np.arccos(cos)))))
+
+
+def _parallel(model: RevoluteChain, R0, first: int, t: int) -> bool:
+    w = R0[t + 1] @ model.axes[t]
+    return all(np.linalg.norm(np.cross(R0[u + 1] @ model.axes[u], w)) <= PARALLEL for u in range(first, t))
+
+
+def _reach(model: RevoluteChain, body: int, R0, o0, C, ghat, fallback: float) -> float:
+    """How far (m) the link's shape reaches from C along ``ghat`` (its outline; ``fallback`` without one)."""
+    pts = model.outline[body] if model.outline and len(model.outline[body]) else None
+    if pts is None:
+        return fallback
+    return float(np.max((pts @ R0[body].T + o0[body] - C) @ ghat))
+
+
+def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE, q=None) -> Layout:
+    """One spring per loaded link of any serial arm, from a post on the link's pseudobase to the link (see the
+    module docstring); joints below ``share`` of the largest gravity peak get none (with ``q``, poses (N, n)
+    rad, judged as :func:`~springlab.design.layouts.without_light` does).
+
+    :raises SpringlabError: when a joint before the first loaded one turns about a non-vertical axis (no body
+        stays level), or ``share`` is outside [0, 1)
+    """
+    from springlab.design.arms import _zero_pose
+    from springlab.mechanisms.pseudobase.subsystems import subsystem_moments
+
+    share = _checks.number("share", share)
+    if not 0.0 <= share < 1.0:
+        raise SpringlabError(f"share = {share:g}: give the share of the largest gravity peak below which a joint "
+                             "gets no spring, from 0 to 1 (e.g. 0.02)")
+    if not found.loaded:
+        raise SpringlabError(f"gravity loads no joint of {model.name!r}: nothing to balance")
+    notes = []
+    if q is not None:
+        trimmed = without_light(model, found, share, q)
+        notes += [f"joint {model.joints[i]}: {trimmed.reasons[i]}" for i in found.loaded if i not in trimmed.loaded]
+        found = trimmed
+    first = found.loaded[0]
+    R0, o0 = _zero_pose(model)
+    up = model.up
+    for t in range(first):
+        if np.linalg.norm(np.cross(R0[t + 1] @ model.axes[t], up)) > PARALLEL:
+            raise SpringlabError(f"joint {model.joints[t]} before the first loaded one turns about a non-vertical "
+                                 f"axis: no body of {model.name!r} stays level to carry the posts")
+    joints = list(range(first, model.n))
+    w = {t: R0[t + 1] @ model.axes[t] for t in joints}
+    C = {}
+    for t in joints:  # C_t on joint t's axis, beside the two links it joins, on the nearer side
+        lo_p, hi_p = _axial_extent(model, t, R0, o0, o0[t + 1], w[t])
+        lo_c, hi_c = _axial_extent(model, t + 1, R0, o0, o0[t + 1], w[t])
+        hi, lo = max(hi_p, hi_c), min(lo_p, lo_c)
+        C[t] = o0[t + 1] + (hi + AXIAL_GAP if hi <= -lo else lo - AXIAL_GAP) * w[t]
+    bodies = [t + 1 for t in joints]
+    s_rows, r_rows = [], []
+    for i, (t, b) in enumerate(zip(joints, bodies, strict=True)):  # 001's link i: O_{i-1} = C_t, O_i the next C
+        ahead = C[joints[i + 1]] if i + 1 < len(joints) else C[t]
+        s_rows.append(R0[b].T @ (o0[b] + R0[b] @ model.com[b] - ahead))
+        r_rows.append(R0[b].T @ (C[t] - ahead))
+    moment = [R0[b] @ row for b, row in zip(bodies, subsystem_moments(model.mass[bodies], s_rows, r_rows),
+                                             strict=True)]  # 001 Eq. (5), kg m, world at the zero pose
+    for i in range(len(joints) - 1, 0, -1):  # the part along a joint's axis turns with the link before it
+        axial = (moment[i] @ w[joints[i]]) * w[joints[i]]
+        moment[i] = moment[i] - axial
+        moment[i - 1] = moment[i - 1] + axial
+    level_name = model.bodies[first]
+    out, springs, leads, outward, planes, rooms = model, [], [], [], [], []
+    for i, t in enumerate(joints):
+        b, size = bodies[i], float(np.linalg.norm(moment[i]))
+        if t not in found.loaded:
+            if size > 1e-9 * max(float(np.linalg.norm(v)) for v in moment) and not found.reasons.get(t, "").startswith(
+                    "light"):
+                notes.append(f"joint {model.joints[t]}: no spring; its link's subsystem (mu sigma = {1e3 * size:.3g} "
+                             "g m about its joint's axis) is left, what the checks measure")
+            continue
+        if size == 0:
+            notes.append(f"joint {model.joints[t]}: its subsystem has no first moment: no spring")
+            continue
+        ghat = moment[i] / size
+        ahead = o0[joints[i + 1] + 1] if i + 1 < len(joints) else o0[b] + R0[b] @ model.com[b]
+        reach = _reach(model, b, R0, o0, C[t], ghat, float(np.linalg.norm(ahead - o0[t + 1])))
+        if reach <= 0:
+            notes.append(f"joint {model.joints[t]}: its link reaches nowhere along its subsystem's moment: no spring")
+            continue
+        r_b, r_a = LEVER * reach, POST * reach
+        kappa = model.g * size / (r_a * r_b)  # 001 Eq. (16): K l_CA l_CB = mu g sigma
+        if t == first:
+            level, origin = level_name, o0[first]
+        else:
+            along = float((C[t] - o0[t + 1]) @ w[t])
+            if _parallel(model, R0, first, t):
+                out = out.with_belt(model.joints[t], level_name, along=along)
+            else:
+                out = out.with_pseudobase(model.joints[t], level_name, along=along)
+            level, origin = out.belts[-1].name, C[t]
+        plane = Subsystem(C[t], ghat, R0[b].T @ ghat, up, b, level, origin, R0[first], R0, o0, complex(model.g * size))
+        planes.append(plane)
+        rooms.append(reach)
+        springs.append(plane.spring(out, complex(r_b), complex(0.0, r_a), kappa))
+        leads.append(plane.towards(0j))
+        outward.append((np.zeros(3), np.zeros(3)))  # C is already beside the links
+    return Layout(out, tuple(springs), tuple(leads), tuple(notes), tuple(outward), tuple(planes), tuple(rooms))
+

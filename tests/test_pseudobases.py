@@ -1,0 +1,88 @@
+"""Paper 001's pseudobases on a spatial arm (springlab.design.pseudobases): a frame the RSSR modules carry
+across joints that are not parallel is route 2's energy derivative, and one spring per loaded link's
+subsystem (001 Eqs. 5, 13-16) holds the Panda and the Z1 over their workspaces, with negative controls."""
+
+import numpy as np
+import pytest
+
+from springlab.design.arms import structure, workspace_ranges
+from springlab.design.pseudobases import pseudobase_layout
+from springlab.energy.geometry import gravity_torques, joint_torques, potential
+from springlab.errors import SpringlabError
+from springlab.model.revolute import body_frames
+from springlab.model.robots import load_robot
+from springlab.model.springs import PointSpring
+
+
+def _poses(model, count, seed=0):
+    r = workspace_ranges(model)
+    return np.random.default_rng(seed).uniform(r[:, 0], r[:, 1], (count, model.n))
+
+
+@pytest.fixture(scope="module")
+def panda():
+    model = load_robot("Panda")
+    q = _poses(model, 400)
+    return model, q, pseudobase_layout(model, structure(model, q), q=q)
+
+
+def test_route_2_with_a_pseudobase_across_a_roll_joint_is_the_energys_derivative():
+    arm = load_robot("Panda").with_pseudobase("panda_joint4", "panda_link1", along=0.07)
+    spring = PointSpring("panda_joint4 pseudobase", (0.0, 0.0, 0.05), "panda_link4", (0.03, 0.12, 0.07), 900.0)
+    q = _poses(arm, 4, 3)
+    tau = joint_torques(arm, [spring], q)
+    h = 1e-6
+    for p in range(len(q)):
+        fd = [(potential(arm, [spring], q[p] + h * e)["total"] - potential(arm, [spring], q[p] - h * e)["total"])[0]
+              / (2 * h) for e in np.eye(arm.n)]
+        np.testing.assert_allclose(tau[p], fd, atol=1e-6)  # N m: central differences of J at 1e-6 rad
+    R, o = body_frames(arm, q)  # the frame: link1's axes, at a point of joint 4's axis 70 mm from its origin
+    np.testing.assert_array_equal(R[:, arm.n + 1], R[:, 1])
+    axis = np.einsum("pij,j->pi", R[:, 4], arm.axes[3])
+    np.testing.assert_allclose(o[:, arm.n + 1], o[:, 4] + 0.07 * axis, atol=1e-15)
+
+
+def test_a_belt_refuses_the_roll_joint_that_a_pseudobase_crosses():
+    with pytest.raises(SpringlabError, match="not parallel"):
+        load_robot("Panda").with_belt("panda_joint4", "panda_link1")
+    with pytest.raises(SpringlabError, match="not export"):
+        from springlab.model.mjcf import to_mjcf
+
+        to_mjcf(load_robot("Panda").with_pseudobase("panda_joint4", "panda_link1"))
+
+
+def test_one_spring_per_subsystem_holds_the_panda_as_001_predicts(panda):
+    model, q, lay = panda
+    # 001 Eqs. (5), (13)-(16): the loaded links' terms cancel exactly; what is left is the light joint 7's
+    # subsystem (its hand's moment off its axis), a few thousandths of the shoulder's peak
+    assert len(lay.springs) == 5 and [b.kind for b in lay.model.belts] == ["rssr"] * 4
+    check = _poses(model, 600, 1)
+    gravity = np.abs(gravity_torques(lay.model, check)).max(axis=0)
+    left = np.abs(joint_torques(lay.model, lay.springs, check)).max(axis=0)
+    assert np.all(left[1:6] <= 0.002 * gravity[1])  # N m
+    for s in lay.springs:  # each post stands on its pseudobase's vertical line (001 Eq. 13)
+        assert np.linalg.norm(np.asarray(s.point_b)[:2] if s.link_b.endswith("pseudobase") else [0.0]) < 1e-6
+
+
+def test_the_z1s_parallel_joints_get_belts_and_its_wrist_yaw_a_pseudobase():
+    model = load_robot("Z1")
+    q = _poses(model, 400)
+    lay = pseudobase_layout(model, structure(model, q), q=q)
+    assert [(b.name, b.kind) for b in lay.model.belts] == [("joint3 belt", "belt"), ("joint4 belt", "belt"),
+                                                             ("joint5 pseudobase", "rssr")]
+    check = _poses(model, 600, 1)
+    gravity = np.abs(gravity_torques(lay.model, check)).max(axis=0)
+    left = np.abs(joint_torques(lay.model, lay.springs, check)).max(axis=0)
+    assert np.all(left[1:5] <= 0.002 * gravity[1])
+
+
+def test_negative_controls_a_subsystem_moment_not_handed_on_or_a_spring_left_out_unbalance_it(panda):
+    model, q, lay = panda
+    check = _poses(model, 600, 1)
+    gravity = np.abs(gravity_torques(lay.model, check)).max(axis=0)
+    without = np.abs(joint_torques(lay.model, lay.springs[:-1], check)).max(axis=0)  # the wrist's spring left out
+    assert without[5] > 0.5 * gravity[5]
+    s = lay.springs[1]  # the upper arm's spring with its post off the vertical: no longer a pseudobase's
+    moved = PointSpring(s.link_a, s.point_a, s.link_b, np.asarray(s.point_b) + [0.03, 0.0, 0.0], s.k)
+    off = np.abs(joint_torques(lay.model, [*lay.springs[:1], moved, *lay.springs[2:]], check)).max(axis=0)
+    assert off[2] > 0.05 * gravity[2]
