@@ -182,7 +182,8 @@ def planar_chain(model, loaded, w, vertical, up) -> tuple[bool, str]:
                   "balanced exactly by zero-free-length springs (one per pair of its links at most)")
 
 
-def _zero_pose(model):
+def zero_pose(model):
+    """Every body's frame at the zero pose: rotations (n+1, 3, 3) and origins (n+1, 3) (m)."""
     R, o = body_frames(model, np.zeros(model.n))
     return R[0], o[0]
 
@@ -197,7 +198,7 @@ def planar_moments(model: RevoluteChain, found: Structure) -> dict:
     joint, the links beyond counted at its next joint."""
     loaded = found.loaded
     first = loaded[0]
-    R0, o0 = _zero_pose(model)
+    R0, o0 = zero_pose(model)
     w = R0[first + 1] @ model.axes[first]  # the loaded axes' common direction (world, zero pose)
     up = model.up
     h = np.cross(up, w)  # (h, up, w) right-handed: a turn theta about w multiplies z by e^{i theta}
@@ -1319,8 +1320,8 @@ class ArmDesign:
 
 def belt_frames(model: RevoluteChain, spring) -> dict:
     """For --json, each end a belt or paper 001's RSSR modules carry
-    (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`, :meth:`~springlab.model.revolute.RevoluteChain.
-    with_pseudobase`): ``frame_a`` (or ``frame_b``) = {"at_joint": the joint, "axes_of": the level link,
+    (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`,
+    :meth:`~springlab.model.revolute.RevoluteChain.with_pseudobase`): ``frame_a`` (or ``frame_b``) = {"at_joint": the joint, "axes_of": the level link,
     "along_axis": d, "kept_by": "belt" or "RSSR modules"}, meaning that ``point_a`` is given from the point d (m)
     along that joint's axis from its origin, in the axes of that link, which the belt keeps (the RSSR modules
     keep its vertical line: the point lies on it)."""
@@ -2137,8 +2138,15 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         bare = (model.mass, model.com, model.inertia)
         for _ in range(CARRY_ROUNDS):  # the springs' own steel rides on the links: designed for too
             arm = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2])  # the arm alone, with the belts
+            built = [m for m, r in enumerate(realised) if r is not None]
+            realised, kinds, coils = ([v[m] for m in built] for v in (realised, kinds, coils))
             carried = replace(with_spring_mass(arm, realised, kinds, coils, check), belts=())
-            lay = arrange(carried, structure(carried, check), share=share, q=check)
+            widths = {}  # a pseudobase's C moves beside the links by half its coils' width too
+            for r, fit in zip(realised, coils, strict=True):
+                t = model.bodies.index(r.link_a) - 1
+                widths[t] = widths.get(t, 0.0) + fit.coil.outer_diameter
+            lay = arrange(carried, structure(carried, check), share=share, q=check,
+                          **({"widths": widths} if spatial else {}))
             realised, kinds, coils, origins = realise_layout(lay, check, material=material, cable=cable,
                                                              pulley_radius=None if sized else pulley_radius)
         model, ideal = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2]), lay.springs
@@ -2154,12 +2162,12 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
             notes += [f"belts: {found.why}; one spring per loaded link, from a post on the level frame at its joint "
                       "to the link, its coil along the link behind a pulley, designed for the arm carrying the "
                       f"springs' own mass ({CARRY_ROUNDS} rounds)", *lay.notes]
-        radii = sorted({r.pulley_radius for r in realised})
+        radii = sorted({r.pulley_radius for r in realised if r is not None})
         if radii and radii[-1] > 0:
             sizes = ", ".join(f"{1e3 * r:.3g}" for r in radii)
             notes.append(f"the springs' cables wrap their pulleys at {sizes} mm" + (
                 " (each sized to its cable, the rope maker's D/d)" if sized else "") + ": each one's lever, post and "
-                "rate re-fitted for it over a full turn of its link (route 2's cable path)")
+                "rate re-fitted for it over the angles the workspace takes its link through (route 2's cable path)")
         pulley_radius = radii[-1] if radii else 0.0
     else:
         notes.append(_reach_note(model, reach))

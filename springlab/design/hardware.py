@@ -217,7 +217,7 @@ pseudobase (001 Fig. 5)."""
 
 @dataclass(frozen=True)
 class Part:
-    """A part of the springs' hardware: its kind ('spring', 'cable', 'pulley', 'belt', 'post'), name, the
+    """A part of the springs' hardware: its kind ('spring', 'cable', 'pulley', 'belt', 'post', 'rssr'), name, the
     link (frame) it rides on and its centre there (m), its mass (kg), its sizes (m) and the loads it
     carries (N, N m) over the workspace, and where its mass is carried in the balance: (link, point m,
     kg) each."""
@@ -251,8 +251,9 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
     half at each end of its free span), the post each belt-carried end stands on (an aluminium rod from
     the joint's axis, sized to its bending) and each belt (one per joint it crosses, its pulleys' pitch
     diameter :data:`BELT_PULLEY` of the link, its width carrying the largest moment its springs put on it at
-    :data:`BELT_TENSION`). Its loads are the largest over ``q``: a cable's pull, a pulley's load on its
-    shaft, a post's force and bending moment at its root, a belt's moment and tension."""
+    :data:`BELT_TENSION`), or each RSSR module that keeps a pseudobase's vertical line (:func:`_modules`). Its
+    loads are the largest over ``q``: a cable's pull, a pulley's load on its shaft, a post's force and bending
+    moment at its root, a belt's moment and tension, a module's couple and its auxiliary link's force."""
     from springlab.design.cables import ALUMINIUM, pulley_mass
 
     q = model.check_q(q)
@@ -337,10 +338,10 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
             carried = on(s.link_b, centre) + (m,) if belt is not None else (s.link_b, centre, m)
             out.append(Part("post", f"{name} post", s.link_b, centre, m, {"length": length, "rod_diameter": dia},
                             {"largest_force_N": F, "root_moment_Nm": F * length}, (carried,)))
+    out += _modules(model, {b: float(np.max(np.abs(moments[b.name]))) for b in model.belts if b.kind != "belt"})
     for belt in model.belts:
         moment = float(np.max(np.abs(moments[belt.name])))
         if belt.kind != "belt":
-            out += _modules(model, belt, moment)
             continue
         for t in range(belt.level, belt.joint):  # a belt per joint crossed, riding on the link after it
             span = model.placements[t + 1][:3, 3]
@@ -361,24 +362,29 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
     return tuple(out)
 
 
-def _modules(model: RevoluteChain, belt, moment: float) -> list:
-    """The RSSR modules (001 Section 4, Fig. 6) that keep a pseudobase's vertical line across the links from
-    its level body to its joint, carrying ``moment`` (N m, the largest couple of its spring's post): one per
-    link crossed, its auxiliary link a tube as long as the link, offset :data:`RSSR_OFFSET` of it, sized to
-    buckle at :data:`BUCKLING` times the couple over the offset, with two ball joints, and the pseudobase's."""
+def _modules(model: RevoluteChain, couples: dict) -> list:
+    """The chain of RSSR modules (001 Section 4, Fig. 6) that keeps the pseudobases' vertical lines: one per link
+    from the level body to the farthest pseudobase, each module's vertical line the next one's base, so that
+    module t carries the couples (N m, ``couples``: per pseudobase, its spring's post's largest) of every
+    pseudobase at or beyond its link. Its auxiliary link is a tube as long as the link, offset
+    :data:`RSSR_OFFSET` of it, sized to buckle at :data:`BUCKLING` times the couple over the offset, with two ball
+    joints; each pseudobase adds one."""
     from springlab.design.cables import ALUMINIUM
 
     out = []
-    for t in range(belt.level, belt.joint):
+    links = sorted({t for b in couples for t in range(b.level, b.joint)})
+    for t in links:
+        moment = sum(m for b, m in couples.items() if b.level <= t < b.joint)
+        ends = sum(1 for b in couples if b.joint == t + 1)  # pseudobases at this module's far end
         span = model.placements[t + 1][:3, 3]
         length = max(float(np.linalg.norm(span)), BELT_LEAST)
         offset = max(BELT_LEAST, RSSR_OFFSET * length)
         force = moment / offset
         tube = max(0.004, float((64 * BUCKLING * force * length**2 / (np.pi**3 * ALUMINIUM_E)) ** 0.25))
         m_tube = ALUMINIUM * np.pi * tube**2 / 4 * length
-        balls = (3 if t == belt.joint - 1 else 2) * BALL_JOINT
+        balls = (2 + ends) * BALL_JOINT
         link = model.bodies[t + 1]
-        out.append(Part("rssr", f"{belt.name} module ({model.joints[t]} to {model.joints[t + 1]})", link,
+        out.append(Part("rssr", f"RSSR module ({model.joints[t]} to {model.joints[t + 1]})", link,
                         tuple(span / 2), m_tube + balls,
                         {"length": length, "offset": offset, "rod_diameter": tube, "ball_joints_mass_kg": balls},
                         {"largest_moment_Nm": moment, "largest_force_N": force},

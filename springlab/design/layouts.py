@@ -63,7 +63,7 @@ from the links): the post then never comes onto the lead's line behind the pulle
 have to swivel half a turn at once (the post sweeps a circle about the joint that the lead's line in the
 plane would cross)."""
 
-def _on_grid(x) -> tuple:
+def on_grid(x) -> tuple:
     """Coordinates (m, or a direction's components) rounded to :data:`~springlab.design.arms.END_GRID`, as
     the search keeps its ends: another CPU's round-off then moves none of them."""
     return tuple(float(np.round(v / END_GRID) * END_GRID) + 0.0 for v in x)
@@ -97,11 +97,21 @@ class SpringPlane:
         post = self.joint_at + p.real * self.h + p.imag * self.up + self.d * self.w
         on_link = self.R0[self.link].T @ (point - self.o0[self.link])
         on_level = self.level_rotation.T @ (post - self.level_origin)
-        return PointSpring(model.bodies[self.link], _on_grid(on_link), self.level, _on_grid(on_level),
+        return PointSpring(model.bodies[self.link], on_grid(on_link), self.level, on_grid(on_level),
                            significant(k, RATE_DIGITS))
 
     turn = True  # the compensation may turn the lever and the post (compensate_pulley)
     tilt = LEAD_TILT  # rad: the lead's out of the plane
+    beside = True  # the realised ends move beside the links by the coils' width
+
+    def coil_room(self, c: complex, room: float, behind: float) -> float:
+        """m: the room a coil has between the pulley at c (less ``behind``, m: the pulley's, the hook's and the
+        rope's) and the joint, within ``room`` (m)."""
+        return min(room, abs(c) - behind)
+
+    def prepare(self, c: complex, p: complex, k: float, rho: float, name: str) -> tuple[complex, complex, float]:
+        """The spring's (c, p, k) before its pulley's compensation: unchanged (the compensation turns them)."""
+        return c, p, k
 
     def offsets(self, spring) -> tuple[complex, complex]:
         """A spring's point and post as complex offsets (m) from the joint in the plane."""
@@ -114,7 +124,8 @@ class SpringPlane:
         return tuple(self.R0[self.link].T @ (-(c.real * self.h + c.imag * self.up)) / abs(c))
 
     def angles(self, R) -> np.ndarray:
-        """The link's angles (rad) in the plane at the poses of ``R`` (:func:`_link_angles`)."""
+        """The link's angles (rad) in the plane at the poses of ``R``: where the workspace takes it (whole
+        degrees, each once)."""
         return _link_angles(self, R)
 
 
@@ -142,7 +153,7 @@ class Layout:
     rooms: tuple = ()  # per spring, its link's length (m): the longest its coil may be in service
 
 
-def _axial_extent(model: RevoluteChain, body: int, R0, o0, origin, w) -> tuple[float, float]:
+def axial_extent(model: RevoluteChain, body: int, R0, o0, origin, w) -> tuple[float, float]:
     """The least and largest reach (m) of a body's outline along ``w`` from ``origin`` (zero pose)."""
     pts = model.outline[body] if model.outline and len(model.outline[body]) else np.zeros((1, 3))
     along = (pts @ R0[body].T + o0[body] - origin) @ w
@@ -219,8 +230,8 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE,
         kappa = abs(W) / (r_a * r_b)
         p = 1j * r_a  # the post, straight up from the joint
         c = W / (kappa * np.conj(-p))  # kappa conj(c_0) c_k = W, c_0 = -p
-        lo_p, hi_p = _axial_extent(model, link - 1, R0, o0, joint_at[k], w)
-        lo_c, hi_c = _axial_extent(model, link, R0, o0, joint_at[k], w)
+        lo_p, hi_p = axial_extent(model, link - 1, R0, o0, joint_at[k], w)
+        lo_c, hi_c = axial_extent(model, link, R0, o0, joint_at[k], w)
         hi, lo = max(hi_p, hi_c), min(lo_p, lo_c)
         side = 1.0 if hi <= -lo else -1.0  # the nearer side of the two links
         d = hi + AXIAL_GAP if side > 0 else lo - AXIAL_GAP
@@ -426,18 +437,22 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
     for index, (ideal, ideal_towards, (out_a, out_b), plane, room) in enumerate(rows):
         pull = ideal.k * length_range(model, ideal, R, o)[1]
         chosen = cable
+        left = None
         for _ in range(4):  # the cable for the pull, its pulley, the spring re-fitted for it, and again
             if chosen is None or chosen.working < pull:
                 chosen = cable_for(pull, given)
             rho = chosen.pulley_radius if given is None else given
             s, towards = ideal, ideal_towards
             c0, p0 = plane.offsets(ideal)
-            reach = abs(c0)  # m: from the joint to the pulley, in the plane: the coil lies along it
             if rho > 0:  # the pulley adds k rho (its wrap's change): c, p and k re-fitted for it
-                c, p, k = compensate_pulley(plane, c0, p0, s.k, rho, plane.angles(R), turn=plane.turn,
+                try:
+                    c, p, k = plane.prepare(c0, p0, s.k, rho, ideal.label)
+                except SpringlabError as why:
+                    left = f"not realised: spring S{index + 1} ({ideal.label}, k = {ideal.k:.4g} N/m): {why}"
+                    break
+                c, p, k = compensate_pulley(plane, c, p, k, rho, plane.angles(R), turn=plane.turn,
                                             tilt=plane.tilt)
                 s = plane.spring(model, c, p, k)
-                reach = abs(c)
                 towards = plane.towards(c)
             lead = tuple(-np.cos(plane.tilt) * np.asarray(towards) - np.sin(plane.tilt) * np.asarray(out_a))  # from
             # the coil, on the joint's side and out of the plane, the cable arrives at the pulley
@@ -445,7 +460,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
                               lead=lead if rho > 0 else None)
             lengths = length_range(model, led, R, o)
             d = chosen.diameter if rho > 0 else 0.0
-            fits_in = min(room, reach - rho - HOOK_GAP - d)  # between the pulley and the joint, on its own link
+            fits_in = plane.coil_room(c0 if rho == 0 else c, room, rho + HOOK_GAP + d)  # on its own link
             found = coil_for(s.k, lengths, fits_in, material, block=2 * (rho + d))
             if found[0] is None:
                 raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, even "
@@ -454,10 +469,16 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
             pull = s.k / parallel * lengths[1]  # each side-by-side spring has its own cable
             if chosen.working >= pull or cable is not None:
                 break
-        shift = parallel * coil.outer_diameter  # beside the links by the coils' own width (side by side: all)
-        s = PointSpring(s.link_a, _on_grid(np.asarray(s.point_a) + shift * out_a), s.link_b,
-                        _on_grid(np.asarray(s.point_b) + shift * out_b), s.k)
-        lead = _on_grid(lead)  # on the same grid: another CPU's round-off moves nothing
+        if left is not None:  # no room for its pulley: the design leaves it out and says so
+            realised.append(None)
+            kinds.append(left)
+            coils.append(None)
+            origins.append(index)
+            continue
+        shift = parallel * coil.outer_diameter if plane.beside else 0.0  # beside the links by the coils' width
+        s = PointSpring(s.link_a, on_grid(np.asarray(s.point_a) + shift * out_a), s.link_b,
+                        on_grid(np.asarray(s.point_b) + shift * out_b), s.k)
+        lead = on_grid(lead)  # on the same grid: another CPU's round-off moves nothing
         k = s.k / parallel
         tension = coil.initial_tension / ratio  # along the cable: the block divides the coil's pull
         block = f", with a {ratio}:1 pulley block" if ratio > 1 else ""

@@ -16,15 +16,19 @@ before it too, so that the moments chain, 001 Eq. 2), moved along the axis beyon
 the links. The part of a subsystem's moment along its joint's axis turns with the link before it alone:
 it is handed to that link's subsystem, so that a joint that carries little needs no spring (its term then
 left is the torque it keeps, named). The first loaded link's post stands on the body before it, which turns
-about the vertical alone; the others' stand on a pseudobase (:meth:`~springlab.model.revolute.RevoluteChain.
-with_pseudobase`), or a belt's frame where every joint between turns about a parallel axis
-(:meth:`~springlab.model.revolute.RevoluteChain.with_belt`).
+about the vertical alone; the others' stand on a pseudobase
+(:meth:`~springlab.model.revolute.RevoluteChain.with_pseudobase`), or a belt's frame where every joint
+between turns about a parallel axis (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`).
 
-Each spring is a coil along its link behind a pulley at B_i, its cable to A_i
-(:func:`springlab.design.layouts.realise_layout`): the lead lies along sigma_i, from B_i towards C_i, so the
-cable's path, like the gravity term, depends on the angle phi between sigma_i and the vertical alone, and the
-pulley is compensated for in that plane (the lever and the post keep their directions, 001 Eqs. 13-14; the
-rate and their lengths move). The pulley swivels about its lead as the post goes round it.
+Each spring is a coil along its link between C_i and a pulley at B_i (:data:`PULLEY` of the link's reach
+along sigma_i from C_i), its cable over the pulley to A_i (:data:`POST` above C_i)
+(:func:`springlab.design.layouts.realise_layout`): the cable arrives at the pulley along sigma_i, so its
+path, like the gravity term, depends on the angle phi between sigma_i and the vertical alone, and the pulley
+is compensated for in that plane (the lever and the post keep their directions, 001 Eqs. 13-14; the rate and
+their lengths move). Where sigma_i points straight up or down the post lies on that line, and the pulley,
+which swivels about it to hold the post in its plane, must turn half a turn at once: the design's audit
+looks for such poses in the workspace and flags them (a planar chain's belts tilt the lead out of the plane
+instead; a spatial link's lead cannot leave every plane its post sweeps).
 
 References
 ----------
@@ -42,18 +46,27 @@ from springlab import _checks
 from springlab.design.arms import PARALLEL, RATE_DIGITS, Structure
 from springlab.design.layouts import (
     AXIAL_GAP,
-    LEVER,
-    POST,
     SHARE,
     Layout,
-    _axial_extent,
-    _on_grid,
+    axial_extent,
+    on_grid,
     without_light,
 )
 from springlab.errors import SpringlabError
 from springlab.model.revolute import RevoluteChain
 from springlab.model.springs import PointSpring
 from springlab.rounding import significant
+
+PULLEY = 0.9
+"""The pulley B_i lies this share of the link's reach along sigma_i from C_i (001 Eq. 14's l_CB): its coil lies
+between it and C_i, along the link."""
+
+POST = 0.25
+"""The post A_i stands this share of the link's reach above C_i (001 Eq. 13's l_CA)."""
+
+PULLEY_CLEAR = 2.0
+"""The cable's free run from the pulley to the post is at least this many pulley radii (|A - B| >= l_CB - l_CA):
+where a pulley is too large for it, the post is lowered (and the rate raised, 001 Eq. 16)."""
 
 
 @dataclass(frozen=True)
@@ -77,6 +90,28 @@ class Subsystem:
 
     turn = False  # 001 Eqs. (13)-(14): the post on the vertical, the point on sigma
     tilt = 0.0  # the lead along sigma: the cable's path depends on phi alone
+    beside = False  # C is already beside the links (its coil's width counted: pseudobase_layout's widths)
+
+    def coil_room(self, c: complex, room: float, behind: float) -> float:
+        """m: the room a coil has between the pulley at |c| along sigma (less ``behind``, m: the pulley's, the
+        hook's and the rope's) and C, within ``room`` (m)."""
+        return min(room, abs(c) - behind)
+
+    def prepare(self, c: complex, p: complex, k: float, rho: float, name: str) -> tuple[complex, complex, float]:
+        """The spring's (c, p, k) with room for a pulley of radius ``rho`` (m): the post lowered to
+        l_CB - :data:`PULLEY_CLEAR` rho where it stands higher, the rate raised to keep 001 Eq. (16)'s product.
+
+        :raises SpringlabError: where the post would sink below a fifth of l_CB (``name``: the spring's, unused)
+        """
+        a, b = abs(p), abs(c)
+        if b - a >= PULLEY_CLEAR * rho:
+            return c, p, k
+        lowered = b - PULLEY_CLEAR * rho
+        if lowered < 0.2 * b:
+            raise SpringlabError(f"its link reaches {1e3 * b / PULLEY:.0f} mm along its subsystem's moment, too "
+                                 f"short for a pulley of {1e3 * rho:.3g} mm: give a smaller --pulley-radius (a finer "
+                                 "--cable) or leave the joint out (--share)")
+        return c, complex(0.0, lowered), k * a / lowered
 
     def spring(self, model: RevoluteChain, c: complex, p: complex, k: float) -> PointSpring:
         """The spring from |c| along sigma to |p| above C (m), rate k (N/m), its ends on the search's grid."""
@@ -84,7 +119,7 @@ class Subsystem:
         post = self.C + abs(p) * self.up  # 001 Eq. (13)
         on_link = self.R0[self.link].T @ (point - self.o0[self.link])
         on_level = self.level_rotation.T @ (post - self.level_origin)
-        return PointSpring(model.bodies[self.link], _on_grid(on_link), self.level, _on_grid(on_level),
+        return PointSpring(model.bodies[self.link], on_grid(on_link), self.level, on_grid(on_level),
                            significant(k, RATE_DIGITS))
 
     def offsets(self, spring) -> tuple[complex, complex]:
@@ -94,7 +129,7 @@ class Subsystem:
         return complex(float(np.linalg.norm(at)), 0.0), complex(0.0, float(np.linalg.norm(post)))
 
     def towards(self, c: complex) -> tuple:
-        """From the point back towards C, in the link's frame: where the coil lies."""
+        """Where the coil lies from the pulley, in the link's frame: back along sigma, towards C."""
         return tuple(-self.ghat_link)
 
     def angles(self, R) -> np.ndarray:
@@ -117,15 +152,17 @@ def _reach(model: RevoluteChain, body: int, R0, o0, C, ghat, fallback: float) ->
     return float(np.max((pts @ R0[body].T + o0[body] - C) @ ghat))
 
 
-def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE, q=None) -> Layout:
+def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE, q=None,
+                      widths=None) -> Layout:
     """One spring per loaded link of any serial arm, from a post on the link's pseudobase to the link (see the
     module docstring); joints below ``share`` of the largest gravity peak get none (with ``q``, poses (N, n)
-    rad, judged as :func:`~springlab.design.layouts.without_light` does).
+    rad, judged as :func:`~springlab.design.layouts.without_light` does). ``widths`` (joint index -> m): the
+    width of the coils on that joint's link, which C is moved beside the links by as well (half of it).
 
     :raises SpringlabError: when a joint before the first loaded one turns about a non-vertical axis (no body
         stays level), or ``share`` is outside [0, 1)
     """
-    from springlab.design.arms import _zero_pose
+    from springlab.design.arms import zero_pose
     from springlab.mechanisms.pseudobase.subsystems import subsystem_moments
 
     share = _checks.number("share", share)
@@ -140,7 +177,7 @@ def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = 
         notes += [f"joint {model.joints[i]}: {trimmed.reasons[i]}" for i in found.loaded if i not in trimmed.loaded]
         found = trimmed
     first = found.loaded[0]
-    R0, o0 = _zero_pose(model)
+    R0, o0 = zero_pose(model)
     up = model.up
     for t in range(first):
         if np.linalg.norm(np.cross(R0[t + 1] @ model.axes[t], up)) > PARALLEL:
@@ -150,10 +187,11 @@ def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = 
     w = {t: R0[t + 1] @ model.axes[t] for t in joints}
     C = {}
     for t in joints:  # C_t on joint t's axis, beside the two links it joins, on the nearer side
-        lo_p, hi_p = _axial_extent(model, t, R0, o0, o0[t + 1], w[t])
-        lo_c, hi_c = _axial_extent(model, t + 1, R0, o0, o0[t + 1], w[t])
+        lo_p, hi_p = axial_extent(model, t, R0, o0, o0[t + 1], w[t])
+        lo_c, hi_c = axial_extent(model, t + 1, R0, o0, o0[t + 1], w[t])
         hi, lo = max(hi_p, hi_c), min(lo_p, lo_c)
-        C[t] = o0[t + 1] + (hi + AXIAL_GAP if hi <= -lo else lo - AXIAL_GAP) * w[t]
+        gap = AXIAL_GAP + 0.5 * (widths or {}).get(t, 0.0)
+        C[t] = o0[t + 1] + (hi + gap if hi <= -lo else lo - gap) * w[t]
     bodies = [t + 1 for t in joints]
     s_rows, r_rows = [], []
     for i, (t, b) in enumerate(zip(joints, bodies, strict=True)):  # 001's link i: O_{i-1} = C_t, O_i the next C
@@ -185,7 +223,7 @@ def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = 
         if reach <= 0:
             notes.append(f"joint {model.joints[t]}: its link reaches nowhere along its subsystem's moment: no spring")
             continue
-        r_b, r_a = LEVER * reach, POST * reach
+        r_b, r_a = PULLEY * reach, POST * reach
         kappa = model.g * size / (r_a * r_b)  # 001 Eq. (16): K l_CA l_CB = mu g sigma
         if t == first:
             level, origin = level_name, o0[first]
