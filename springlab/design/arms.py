@@ -33,6 +33,15 @@ and rates that minimise the largest holding torque over the workspace (a greedy 
 each set polished by sequential linear programmes on route 2's torques towards the smallest maximum).
 The search compares to 9 significant digits and keeps its springs on a grid (:data:`END_GRID`), so
 round-off, which differs from one CPU to another, decides none of its choices.
+
+**Pseudobases** (``layout='belts'`` and ``'pseudobases'``, :mod:`springlab.design.layouts`,
+:mod:`springlab.design.pseudobases`): paper 001's one spring per link's subsystem, its post on a frame a belt
+or RSSR modules carry (001 Eqs. 5, 13-16).
+
+References
+----------
+Lin, P.-Y., Shieh, W.-B., Chen, D.-Z. (2010). Design of a gravity-balanced general spatial
+serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10.1115/1.4001816
 """
 
 from __future__ import annotations

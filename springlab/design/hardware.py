@@ -251,7 +251,7 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
     half at each end of its free span), the post each belt-carried end stands on (an aluminium rod from
     the joint's axis, sized to its bending) and each belt (one per joint it crosses, its pulleys' pitch
     diameter :data:`BELT_PULLEY` of the link, its width carrying the largest moment its springs put on it at
-    :data:`BELT_TENSION`), or each RSSR module that keeps a pseudobase's vertical line (:func:`_modules`). Its
+    :data:`BELT_TENSION`), or each RSSR module that keeps a pseudobase's vertical line (one per link, sized to its couple). Its
     loads are the largest over ``q``: a cable's pull, a pulley's load on its shaft, a post's force and bending
     moment at its root, a belt's moment and tension, a module's couple and its auxiliary link's force."""
     from springlab.design.cables import ALUMINIUM, pulley_mass

@@ -312,7 +312,7 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
     point-pulley design it starts from, the lever's and the post's lengths within :data:`REFIT` of theirs,
     their directions and the rate free; the lead stays on the line from the pulley to the joint. The
     ``turn=False`` keeps both directions (only the rate and the two lengths move: paper 001's post stays on
-    the vertical and the point on sigma, Eqs. 13-14); ``tilt`` is the lead's out of the plane (rad). The
+    the vertical and the point on sigma, 001 Eqs. 13-14); ``tilt`` is the lead's out of the plane (rad). The
     search is a compass search that compares to 9 significant digits
     (:func:`springlab.design.arms.compass_search`), so another CPU's round-off takes no other step.
     Returns them unchanged for rho = 0."""

@@ -21,6 +21,14 @@ revolute joints about x, y, z through one point, the two bodies between them mas
 (:func:`springlab.energy.geometry.potential`, :func:`springlab.energy.geometry.joint_torques`)
 and route 3 (:func:`springlab.energy.simulation.joint_torques`) take this model and
 :class:`~springlab.model.springs.PointSpring` springs.
+
+Frames a belt or paper 001's RSSR modules carry (:class:`Belt`, :meth:`RevoluteChain.with_belt`,
+:meth:`RevoluteChain.with_pseudobase`) follow the bodies: a point of a joint's axis with a level body's axes.
+
+References
+----------
+Lin, P.-Y., Shieh, W.-B., Chen, D.-Z. (2010). Design of a gravity-balanced general spatial
+serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10.1115/1.4001816
 """
 
 from __future__ import annotations
@@ -250,8 +258,8 @@ class RevoluteChain:
         axis from its origin (a point of the joint's parent and child bodies alike: the module's spherical
         joint C_i), whose vertical line a chain of spatial parallelogram RSSR modules keeps vertical across any
         joints (001 Section 4, Fig. 6). The frame is given the axes of body ``level``, a body that turns about
-        the vertical alone; the modules keep only its vertical line, the frame's spin about it idle (001
-        Eq. 19), so a point on it must lie on that line, as a spring's post A_i does (001 Eq. 13). Named
+        the vertical alone; the modules keep only its vertical line, the frame's spin about it idle
+        (001 Eq. 19), so a point on it must lie on that line, as a spring's post A_i does (001 Eq. 13). Named
         ``name`` (default '<joint> pseudobase').
 
         :raises SpringlabError: naming the joint or the body that prevents it

@@ -314,11 +314,14 @@ def record_payload(claims, study, label: str) -> None:
                       "a longer slot"))
 
 
-def belt_design(label: str, *, samples: int = 2000, seed: int = 1, pulley_radius: float | None = None) -> ArmDesign:
+def belt_design(label: str, *, samples: int = 2000, seed: int = 1, pulley_radius: float | None = None,
+                layout: str = "belts") -> ArmDesign:
     """A robot of :data:`~springlab.model.robots.ROBOTS` with the belt layout
     (:func:`springlab.design.layouts.belt_layout`: one spring per loaded link on a level frame a belt carries
-    to its joint), realised over pulleys of ``pulley_radius`` (m; None: each sized to its cable)."""
-    return design_model(load_robot(label), samples=samples, seed=seed, pulley_radius=pulley_radius, layout="belts")
+    to its joint) or, ``layout='pseudobases'``, paper 001's RSSR pseudobases
+    (:func:`springlab.design.pseudobases.pseudobase_layout`: any arm), realised over pulleys of
+    ``pulley_radius`` (m; None: each sized to its cable)."""
+    return design_model(load_robot(label), samples=samples, seed=seed, pulley_radius=pulley_radius, layout=layout)
 
 
 def hardware_table(designs: dict) -> Table:
