@@ -11,16 +11,20 @@ from C_i along the subsystem's moment sigma_i on the link (001 Eq. 14), with K l
 (001 Eq. 16).
 
 C_i may be any point of link i (001 Section 3); here it is a point of joint i's axis (a point of the link
-before it too, so that the moments chain, 001 Eq. 2), moved along the axis beyond the two links' shapes by
-:data:`~springlab.design.layouts.AXIAL_GAP`, on the nearer side, so that the spring and its post run beside
-the links. The part of a subsystem's moment along its joint's axis turns with the link before it alone:
+before it too, so that the moments chain, 001 Eq. 2), moved along the axis by
+:data:`~springlab.design.layouts.AXIAL_GAP` beyond the two links' shapes and beyond every link that sweeps
+past within the spring's reach of the axis over the workspace (:func:`_swept_extent`), on the nearer side,
+so that the spring and its post run beside the links. The part of a subsystem's moment along its joint's axis turns with the link before it alone:
 it is handed to that link's subsystem, so that a joint that carries little needs no spring (its term then
 left is the torque it keeps, named). The first loaded link's post stands on the body before it, which turns
 about the vertical alone; the others' stand on a pseudobase
 (:meth:`~springlab.model.revolute.RevoluteChain.with_pseudobase`), or a belt's frame where every joint
 between turns about a parallel axis (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`).
 
-Each spring is a coil along its link between C_i and a pulley at B_i (:data:`PULLEY` of the link's reach
+Where the link turns in one plane of its post's frame (the first loaded link, on the level body, or one a
+belt carries to across parallel joints), its spring is laid out as the belt layout's
+(:class:`~springlab.design.layouts.SpringPlane`: its lead tilted out of the plane, its pulley compensated
+with the lever and the post free to turn). Elsewhere each spring is a coil along its link between C_i and a pulley at B_i (:data:`PULLEY` of the link's reach
 along sigma_i from C_i), its cable over the pulley to A_i (:data:`POST` above C_i)
 (:func:`springlab.design.layouts.realise_layout`): the cable arrives at the pulley along sigma_i, so its
 path, like the gravity term, depends on the angle phi between sigma_i and the vertical alone, and the pulley
@@ -48,6 +52,7 @@ from springlab.design.layouts import (
     AXIAL_GAP,
     SHARE,
     Layout,
+    SpringPlane,
     axial_extent,
     on_grid,
     without_light,
@@ -152,6 +157,31 @@ def _reach(model: RevoluteChain, body: int, R0, o0, C, ghat, fallback: float) ->
     return float(np.max((pts @ R0[body].T + o0[body] - C) @ ghat))
 
 
+SWEEP_POSES = 400
+"""Poses (the first of the layout's) over which the links' outlines are swept to place each C beside them."""
+
+
+def _swept_extent(model: RevoluteChain, t: int, q, radius: float) -> tuple[float, float]:
+    """The least and largest reach (m) along joint t's axis, from its origin, of every moving body's outline
+    that passes within ``radius`` (m) of the axis, over the poses ``q`` (N, n) rad (the first
+    :data:`SWEEP_POSES`): where a spring and post at most that far from the axis could meet a link."""
+    from springlab.model.revolute import body_frames
+
+    R, o = body_frames(model, model.check_q(q)[:SWEEP_POSES])
+    w = np.einsum("pij,j->pi", R[:, t + 1], model.axes[t])
+    lo, hi = 0.0, 0.0
+    for body in range(1, model.n + 1):
+        pts = model.outline[body] if model.outline and len(model.outline[body]) else None
+        if pts is None:
+            continue
+        rel = np.einsum("pij,kj->pki", R[:, body], pts) + (o[:, body] - o[:, t + 1])[:, None]
+        along = np.einsum("pki,pi->pk", rel, w)
+        near = np.linalg.norm(rel - along[..., None] * w[:, None], axis=2) <= radius
+        if np.any(near):
+            lo, hi = min(lo, float(along[near].min())), max(hi, float(along[near].max()))
+    return lo, hi
+
+
 def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE, q=None,
                       widths=None) -> Layout:
     """One spring per loaded link of any serial arm, from a post on the link's pseudobase to the link (see the
@@ -185,12 +215,17 @@ def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = 
                                  f"axis: no body of {model.name!r} stays level to carry the posts")
     joints = list(range(first, model.n))
     w = {t: R0[t + 1] @ model.axes[t] for t in joints}
+    planar = {t: t > first and _parallel(model, R0, first, t) for t in joints}  # a belt carries its frame
     C = {}
     for t in joints:  # C_t on joint t's axis, beside the two links it joins, on the nearer side
         lo_p, hi_p = axial_extent(model, t, R0, o0, o0[t + 1], w[t])
         lo_c, hi_c = axial_extent(model, t + 1, R0, o0, o0[t + 1], w[t])
         hi, lo = max(hi_p, hi_c), min(lo_p, lo_c)
-        gap = AXIAL_GAP + 0.5 * (widths or {}).get(t, 0.0)
+        if q is not None and model.outline:  # and beside every link that sweeps past within its reach
+            ahead = o0[t + 2] if t + 1 < model.n else o0[t + 1] + R0[t + 1] @ model.com[t + 1]
+            lo_s, hi_s = _swept_extent(model, t, q, float(np.linalg.norm(ahead - o0[t + 1])))
+            hi, lo = max(hi, hi_s), min(lo, lo_s)
+        gap = AXIAL_GAP + (0.0 if t == first or planar[t] else 0.5 * (widths or {}).get(t, 0.0))
         C[t] = o0[t + 1] + (hi + gap if hi <= -lo else lo - gap) * w[t]
     bodies = [t + 1 for t in joints]
     s_rows, r_rows = [], []
@@ -225,20 +260,33 @@ def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = 
             continue
         r_b, r_a = PULLEY * reach, POST * reach
         kappa = model.g * size / (r_a * r_b)  # 001 Eq. (16): K l_CA l_CB = mu g sigma
-        if t == first:
-            level, origin = level_name, o0[first]
-        else:
-            along = float((C[t] - o0[t + 1]) @ w[t])
-            if _parallel(model, R0, first, t):
-                out = out.with_belt(model.joints[t], level_name, along=along)
+        along = float((C[t] - o0[t + 1]) @ w[t])
+        if t == first or planar[t]:  # the link turns in one plane of its post's frame: the belts' plane
+            h = np.cross(up, w[t])
+            if t == first:
+                level, origin = level_name, o0[first]
             else:
-                out = out.with_pseudobase(model.joints[t], level_name, along=along)
+                out = out.with_belt(model.joints[t], level_name)
+                level, origin = out.belts[-1].name, o0[t + 1]
+            G = complex(moment[i] @ h, moment[i] @ up)  # kg m, in the plane (h, up)
+            W = -model.g * np.conj(1j) * G  # the spring's k conj(c_0) c_k, as belt_layout's
+            p = 1j * r_a
+            c = W / (kappa * np.conj(-p))
+            plane = SpringPlane(np.asarray(o0[t + 1]), h, up, w[t], along, b, level, np.asarray(origin), R0[first],
+                                R0, o0, complex(model.g * G))
+            springs.append(plane.spring(out, c, p, kappa))
+            leads.append(plane.towards(c))
+            side = 1.0 if along > 0 else -1.0
+            outward.append((R0[b].T @ (side * w[t]), R0[first].T @ (side * w[t])))  # the coils' width: realise
+        else:
+            out = out.with_pseudobase(model.joints[t], level_name, along=along)
             level, origin = out.belts[-1].name, C[t]
-        plane = Subsystem(C[t], ghat, R0[b].T @ ghat, up, b, level, origin, R0[first], R0, o0, complex(model.g * size))
+            plane = Subsystem(C[t], ghat, R0[b].T @ ghat, up, b, level, origin, R0[first], R0, o0,
+                              complex(model.g * size))
+            springs.append(plane.spring(out, complex(r_b), complex(0.0, r_a), kappa))
+            leads.append(plane.towards(0j))
+            outward.append((np.zeros(3), np.zeros(3)))  # C is already beside the links, its coils' width too
         planes.append(plane)
         rooms.append(reach)
-        springs.append(plane.spring(out, complex(r_b), complex(0.0, r_a), kappa))
-        leads.append(plane.towards(0j))
-        outward.append((np.zeros(3), np.zeros(3)))  # C is already beside the links
     return Layout(out, tuple(springs), tuple(leads), tuple(notes), tuple(outward), tuple(planes), tuple(rooms))
 
