@@ -2,6 +2,8 @@
 across joints that are not parallel is route 2's energy derivative, and one spring per loaded link's
 subsystem (001 Eqs. 5, 13-16) holds the Panda and the Z1 over their workspaces, with negative controls."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -10,8 +12,9 @@ from springlab.design.pseudobases import pseudobase_layout
 from springlab.energy.geometry import gravity_torques, joint_torques, potential
 from springlab.errors import SpringlabError
 from springlab.model.revolute import body_frames
-from springlab.model.robots import load_robot
+from springlab.model.robots import load_robot, robot_urdf
 from springlab.model.springs import PointSpring
+from springlab.workbench.cli import main
 
 
 def _poses(model, count, seed=0):
@@ -86,3 +89,23 @@ def test_negative_controls_a_subsystem_moment_not_handed_on_or_a_spring_left_out
     moved = PointSpring(s.link_a, s.point_a, s.link_b, np.asarray(s.point_b) + [0.03, 0.0, 0.0], s.k)
     off = np.abs(joint_torques(lay.model, [*lay.springs[:1], moved, *lay.springs[2:]], check)).max(axis=0)
     assert off[2] > 0.05 * gravity[2]
+
+
+def test_the_cli_designs_the_z1_on_pseudobases_and_writes_their_frames(tmp_path, capsys):
+    # the default layout takes pseudobases where the loaded joints are no planar chain; the JSON names each
+    # post's frame (a belt's across the parallel joints, RSSR modules across the wrist's yaw) and the modules
+    out = tmp_path / "z1.json"
+    code = main(["design", str(robot_urdf("Z1")), "--json", str(out), "--quiet"])
+    assert code in (0, 3)  # passed, or flagged with its reasons (exit 3)
+    data = json.loads(out.read_text())
+    assert data["method"].startswith("pseudobases") and data["inputs"]["layout"] == "auto"
+    frames = [s["frame_b"] for s in data["ideal"] if "frame_b" in s]
+    assert {f["kept_by"] for f in frames} == {"belt", "RSSR modules"}
+    assert all(f["axes_of"] == "link01" for f in frames)
+    assert "rssr" in {p["kind"] for p in data["parts"]}
+    assert data["hardware_mass_kg"] == pytest.approx(sum(p["mass_kg"] for p in data["parts"]))
+    capsys.readouterr()
+    bad = ["design", str(robot_urdf("Z1")), "--layout", "pseudobases", "--payload-range", "0:1", "--tip", "link06",
+           "--json", str(tmp_path / "x.json"), "--quiet"]
+    assert main(bad) == 2 and "--payload-range" in capsys.readouterr().err
+    assert not (tmp_path / "x.json").exists()

@@ -12,9 +12,11 @@ from C_i along the subsystem's moment sigma_i on the link (001 Eq. 14), with K l
 
 C_i may be any point of link i (001 Section 3); here it is a point of joint i's axis (a point of the link
 before it too, so that the moments chain, 001 Eq. 2), moved along the axis by
-:data:`~springlab.design.layouts.AXIAL_GAP` beyond the two links' shapes and beyond every link that sweeps
-past within the spring's reach of the axis over the workspace (:func:`_swept_extent`), on the nearer side,
-so that the spring and its post run beside the links. The part of a subsystem's moment along its joint's axis turns with the link before it alone:
+:data:`~springlab.design.layouts.AXIAL_GAP` beyond the two links' shapes, on the nearer side, so that the
+spring and its post run beside the links. (Beside every link that sweeps past within the spring's reach of
+the axis over the workspace, it would clear them: on the Panda, the Z1, the Kinova and the xArm7 that puts
+the shoulder's spring 0.25 to 0.7 m to the side of a 0.1 m wide arm, out of all proportion; the design
+names the collisions instead.) The part of a subsystem's moment along its joint's axis turns with the link before it alone:
 it is handed to that link's subsystem, so that a joint that carries little needs no spring (its term then
 left is the torque it keeps, named). The first loaded link's post stands on the body before it, which turns
 about the vertical alone; the others' stand on a pseudobase
@@ -157,31 +159,6 @@ def _reach(model: RevoluteChain, body: int, R0, o0, C, ghat, fallback: float) ->
     return float(np.max((pts @ R0[body].T + o0[body] - C) @ ghat))
 
 
-SWEEP_POSES = 400
-"""Poses (the first of the layout's) over which the links' outlines are swept to place each C beside them."""
-
-
-def _swept_extent(model: RevoluteChain, t: int, q, radius: float) -> tuple[float, float]:
-    """The least and largest reach (m) along joint t's axis, from its origin, of every moving body's outline
-    that passes within ``radius`` (m) of the axis, over the poses ``q`` (N, n) rad (the first
-    :data:`SWEEP_POSES`): where a spring and post at most that far from the axis could meet a link."""
-    from springlab.model.revolute import body_frames
-
-    R, o = body_frames(model, model.check_q(q)[:SWEEP_POSES])
-    w = np.einsum("pij,j->pi", R[:, t + 1], model.axes[t])
-    lo, hi = 0.0, 0.0
-    for body in range(1, model.n + 1):
-        pts = model.outline[body] if model.outline and len(model.outline[body]) else None
-        if pts is None:
-            continue
-        rel = np.einsum("pij,kj->pki", R[:, body], pts) + (o[:, body] - o[:, t + 1])[:, None]
-        along = np.einsum("pki,pi->pk", rel, w)
-        near = np.linalg.norm(rel - along[..., None] * w[:, None], axis=2) <= radius
-        if np.any(near):
-            lo, hi = min(lo, float(along[near].min())), max(hi, float(along[near].max()))
-    return lo, hi
-
-
 def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE, q=None,
                       widths=None) -> Layout:
     """One spring per loaded link of any serial arm, from a post on the link's pseudobase to the link (see the
@@ -221,10 +198,6 @@ def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = 
         lo_p, hi_p = axial_extent(model, t, R0, o0, o0[t + 1], w[t])
         lo_c, hi_c = axial_extent(model, t + 1, R0, o0, o0[t + 1], w[t])
         hi, lo = max(hi_p, hi_c), min(lo_p, lo_c)
-        if q is not None and model.outline:  # and beside every link that sweeps past within its reach
-            ahead = o0[t + 2] if t + 1 < model.n else o0[t + 1] + R0[t + 1] @ model.com[t + 1]
-            lo_s, hi_s = _swept_extent(model, t, q, float(np.linalg.norm(ahead - o0[t + 1])))
-            hi, lo = max(hi, hi_s), min(lo, lo_s)
         gap = AXIAL_GAP + (0.0 if t == first or planar[t] else 0.5 * (widths or {}).get(t, 0.0))
         C[t] = o0[t + 1] + (hi + gap if hi <= -lo else lo - gap) * w[t]
     bodies = [t + 1 for t in joints]
