@@ -48,10 +48,31 @@ def test_route_2_with_a_pseudobase_across_a_roll_joint_is_the_energys_derivative
 def test_a_belt_refuses_the_roll_joint_that_a_pseudobase_crosses():
     with pytest.raises(SpringlabError, match="not parallel"):
         load_robot("Panda").with_belt("panda_joint4", "panda_link1")
-    with pytest.raises(SpringlabError, match="not export"):
-        from springlab.model.mjcf import to_mjcf
+    with pytest.raises(SpringlabError, match="before 'panda_link2'"):  # no level body above a tilting joint
+        load_robot("Panda").with_pseudobase("panda_joint4", "panda_link2")
 
-        to_mjcf(load_robot("Panda").with_pseudobase("panda_joint4", "panda_link1"))
+
+def test_mujoco_holds_the_pseudobases_as_route_2_does(panda):
+    # the MJCF's pseudobase: a body on the level link, on three slides, held at its point C by a 'connect';
+    # its slides' force passed to the joint's parent at C (where the modules put it): route 2's torques
+    pytest.importorskip("mujoco")
+    from springlab.model.mjcf import to_mjcf
+    from springlab.workbench.references import mujoco_holding_torques
+
+    model, q, lay = panda
+    check = _poses(model, 40, 2)
+    ours = joint_torques(lay.model, lay.springs, check)
+    theirs = mujoco_holding_torques(to_mjcf(lay.model, lay.springs), lay.model, check)
+    scale = np.abs(gravity_torques(lay.model, check)).max()
+    assert np.abs(ours - theirs).max() <= 1e-9 * scale
+    # the control: the file written with the elbow's pseudobase 20 cm further along its axis is not this design
+    import dataclasses
+
+    shifted = dataclasses.replace(lay.model, belts=tuple(
+        dataclasses.replace(b, along=b.along + 0.2) if b.name == "panda_joint4 pseudobase" else b
+        for b in lay.model.belts))
+    wrong = mujoco_holding_torques(to_mjcf(shifted, lay.springs), shifted, check)
+    assert np.abs(ours - wrong).max() > 0.05 * scale
 
 
 def test_one_spring_per_subsystem_holds_the_panda_as_001_predicts(panda):

@@ -35,6 +35,12 @@ comments that say what each generated element is:
   takes too and cancels: MuJoCo's passive forces are route 2's cable's to round-off. They differ
   only where B lies within :data:`SIDE_TILT` rad (about 6e-4 degrees) of the lead's line behind A,
   or where B's offset from the lead is within about 1e-9 rad of square to the side sites' offset;
+* a frame a belt carries (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`): a body on the
+  joint's parent, on a hinge about its axis that a fixed tendon and an equality hold at minus the signed
+  sum of the joints between; a pseudobase that paper 001's RSSR modules carry
+  (:meth:`~springlab.model.revolute.RevoluteChain.with_pseudobase`): a body on the level body (so its axes
+  are that body's) on three slides, whose origin a ``connect`` equality holds at its point of the joint's
+  axis on the joint's parent body;
 * every name the file generates (sites, the pulley spheres, tendons, meshes) differs from every
   other name in it, the URDF's links and joints among them (a suffix " (2)", " (3)", ... where one
   would clash);
@@ -83,11 +89,6 @@ def to_mjcf(model: RevoluteChain, springs=(), *, name: str | None = None) -> str
     rates in N/m). ``springs``: the :class:`~springlab.model.springs.PointSpring` springs (ideal or
     realised: each with its rate, free length and initial tension, a cable's over its pulley)."""
     _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
-    spatial = [b.name for b in model.belts if b.kind != "belt"]
-    if spatial:
-        raise SpringlabError(f"{', '.join(spatial)}: paper 001's pseudobases ride on spatial parallelogram RSSR "
-                             "modules, which this MJCF writer does not export (a belt's frame it does): check such a "
-                             "design with route 2 (springlab.energy.geometry) and its audit")
     springs = check_point_springs(model, springs)
     for s in springs:
         if s.effective_free_length < 0:
@@ -123,6 +124,10 @@ def to_mjcf(model: RevoluteChain, springs=(), *, name: str | None = None) -> str
     if belts:
         equality = ET.SubElement(root, "equality")
         for belt, hinge, between in belts:
+            if belt.kind != "belt":  # a pseudobase: held at its point of the joint's parent body
+                ET.SubElement(equality, "connect", name=names.take(f"{belt.name} holds"), body1=hinge,
+                              body2=model.bodies[belt.joint], anchor="0 0 0")
+                continue
             fixed = ET.SubElement(tendons, "fixed", name=names.take(f"{belt.name} turns"))
             _comment(tendons, f"'{fixed.get('name')}': the belt holds hinge '{hinge}' at minus the sum of the joints "
                               "between (signed): the pulley keeps the level body's axes")
@@ -163,12 +168,26 @@ def _belts(model: RevoluteChain, parents: list, names) -> list:
     body at the joint's origin, turning on a hinge about the joint's axis, its axes the level body's at
     zero angles; appended to ``parents`` (a spring's site on the belt's frame goes there). Returns, per
     belt, the belt, its hinge's name and the joints between with their signs (the hinge's angle is minus
-    their signed sum: :meth:`~springlab.model.revolute.RevoluteChain.belt_turns`)."""
+    their signed sum: :meth:`~springlab.model.revolute.RevoluteChain.belt_turns`). A pseudobase (kind
+    'rssr') is a body on the level body, on three slides, and in place of the hinge its body's name (a
+    'connect' equality holds it at its point of the joint's parent body), with no joints between."""
     out = []
     if not model.belts:
         return out
-    R0, _ = body_frames(model, np.zeros(model.n))
-    for belt in model.belts:
+    R0, o0 = body_frames(model, np.zeros(model.n))
+    for j, belt in enumerate(model.belts):
+        if belt.kind != "belt":  # paper 001's pseudobase: the level body's axes by construction, its point held
+            at = R0[0, belt.level].T @ (o0[0, model.n + 1 + j] - o0[0, belt.level])
+            body = ET.SubElement(parents[belt.level], "body", name=names.take(belt.name), pos=_vec(at))
+            _comment(body, f"pseudobase '{belt.name}': paper 001's RSSR modules keep its vertical line; here a body on "
+                           f"{model.bodies[belt.level]} (so its axes are that body's) sliding freely, whose origin the "
+                           f"'connect' below holds at its point of joint {model.joints[belt.joint]}'s axis")
+            for axis, tag in zip(np.eye(3), "xyz", strict=True):
+                ET.SubElement(body, "joint", name=names.take(f"{belt.name} slide {tag}"), type="slide", axis=_vec(axis))
+            _inertial(body, 0.0, np.zeros(3), np.zeros((3, 3)))
+            parents.append(body)
+            out.append((belt, body.get("name"), None))
+            continue
         axis, signs = model.belt_turns(belt)
         P = model.placements[belt.joint]
         at = P[:3, 3] + belt.along * (P[:3, :3] @ model.axes[belt.joint])  # on the joint's axis

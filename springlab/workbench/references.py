@@ -145,35 +145,61 @@ def mujoco_holding_torques(mjcf: str, model, q) -> np.ndarray:
     is taken as written: only the arm's joints are set (its cables' pulleys need no turning); a belt's
     pulley (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`) is set where its belt holds it, and
     the torque on its hinge, which the belt carries, is passed to the joints between, as the file's
-    equality constraint does (virtual work: the hinge turns by minus their signed sum).
+    equality constraint does (virtual work: the hinge turns by minus their signed sum). A pseudobase's slides
+    are set where its modules hold it, and the force they take, which MuJoCo hands to the level body, is
+    moved to the joint's parent at the pseudobase's point, where the file's 'connect' (and the modules) put
+    it; its moment stays with the level body, as the modules carry it.
 
     :raises SpringlabError: when MuJoCo is not installed, or the MJCF is not ``model``'s arm
     """
+    from springlab.model.revolute import body_frames
+
     mujoco = _mujoco()
     q = model.check_q(q)
     mj = mujoco.MjModel.from_xml_string(mjcf)
     data = mujoco.MjData(mj)
     arm = [_joint(mujoco, mj, name) for name in model.joints]
-    belts = [(_joint(mujoco, mj, f"{b.name} hinge"), *model.belt_turns(b), b) for b in model.belts]
-    if mj.nq != len(arm) + len(belts):
-        raise SpringlabError(f"the MJCF has {mj.nq} joint coordinates, the model {model.n} and {len(belts)} belts: "
-                             "not the same arm")
+    belts = [(_joint(mujoco, mj, f"{b.name} hinge"), *model.belt_turns(b), b) for b in model.belts if b.kind == "belt"]
+    bases = [(j, b, [_joint(mujoco, mj, f"{b.name} slide {t}") for t in "xyz"]) for j, b in enumerate(model.belts)
+             if b.kind != "belt"]  # paper 001's pseudobases
+    if mj.nq != len(arm) + len(belts) + 3 * len(bases):
+        raise SpringlabError(f"the MJCF has {mj.nq} joint coordinates, the model {model.n}, {len(belts)} belts and "
+                             f"{len(bases)} pseudobases: not the same arm")
     qpos = [int(mj.jnt_qposadr[j]) for j in arm]
     dof = [int(mj.jnt_dofadr[j]) for j in arm]
+    R, o = body_frames(model, q)
+    R0, o0 = body_frames(model, np.zeros(model.n))
     out = np.empty(q.shape)
     for p, angles in enumerate(q):
         data.qpos[:] = mj.qpos0
         data.qpos[qpos] = angles
         for hinge, _, signs, belt in belts:  # each belt's pulley where its belt holds it
             data.qpos[mj.jnt_qposadr[hinge]] = -float(signs @ angles[belt.level:belt.joint])
+        for j, b, slides in bases:  # each pseudobase where its modules hold it: at its point C, level
+            at = R[p, b.level].T @ (o[p, model.n + 1 + j] - o[p, b.level]) - R0[0, b.level].T @ (
+                o0[0, model.n + 1 + j] - o0[0, b.level])
+            data.qpos[[mj.jnt_qposadr[s] for s in slides]] = at
         data.qvel[:] = 0.0
         mujoco.mj_forward(mj, data)
         held = data.qfrc_bias - data.qfrc_passive
         tau = held[dof].copy()
         for hinge, _, signs, belt in belts:  # the belt carries its pulley's torque to the joints between
             tau[belt.level:belt.joint] -= signs * held[mj.jnt_dofadr[hinge]]
+        for j, b, slides in bases:  # the slides take the pseudobase's force to the level body; the modules take
+            force = R[p, b.level] @ held[[mj.jnt_dofadr[s] for s in slides]]  # it to the joint's parent at C
+            C = o[p, model.n + 1 + j]
+            tau += (_point_jacobian(mujoco, mj, data, C, model.bodies[b.joint], dof)
+                    - _point_jacobian(mujoco, mj, data, C, model.bodies[b.level], dof)).T @ force
         out[p] = tau
     return out
+
+
+def _point_jacobian(mujoco, mj, data, point, body: str, dof) -> np.ndarray:
+    """d point / d q (3, len(dof)) for a point (world, m) fixed in ``body``, over the arm's dofs ``dof``."""
+    jacp = np.zeros((3, mj.nv))
+    index = mujoco.mj_name2id(mj, mujoco.mjtObj.mjOBJ_BODY, body)
+    mujoco.mj_jac(mj, data, jacp, None, np.asarray(point, dtype=float), index)
+    return jacp[:, dof]
 
 
 def _joint(mujoco, mj, name: str) -> int:
