@@ -324,6 +324,23 @@ def belt_design(label: str, *, samples: int = 2000, seed: int = 1, pulley_radius
     return design_model(load_robot(label), samples=samples, seed=seed, pulley_radius=pulley_radius, layout=layout)
 
 
+def mujoco_agreement(design: ArmDesign, poses: int = 200) -> tuple[float, float]:
+    """The largest |MuJoCo - route 2| holding torque over the largest gravity torque, the arm exported with its
+    ideal springs and with its realised ones (their cables over their pulleys; the poses near a lead's line
+    left out, :func:`away_from_lead_lines`), on the design's first ``poses``
+    check poses: a design on belts or pseudobases included (their frames in the file)."""
+    q = design.q[:poses]
+    scale = float(np.max(np.abs(geometry.gravity_torques(design.model, q))))
+    out = []
+    for springs in (design.ideal, design.realised):
+        held = mujoco_holding_torques(to_mjcf(design.model, springs), design.model, q)
+        gap = np.abs(held - geometry.joint_torques(design.model, springs, q))
+        if springs is design.realised:
+            gap = gap[away_from_lead_lines(design)[:poses]]
+        out.append(float(np.max(gap)) / scale)
+    return tuple(out)
+
+
 def hardware_table(designs: dict) -> Table:
     """Per arm and spring of each design (label -> :class:`~springlab.design.arms.ArmDesign`): the share of its
     link's joint's peak removed on the arm carrying the springs' hardware (ideal, realised) and, as the
