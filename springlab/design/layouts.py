@@ -223,6 +223,11 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE,
         link = bodies[k]
         far = nxt[k] if nxt[k] is not None else o0[link] + R0[link] @ model.com[link]
         length = float(np.linalg.norm(np.asarray(far) - joint_at[k]))
+        if nxt[k] is None and abs(W) > 0 and model.outline and len(model.outline[link]):  # the last link: as far as
+            u = W / (1j * abs(W))  # its shape reaches along the spring's lever (c's direction), if beyond its centre
+            towards = u.real * h + u.imag * up
+            pts = model.outline[link] @ R0[link].T + o0[link] - joint_at[k]
+            length = max(length, float(np.max(pts @ towards)))
         if length <= 0 or abs(W) == 0:
             notes.append(f"joint {model.joints[joint]}: its link has no length to lever on: no spring")
             continue
