@@ -130,3 +130,19 @@ def test_the_cli_designs_the_z1_on_pseudobases_and_writes_their_frames(tmp_path,
            "--json", str(tmp_path / "x.json"), "--quiet"]
     assert main(bad) == 2 and "--payload-range" in capsys.readouterr().err
     assert not (tmp_path / "x.json").exists()
+
+
+def test_the_pseudobase_springs_have_an_exact_payload_dial(panda):
+    # each subsystem's moment grows linearly with a payload at the tip, fixed in its link: moving each spring's
+    # pulley (the post of the first) along a straight slot restores the balance to round-off (001 Eq. 16 is
+    # linear in l_CB sigma); the ends on the pseudobases' frames have no link box to leave
+    from springlab.design.arms import ends_outside
+    from springlab.design.payload import payload_dial
+
+    model, q, lay = panda
+    dial = payload_dial(lay.model, lay.springs, q[:100], "panda_link7")
+    assert dial.exact and dial.left < 1e-9
+    assert {end for _, end, _, _ in dial.moves} == {"A", "B"} and len(dial.moves) == len(lay.springs)
+    far = [PointSpring(s.link_a, s.point_a, s.link_b, np.asarray(s.point_b) + 10.0, s.k) if
+           s.link_b.endswith("pseudobase") else s for s in lay.springs]  # posts 10 m away: no box to leave
+    assert ends_outside(lay.model, far, 0.03) == ends_outside(lay.model, lay.springs, 0.03) < 0.1

@@ -580,12 +580,15 @@ def attachment_boxes(model: RevoluteChain, reach=None) -> tuple[np.ndarray, np.n
 
 def ends_outside(model: RevoluteChain, springs, reach=None) -> float:
     """How far (m) the farthest end of ``springs`` lies outside its body's box
-    (:func:`attachment_boxes` with ``reach``): 0 when every end is where a design may put it."""
+    (:func:`attachment_boxes` with ``reach``): 0 when every end is where a design may put it (an end on a
+    belt's or a pseudobase's frame has no box)."""
     centres, half = attachment_boxes(model, reach)
     worst = 0.0
     for s in check_point_springs(model, springs):
         for link, point in ((s.link_a, s.point_a), (s.link_b, s.point_b)):
             body, local = model.locate(link, point)
+            if body > model.n:  # on a frame a belt or RSSR modules carry: a post, bounded by the clearance check
+                continue
             worst = max(worst, float(np.linalg.norm(np.maximum(np.abs(local - centres[body]) - half[body], 0.0))))
     return worst
 

@@ -450,6 +450,8 @@ def _travel(model: RevoluteChain, springs, dial: PayloadDial, reach) -> tuple[fl
     for i, end, link, per_kg in dial.moves:
         s = springs[i]
         body, p = model.locate(link, s.point_a if end == "A" else s.point_b)
+        if body > model.n:  # a post on a belt's or a pseudobase's frame: no box (the clearance check bounds it)
+            continue
         v = model.rotation(link) @ np.asarray(per_kg)
         lo, hi = centres[body] - half[body] - 1e-9, centres[body] + half[body] + 1e-9
         for a in range(3):

@@ -672,7 +672,7 @@ def main(argv=None) -> int:
                         "hardware, must remove (default 0.9); a design that misses it says so in its first line and "
                         "offers what fewer springs reach")
     p.add_argument("--cable", default=None,
-                   help="the belt layout's cable, by its diameter in mm, e.g. '1.59' (default: the stocked stainless "
+                   help="the belt or pseudobase layout's cable, by its diameter in mm, e.g. '1.59' (default: the stocked stainless "
                         "rope that carries each spring's pull with a safety factor of 5, over the least pulley)")
     p.add_argument("--up", help="a URDF arm's up direction in its base link's frame, e.g. 0,1,0 (default 0,0,1: "
                                 "URDF's gravity acts along -z)")
