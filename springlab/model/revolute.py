@@ -222,6 +222,22 @@ class RevoluteChain:
         """Every name a spring may attach to: the bodies, the fixed frames, then the belts' frames."""
         return self.bodies + tuple(self.fixed) + tuple(b.name for b in self.belts)
 
+    def _carried(self, joint: str, level: str, how: str) -> tuple[int, int]:
+        """The indices of ``joint`` and of body ``level`` (a body before it) for a frame a belt or RSSR modules
+        carry (``how``: what the message says carries it).
+
+        :raises SpringlabError: naming the joint or the body that is not the arm's, or a level body beyond
+        """
+        if joint not in self.joints:
+            raise SpringlabError(f"joint = {joint!r} is not a joint of {self.name!r}: give one of {', '.join(self.joints)}")
+        if level not in self.bodies:
+            raise SpringlabError(f"level = {level!r} is not a body of {self.name!r}: give one of {', '.join(self.bodies)}")
+        i, L = self.joints.index(joint), self.bodies.index(level)
+        if L > i:
+            raise SpringlabError(f"level = {level!r} lies beyond joint {joint!r}: {how} the axes of a body before the "
+                                 f"joint (one of {', '.join(self.bodies[:i + 1])})")
+        return i, L
+
     def with_belt(self, joint: str, level: str, name: str | None = None, *, along: float = 0.0) -> RevoluteChain:
         """The same chain with a frame a 1:1 belt carries to ``joint``'s origin, its axes those of body
         ``level`` (a body before the joint): a pulley on the joint's axis (``along`` it, m, from the joint's
@@ -232,14 +248,7 @@ class RevoluteChain:
 
         :raises SpringlabError: naming the joint, the body or the axis that prevents it
         """
-        if joint not in self.joints:
-            raise SpringlabError(f"joint = {joint!r} is not a joint of {self.name!r}: give one of {', '.join(self.joints)}")
-        if level not in self.bodies:
-            raise SpringlabError(f"level = {level!r} is not a body of {self.name!r}: give one of {', '.join(self.bodies)}")
-        i, L = self.joints.index(joint), self.bodies.index(level)
-        if L > i:
-            raise SpringlabError(f"level = {level!r} lies beyond joint {joint!r}: a belt carries the axes of a body "
-                                 f"before the joint (one of {', '.join(self.bodies[:i + 1])})")
+        i, L = self._carried(joint, level, "a belt carries")
         R, _ = body_frames(self, np.zeros(self.n))
         w = R[0, i + 1] @ self.axes[i]
         for t in range(L, i):
@@ -264,14 +273,7 @@ class RevoluteChain:
 
         :raises SpringlabError: naming the joint or the body that prevents it
         """
-        if joint not in self.joints:
-            raise SpringlabError(f"joint = {joint!r} is not a joint of {self.name!r}: give one of {', '.join(self.joints)}")
-        if level not in self.bodies:
-            raise SpringlabError(f"level = {level!r} is not a body of {self.name!r}: give one of {', '.join(self.bodies)}")
-        i, L = self.joints.index(joint), self.bodies.index(level)
-        if L > i:
-            raise SpringlabError(f"level = {level!r} lies beyond joint {joint!r}: a pseudobase keeps the axes of a body "
-                                 f"before the joint (one of {', '.join(self.bodies[:i + 1])})")
+        i, L = self._carried(joint, level, "a pseudobase keeps")
         R, _ = body_frames(self, np.zeros(self.n))
         for t in range(L):
             if np.linalg.norm(np.cross(R[0, t + 1] @ self.axes[t], self.up)) > BELT_PARALLEL:
