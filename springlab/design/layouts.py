@@ -109,7 +109,7 @@ class SpringPlane:
         rope's) and the joint, within ``room`` (m)."""
         return min(room, abs(c) - behind)
 
-    def prepare(self, c: complex, p: complex, k: float, rho: float, name: str) -> tuple[complex, complex, float]:
+    def prepare(self, c: complex, p: complex, k: float, rho: float) -> tuple[complex, complex, float]:
         """The spring's (c, p, k) before its pulley's compensation: unchanged (the compensation turns them)."""
         return c, p, k
 
@@ -451,7 +451,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
             c0, p0 = plane.offsets(ideal)
             if rho > 0:  # the pulley adds k rho (its wrap's change): c, p and k re-fitted for it
                 try:
-                    c, p, k = plane.prepare(c0, p0, s.k, rho, ideal.label)
+                    c, p, k = plane.prepare(c0, p0, s.k, rho)
                 except SpringlabError as why:
                     left = f"not realised: spring S{index + 1} ({ideal.label}, k = {ideal.k:.4g} N/m): {why}"
                     break

@@ -104,11 +104,11 @@ class Subsystem:
         hook's and the rope's) and C, within ``room`` (m)."""
         return min(room, abs(c) - behind)
 
-    def prepare(self, c: complex, p: complex, k: float, rho: float, name: str) -> tuple[complex, complex, float]:
+    def prepare(self, c: complex, p: complex, k: float, rho: float) -> tuple[complex, complex, float]:
         """The spring's (c, p, k) with room for a pulley of radius ``rho`` (m): the post lowered to
         l_CB - :data:`PULLEY_CLEAR` rho where it stands higher, the rate raised to keep 001 Eq. (16)'s product.
 
-        :raises SpringlabError: where the post would sink below a fifth of l_CB (``name``: the spring's, unused)
+        :raises SpringlabError: where the post would sink below a fifth of l_CB
         """
         a, b = abs(p), abs(c)
         if b - a >= PULLEY_CLEAR * rho:
