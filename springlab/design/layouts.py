@@ -11,7 +11,8 @@ when the post is along "up" (001 Eq. (13)) and c along the link's first moment s
 Each spring spans one joint, so it stays as short as its lever: between |p| - |c| and |p| + |c|.
 
 In the plane (complex coordinates, :func:`~springlab.design.arms.planar_moments`) link k's gravity
-energy is g Re(conj(i) e^{i theta_k} G_k) and the spring's k Re(conj(c_0) c_k e^{i theta_k}) with
+energy is g Re(conj(i) e^{i theta_k} G_k), G_k its subsystem's first moment (001 Eq. (5), :func:`link_moments`
+by the paper-001 chapter's own code) and the spring's k Re(conj(c_0) c_k e^{i theta_k}) with
 c_0 = -p: their sum is constant when k conj(c_0) c_k = -g conj(i) G_k. Only the product is fixed;
 this module takes |c| = :data:`LEVER` of the link's length and |p| = :data:`POST` of it: the pulley
 near the link's far end, so that the coil lies along the link between it and the joint (over a pulley
@@ -185,6 +186,27 @@ def without_light(model: RevoluteChain, found: Structure, share: float, q) -> St
                                loaded=loaded, planar=planar, why=why)
 
 
+def link_moments(model: RevoluteChain, plane: dict) -> list:
+    """Each planar link's first moment g G_k / g (kg m, complex in the plane; 0 for the ground), 001 Eq. (5)
+    by :func:`springlab.mechanisms.pseudobase.subsystems.subsystem_moments`, the code the paper-001 chapter
+    verifies: link k's bodies (from its joint's child to the next loaded joint; the last link carries every
+    body beyond) lumped, O_{k-1} its joint's origin and O_k the next loaded joint's (the last link's own)."""
+    from springlab.mechanisms.pseudobase.subsystems import subsystem_moments
+
+    R0, o0, bodies, joint_at, m = (plane[k] for k in ("R0", "o0", "bodies", "joint_at", "m"))
+    masses, s_rows, r_rows = [], [], []
+    for k in range(1, m + 1):
+        carried = range(bodies[k], bodies[k + 1] if k < m else model.n + 1)
+        mass = float(sum(model.mass[b] for b in carried))
+        moment = sum(model.mass[b] * (o0[b] + R0[b] @ model.com[b]) for b in carried)
+        ahead = np.asarray(joint_at[k + 1] if k < m else joint_at[k])
+        masses.append(mass)
+        s_rows.append(moment / mass - ahead if mass > 0 else np.zeros(3))
+        r_rows.append(np.asarray(joint_at[k]) - ahead)
+    moments = subsystem_moments(masses, s_rows, r_rows)  # 001 Eq. (5): m_k s_k - (sum_{j >= k} m_j) r_k, world
+    return [0j] + [complex(v @ plane["h"], v @ plane["up"]) for v in moments]
+
+
 def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE, q=None) -> Layout:
     """One spring per loaded link of a planar chain, each on a belt carrying the level reference to its
     joint (see the module docstring); joints below ``share`` of the largest gravity peak get none (with
@@ -206,9 +228,10 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE,
     if not found.planar:
         raise SpringlabError(f"the loaded joints of {model.name!r} are not a planar chain ({found.why}): no body "
                              "carries a level reference to them; use the best springs")
-    plane = planar_moments(model, found)
+    plane = planar_moments(model, found)  # the plane, its links and joints
     R0, o0, h, up, w, z = (plane[k] for k in ("R0", "o0", "h", "up", "w", "z"))
-    first, bodies, joint_at, nxt, G = (plane[k] for k in ("first", "bodies", "joint_at", "next", "G"))
+    first, bodies, joint_at, nxt = (plane[k] for k in ("first", "bodies", "joint_at", "next"))
+    G = link_moments(model, plane)  # 001 Eq. (5), by the code the paper-001 chapter verifies
     peak = np.asarray(found.peak)
     largest = float(np.max(peak))
     out, leads, outward, planes, rooms = model, [], [], [], []
