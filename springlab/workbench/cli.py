@@ -345,16 +345,18 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     print("\nthe balance the built springs leave, with a maker's tolerances on every spring at once (route 2):")
     print(design.tolerance_table())
     study = None
-    if args.tip and design.ideal and design.model.belts:
-        print("\nno payload dial: the belt and pseudobase layouts have none yet (their posts ride on belts' and "
-              "pseudobases' frames)")
-    elif args.tip and design.ideal:
+    if args.tip and design.ideal:
+        from springlab.design.arms import BRACKET, ends_outside
         from springlab.design.payload import payload_study
 
         nominal = payload or 0.0
         low, high = args.payloads or (0.0, nominal + 1.0)
         masses = sorted({low + 0.0, high + 0.0, nominal} | ({nominal + 1.0} if nominal + 1.0 <= high else set()))
-        study = payload_study(design, args.tip, masses, nominal=nominal, reach=reach)
+        dial_reach = reach
+        if design.carried:  # belts or pseudobases: the springs stand beside the links, their slots within the
+            # envelope their brackets already span (the farthest end from its link's box, and a bracket more)
+            dial_reach = ends_outside(design.model, (*design.ideal, *design.realised), 0.0) + BRACKET
+        study = payload_study(design, args.tip, masses, nominal=nominal, reach=dial_reach)
         _print_dial(study)
     inputs = {"tip": args.tip, "base": model.bodies[0], "payload_kg": payload,
               "payload_range_kg": None if args.payloads is None else list(args.payloads), "up": _up(args.up) or [0.0, 0.0, 1.0],
