@@ -70,8 +70,29 @@ def on_grid(x) -> tuple:
     return tuple(float(np.round(v / END_GRID) * END_GRID) + 0.0 for v in x)
 
 
+class Plane:
+    """What a spring's plane (:class:`SpringPlane`, :class:`springlab.design.pseudobases.Subsystem`) shares:
+    its link's body ``link``, the frame its post stands on (``level``, ``level_origin``, ``level_rotation``) and
+    the zero pose's frames (``R0``, ``o0``)."""
+
+    def placed(self, model: RevoluteChain, point, post, k: float) -> PointSpring:
+        """The spring from ``point`` on the link to ``post`` (world, zero pose, m), rate ``k`` (N/m), its ends on
+        :data:`~springlab.design.arms.END_GRID` and its rate to :data:`~springlab.design.arms.RATE_DIGITS`
+        significant digits, as the search's: another CPU's round-off (1e-16) then moves no end and no rate,
+        and draws the same figure."""
+        on_link = self.R0[self.link].T @ (np.asarray(point) - self.o0[self.link])
+        on_level = self.level_rotation.T @ (np.asarray(post) - self.level_origin)
+        return PointSpring(model.bodies[self.link], on_grid(on_link), self.level, on_grid(on_level),
+                           significant(k, RATE_DIGITS))
+
+    def coil_room(self, c: complex, room: float, behind: float) -> float:
+        """m: the room a coil has between the pulley at c (less ``behind``, m: the pulley's, the hook's and the
+        rope's) and the joint, within ``room`` (m)."""
+        return min(room, abs(c) - behind)
+
+
 @dataclass(frozen=True)
-class SpringPlane:
+class SpringPlane(Plane):
     """A belt spring's plane: its joint's origin (world, zero pose), the plane's axes h, up and the joint's
     axis w, the axial offset d (m), the link's body and the level frame (name, and the point its offsets
     are given from), the zero pose's frames, and g G_k (N m: the link's gravity term, complex)."""
@@ -90,25 +111,15 @@ class SpringPlane:
     gG: complex
 
     def spring(self, model: RevoluteChain, c: complex, p: complex, k: float) -> PointSpring:
-        """The spring from c on the link to the post p (complex offsets from the joint, in the plane), its ends
-        on :data:`~springlab.design.arms.END_GRID` and its rate to
-        :data:`~springlab.design.arms.RATE_DIGITS` significant digits, as the search's: another CPU's
-        round-off (1e-16) then moves no end and no rate, and draws the same figure."""
+        """The spring from c on the link to the post p (complex offsets from the joint, in the plane), rate k
+        (N/m) (:meth:`Plane.placed`)."""
         point = self.joint_at + c.real * self.h + c.imag * self.up + self.d * self.w
         post = self.joint_at + p.real * self.h + p.imag * self.up + self.d * self.w
-        on_link = self.R0[self.link].T @ (point - self.o0[self.link])
-        on_level = self.level_rotation.T @ (post - self.level_origin)
-        return PointSpring(model.bodies[self.link], on_grid(on_link), self.level, on_grid(on_level),
-                           significant(k, RATE_DIGITS))
+        return self.placed(model, point, post, k)
 
     turn = True  # the compensation may turn the lever and the post (compensate_pulley)
     tilt = LEAD_TILT  # rad: the lead's out of the plane
     beside = True  # the realised ends move beside the links by the coils' width
-
-    def coil_room(self, c: complex, room: float, behind: float) -> float:
-        """m: the room a coil has between the pulley at c (less ``behind``, m: the pulley's, the hook's and the
-        rope's) and the joint, within ``room`` (m)."""
-        return min(room, abs(c) - behind)
 
     def prepare(self, c: complex, p: complex, k: float, rho: float) -> tuple[complex, complex, float]:
         """The spring's (c, p, k) before its pulley's compensation: unchanged (the compensation turns them)."""

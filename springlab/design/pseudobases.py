@@ -49,20 +49,19 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.design.arms import PARALLEL, RATE_DIGITS, Structure
+from springlab.design.arms import PARALLEL, Structure
 from springlab.design.layouts import (
     AXIAL_GAP,
     SHARE,
     Layout,
+    Plane,
     SpringPlane,
     axial_extent,
-    on_grid,
     without_light,
 )
 from springlab.errors import SpringlabError
 from springlab.model.revolute import RevoluteChain
 from springlab.model.springs import PointSpring
-from springlab.rounding import significant
 
 PULLEY = 0.9
 """The pulley B_i lies this share of the link's reach along sigma_i from C_i (001 Eq. 14's l_CB): its coil lies
@@ -77,7 +76,7 @@ where a pulley is too large for it, the post is lowered (and the rate raised, 00
 
 
 @dataclass(frozen=True)
-class Subsystem:
+class Subsystem(Plane):
     """One link's subsystem and its spring's plane: C (world, zero pose, m), the moment's direction ``ghat``
     (world, zero pose) and in the link's frame (``ghat_link``), the vertical ``up``, the link's body, the
     frame the post stands on (its name, origin and axes at the zero pose), and g |mu sigma| (N m, ``gG``,
@@ -99,11 +98,6 @@ class Subsystem:
     tilt = 0.0  # the lead along sigma: the cable's path depends on phi alone
     beside = False  # C is already beside the links (its coil's width counted: pseudobase_layout's widths)
 
-    def coil_room(self, c: complex, room: float, behind: float) -> float:
-        """m: the room a coil has between the pulley at |c| along sigma (less ``behind``, m: the pulley's, the
-        hook's and the rope's) and C, within ``room`` (m)."""
-        return min(room, abs(c) - behind)
-
     def prepare(self, c: complex, p: complex, k: float, rho: float) -> tuple[complex, complex, float]:
         """The spring's (c, p, k) with room for a pulley of radius ``rho`` (m): the post lowered to
         l_CB - :data:`PULLEY_CLEAR` rho where it stands higher, the rate raised to keep 001 Eq. (16)'s product.
@@ -121,13 +115,9 @@ class Subsystem:
         return c, complex(0.0, lowered), k * a / lowered
 
     def spring(self, model: RevoluteChain, c: complex, p: complex, k: float) -> PointSpring:
-        """The spring from |c| along sigma to |p| above C (m), rate k (N/m), its ends on the search's grid."""
-        point = self.C + abs(c) * self.ghat  # 001 Eq. (14)
-        post = self.C + abs(p) * self.up  # 001 Eq. (13)
-        on_link = self.R0[self.link].T @ (point - self.o0[self.link])
-        on_level = self.level_rotation.T @ (post - self.level_origin)
-        return PointSpring(model.bodies[self.link], on_grid(on_link), self.level, on_grid(on_level),
-                           significant(k, RATE_DIGITS))
+        """The spring from |c| along sigma to |p| above C (m), rate k (N/m)
+        (:meth:`~springlab.design.layouts.Plane.placed`)."""
+        return self.placed(model, self.C + abs(c) * self.ghat, self.C + abs(p) * self.up, k)  # 001 Eqs. (14), (13)
 
     def offsets(self, spring) -> tuple[complex, complex]:
         """A spring's point and post as complex offsets (m) from C in the plane (sigma, up): |l_CB|, i |l_CA|."""
