@@ -136,11 +136,6 @@ class Subsystem(Plane):
         return np.radians(np.unique(np.round(90.0 - np.degrees(np.arccos(cos)))))
 
 
-def _parallel(model: RevoluteChain, R0, first: int, t: int) -> bool:
-    w = R0[t + 1] @ model.axes[t]
-    return all(np.linalg.norm(np.cross(R0[u + 1] @ model.axes[u], w)) <= PARALLEL for u in range(first, t))
-
-
 def _reach(model: RevoluteChain, body: int, R0, o0, C, ghat, fallback: float) -> float:
     """How far (m) the link's shape reaches from C along ``ghat`` (its outline; ``fallback`` without one)."""
     pts = model.outline[body] if model.outline and len(model.outline[body]) else None
@@ -176,13 +171,13 @@ def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = 
     first = found.loaded[0]
     R0, o0 = zero_pose(model)
     up = model.up
-    for t in range(first):
-        if np.linalg.norm(np.cross(R0[t + 1] @ model.axes[t], up)) > PARALLEL:
-            raise SpringlabError(f"joint {model.joints[t]} before the first loaded one turns about a non-vertical "
-                                 f"axis: no body of {model.name!r} stays level to carry the posts")
+    tilted = model.first_tilted(first, PARALLEL)
+    if tilted is not None:
+        raise SpringlabError(f"joint {model.joints[tilted]} before the first loaded one turns about a non-vertical "
+                             f"axis: no body of {model.name!r} stays level to carry the posts")
     joints = list(range(first, model.n))
     w = {t: R0[t + 1] @ model.axes[t] for t in joints}
-    planar = {t: t > first and _parallel(model, R0, first, t) for t in joints}  # a belt carries its frame
+    planar = {t: t > first and model.first_unparallel(first, t) is None for t in joints}  # a belt carries its frame
     C = {}
     for t in joints:  # C_t on joint t's axis, beside the two links it joins, on the nearer side
         lo_p, hi_p = axial_extent(model, t, R0, o0, o0[t + 1], w[t])

@@ -222,6 +222,22 @@ class RevoluteChain:
         """Every name a spring may attach to: the bodies, the fixed frames, then the belts' frames."""
         return self.bodies + tuple(self.fixed) + tuple(b.name for b in self.belts)
 
+    def first_unparallel(self, level: int, joint: int) -> int | None:
+        """The first joint (index) from body ``level`` to ``joint`` (indices) whose axis is not parallel to
+        ``joint``'s (within :data:`BELT_PARALLEL`, zero pose): where no belt keeps the level body's axes; None
+        where every one is."""
+        R, _ = body_frames(self, np.zeros(self.n))
+        w = R[0, joint + 1] @ self.axes[joint]
+        return next((t for t in range(level, joint)
+                     if np.linalg.norm(np.cross(R[0, t + 1] @ self.axes[t], w)) > BELT_PARALLEL), None)
+
+    def first_tilted(self, body: int, tolerance: float = BELT_PARALLEL) -> int | None:
+        """The first joint (index) before body ``body`` (an index) whose axis is not vertical (|sin| of its angle
+        to the vertical above ``tolerance``): where that body stops staying level; None where it stays level."""
+        R, _ = body_frames(self, np.zeros(self.n))
+        return next((t for t in range(body)
+                     if np.linalg.norm(np.cross(R[0, t + 1] @ self.axes[t], self.up)) > tolerance), None)
+
     def _carried(self, joint: str, level: str, how: str) -> tuple[int, int]:
         """The indices of ``joint`` and of body ``level`` (a body before it) for a frame a belt or RSSR modules
         carry (``how``: what the message says carries it).
@@ -249,14 +265,11 @@ class RevoluteChain:
         :raises SpringlabError: naming the joint, the body or the axis that prevents it
         """
         i, L = self._carried(joint, level, "a belt carries")
-        R, _ = body_frames(self, np.zeros(self.n))
-        w = R[0, i + 1] @ self.axes[i]
-        for t in range(L, i):
-            u = R[0, t + 1] @ self.axes[t]
-            if np.linalg.norm(np.cross(u, w)) > BELT_PARALLEL:
-                raise SpringlabError(f"joint {self.joints[t]!r} between {level!r} and {joint!r} turns about an axis "
-                                     f"not parallel to {joint!r}'s: no belt keeps {level!r}'s axes across it; choose "
-                                     "a level body after it")
+        t = self.first_unparallel(L, i)
+        if t is not None:
+            raise SpringlabError(f"joint {self.joints[t]!r} between {level!r} and {joint!r} turns about an axis "
+                                 f"not parallel to {joint!r}'s: no belt keeps {level!r}'s axes across it; choose "
+                                 "a level body after it")
         name = f"{joint} belt" if name is None else name
         if name in self.frame_names:
             raise SpringlabError(f"name = {name!r} is already a frame of {self.name!r}: give the belt another name")
@@ -274,10 +287,9 @@ class RevoluteChain:
         :raises SpringlabError: naming the joint or the body that prevents it
         """
         i, L = self._carried(joint, level, "a pseudobase keeps")
-        R, _ = body_frames(self, np.zeros(self.n))
-        for t in range(L):
-            if np.linalg.norm(np.cross(R[0, t + 1] @ self.axes[t], self.up)) > BELT_PARALLEL:
-                raise SpringlabError(f"joint {self.joints[t]!r} before {level!r} turns about a non-vertical axis: "
+        t = self.first_tilted(L)
+        if t is not None:
+            raise SpringlabError(f"joint {self.joints[t]!r} before {level!r} turns about a non-vertical axis: "
                                      f"{level!r} does not stay level; choose a body before it")
         name = f"{joint} pseudobase" if name is None else name
         if name in self.frame_names:
