@@ -9,7 +9,7 @@ export OMP_NUM_THREADS := 1
 export OPENBLAS_NUM_THREADS := 1
 export MKL_NUM_THREADS := 1
 
-.PHONY: figures test bench lab clean
+.PHONY: figures test check-all bench lab clean
 
 $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
@@ -21,7 +21,12 @@ figures: $(STAMP)
 	$(BIN)/python -m springlab.workbench.site --notebooks build/notebooks --site build/site --figures figures
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -q -n auto
+	$(BIN)/python -m pytest -q -n auto -m "not extended"
+
+# Everything CI runs: the tests, the extended checks, and every notebook on another CPU.
+check-all: test
+	$(BIN)/python -m pytest -q -n auto -m extended
+	$(BIN)/python -m springlab.workbench.cpu
 
 $(VENV)/.bench-installed: $(STAMP)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check -c constraints.txt -e '.[dev,dask,robots,bench]'

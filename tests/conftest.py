@@ -22,3 +22,17 @@ def exact_springs(arm):
 @pytest.fixture
 def rng():
     return np.random.default_rng(12345)
+
+
+@pytest.fixture(scope="session")
+def ur5_two_point():
+    """The UR5's two-point design over 5 mm pulleys in the limits' box, built once per test run and shared
+    by every worker (tests/quickruns.py); tests read it and never change it."""
+    from quickruns import shared
+
+    from springlab.design.arms import design_model
+    from springlab.model.robots import load_robot
+
+    return shared("ur5-two-point", lambda: design_model(load_robot("UR5"), samples=300, fit_poses=100,
+                                                        pulley_radius=0.005, collisions=False))
+

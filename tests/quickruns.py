@@ -4,11 +4,17 @@ The notebook tests (tests/test_notebooks.py) check every quick run, and the book
 (tests/test_book.py) builds the whole book from the same runs and opens it in Chromium. Under
 pytest-xdist the two may sit on different workers: a file lock per notebook lets the first
 caller run it and the others wait for it and read its output. A run is kept for the test run
-that made it (xdist's run id) and made again in the next."""
+that made it (xdist's run id) and made again in the next.
+
+The same lock shares an expensive result other than a notebook (a real arm's design that several test
+modules check): ``shared(name, build)`` builds it once per test run and the other workers read its
+pickle."""
 
 import fcntl
 import os
+import pickle
 import shutil
+from collections.abc import Callable
 from pathlib import Path
 
 from springlab.workbench.notebooks import notebook_paths, run_notebook
@@ -38,3 +44,20 @@ def quick_run(stem: str) -> Path:
                          {"quick": True, "figures_dir": str(FIGURES / stem)})
             done.write_text(_run_id())
     return executed
+
+
+def shared(name: str, build: Callable[[], object]) -> object:
+    """``build()``, called once in this test run by whichever worker asks first; the others wait for it
+    and read its pickle (``build/test-notebooks/shared/<name>.pickle``)."""
+    folder = OUT / "shared"
+    folder.mkdir(parents=True, exist_ok=True)
+    stored, done = folder / f"{name}.pickle", folder / f"{name}.run"
+    with open(folder / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if done.exists() and done.read_text() == _run_id():
+            return pickle.loads(stored.read_bytes())
+        done.unlink(missing_ok=True)
+        result = build()
+        stored.write_bytes(pickle.dumps(result))
+        done.write_text(_run_id())
+        return result

@@ -79,10 +79,8 @@ def test_the_workspace_leaves_out_poses_in_collision_and_below_the_mount(ur5):
     assert not sampler.free(np.zeros((1, ur5.n)))[0]  # stretched out level, its wrist hangs just below the base
 
 
-def test_the_springs_own_mass_is_carried_and_costs_balance(ur5):
-    from springlab.design.arms import design_model
-
-    design = design_model(ur5, samples=300, fit_poses=100, pulley_radius=0.005, collisions=False)  # two-point
+def test_the_springs_own_mass_is_carried_and_costs_balance(ur5_two_point):
+    design = ur5_two_point
     data = design.as_dict()
     shoulder = data["torques"][1]
     assert data["spring_mass_kg"] == pytest.approx(sum(s["mass_kg"] for s in data["realised"]))

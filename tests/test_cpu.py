@@ -67,6 +67,7 @@ def test_differences_lists_changed_and_missing_files(tmp_path):
     assert cpu.differences(one, two) == [f"nb/fig.png: only in {one}", "nb/claims.json"]
 
 
+@pytest.mark.extended  # `make check-all` runs the check itself on every notebook
 def test_the_check_runs_a_notebook_on_both_cpus_and_finds_the_same_bytes(monkeypatch, capsys):
     from pathlib import Path
 

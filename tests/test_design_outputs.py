@@ -58,15 +58,14 @@ def so101():
     started = time.perf_counter()
     with contextlib.redirect_stdout(printed):
         code = main(["design", str(robot_urdf("SO-101")), "--layout", "two-point", "--tip", ROBOTS["SO-101"].tip,
-                     "--json", str(out),
+                     "--json", str(out), "--samples", "300", "--fit-poses", "100",  # what it prints, not the shares
                      "--pulley-radius", "0.005", "--quiet"])
     return code, printed.getvalue(), json.loads(out.read_text()), time.perf_counter() - started
 
 
 @pytest.fixture(scope="module")
-def ur5():
-    return design_model(load_robot("UR5"), samples=300, fit_poses=100, pulley_radius=0.005,
-                        collisions=False)  # the dial: the limits' box will do
+def ur5(ur5_two_point):
+    return ur5_two_point  # the dial: the limits' box will do
 
 
 def test_a_dial_that_cannot_be_turned_is_one_line_and_never_a_negative_range(ur5):

@@ -38,6 +38,7 @@ def test_a_figure_that_shows_something_else_is_rewritten(tmp_path):
 
 
 def test_a_missing_svg_or_an_unreadable_png_is_written(tmp_path):
+    matplotlib.rcdefaults()  # the size below is matplotlib's default saving, whatever style an earlier test set
     y = np.sin(np.linspace(0, 6, 50))
     png, svg = save_figure(_figure(y), "f", tmp_path)
     svg.unlink()

@@ -117,7 +117,8 @@ def test_mujoco_holds_the_realised_belt_springs_as_route_2_does(ur5):
 
 def test_the_cli_designs_belts_and_refuses_what_it_cannot(tmp_path, capsys):
     out = tmp_path / "ur5.json"
-    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--quiet"]) == 0  # the default: auto
+    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--samples", "300",
+                 "--quiet"]) == 0  # the default: auto
     assert "target 90 % reached" in capsys.readouterr().out.splitlines()[0]
     data = json.loads(out.read_text())
     assert data["target"]["reached"] and data["target"]["missed"] == []

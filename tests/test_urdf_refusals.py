@@ -286,3 +286,24 @@ def test_no_published_arm_is_refused_for_its_inertia_or_paths():
         robot = ROBOTS.get(label) or OTHER_ARMS[label]
         path = robot_urdf(label)
         read_revolute_chain(path.read_text(), source=path.name, tip=robot.tip, base=robot.base, shapes=False)
+
+
+@pytest.mark.parametrize(("flags", "named"), [(("--samples", "50"), "--samples must be an integer >= 100"),
+                                              (("--samples", "-3"), "--samples must be an integer >= 100"),
+                                              (("--fit-poses", "5"), "--fit-poses must be an integer >= 20")])
+def test_too_few_check_or_fitting_poses_are_refused(tmp_path, capsys, flags, named):
+    assert named in refused_at_the_command_line(tmp_path, capsys, arm(), *flags)
+
+
+def test_the_check_poses_asked_for_are_the_ones_checked(tmp_path, capsys):
+    path = tmp_path / "two.urdf"
+    path.write_text(arm())
+    out = tmp_path / "two.json"
+    assert main(["design", str(path), "--json", str(out), "--quiet", "--samples", "150"]) in (0, 3)
+    assert "checked by route 2 on 15" in capsys.readouterr().out  # 150 and the audit's worst poses
+
+
+def test_check_poses_are_an_arm_files_own_and_refused_beside_it(tmp_path, capsys):
+    out = tmp_path / "a.json"
+    assert main(["design", "notebooks/arms/paper000_arm.toml", "--samples", "500", "--json", str(out), "--quiet"]) == 2
+    assert "[workspace] table" in capsys.readouterr().err and not out.exists()

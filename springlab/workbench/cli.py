@@ -97,6 +97,10 @@ def _check_arguments(args) -> None:
     if args.max_configurations is not None:
         _checks.count("--max-configurations", args.max_configurations, least=1)
     _checks.count("--seed", args.seed)
+    if args.samples is not None:
+        _checks.count("--samples", args.samples, least=100, why=": the poses every share is checked on")
+    if args.fit_poses is not None:
+        _checks.count("--fit-poses", args.fit_poses, least=20, why=": the best springs' fit needs a few per unknown")
     _checks.positive("--time-limit", args.time_limit, unit="s")
     from springlab.model.armfile import parse_quantity
 
@@ -190,6 +194,9 @@ def _design(args) -> int:
             or args.share is not None) and path.suffix != ".urdf":
         raise SpringlabError("--reach, --package-dir, --margin and --layout apply to URDF files (an arm file bounds "
                              "its attachments with limits: max_attachment, and has no link shapes to clear)")
+    if (args.samples is not None or args.fit_poses is not None) and path.suffix != ".urdf":
+        raise SpringlabError("--samples and --fit-poses apply to URDF files, designed on the general model (an arm "
+                             "file gives its workspace's poses in its [workspace] table: samples = ...)")
     if args.workspace is not None and path.suffix != ".urdf":
         raise SpringlabError(f"--workspace = {args.workspace!r} applies to URDF files (an arm file gives each "
                              "joint's range in its links' 'range')")
@@ -198,7 +205,8 @@ def _design(args) -> int:
                              "model with a payload dial (an arm file's payload is its [payload] table)")
     if path.suffix == ".urdf" and (args.workspace is not None or args.reach is not None or args.package_dir
                                    or args.payload_range is not None or args.margin is not None
-                                   or args.layout != "auto" or args.share is not None):
+                                   or args.layout != "auto" or args.share is not None
+                                   or args.samples is not None or args.fit_poses is not None):
         return _design_general(args, path, data, "")  # ranges, reaches and outlines: the general model's
     try:
         spec = load_arm(args.arm_file, allow_large=args.allow_large, up=_up(args.up), tip=args.tip, base=args.base,
@@ -292,7 +300,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     started = time.perf_counter()
     reach = None if args.reach is None else _checks.positive(
         "--reach", parse_quantity(args.reach, "length", "--reach"), allow_zero=True, unit="m") + 0.0
-    design = design_model(model, workspace=workspace, seed=args.seed + 1, material=args.material, reach=reach,
+    design = design_model(model, workspace=workspace, seed=args.seed + 1, samples=args.samples or 2000,
+                          fit_poses=args.fit_poses or 300, material=args.material, reach=reach,
                           pulley_radius=args.pulley_radius, margin=args.margin, layout=args.layout, share=args.share,
                           cable=args.cable)
     seconds = time.perf_counter() - started
@@ -673,6 +682,13 @@ def main(argv=None) -> int:
                    help="the share of each loaded joint's peak gravity torque the realised springs, carrying their "
                         "hardware, must remove (default 0.9); a design that misses it says so in its first line and "
                         "offers what fewer springs reach")
+    p.add_argument("--samples", type=int, default=None,
+                   help="a URDF arm, on the general model: the random poses of the workspace every torque, share and "
+                        "clearance is checked on (default 2000; an independent 20,000 re-check the peaks either way); "
+                        "fewer is faster")
+    p.add_argument("--fit-poses", type=int, default=None,
+                   help="a URDF arm, on the general model: the poses the best springs are fitted on where the loaded "
+                        "joints are not a planar chain (default 300)")
     p.add_argument("--cable", default=None,
                    help="the belt or pseudobase layout's cable, by its diameter in mm, e.g. '1.59' (default: the stocked stainless "
                         "rope that carries each spring's pull with a safety factor of 5, over the least pulley)")
