@@ -1,9 +1,10 @@
-"""The README's Python example runs as written."""
+"""The README's Python example runs as written, and its layout lists every module of the package."""
 
 import re
 from pathlib import Path
 
-README = Path(__file__).resolve().parents[1] / "README.md"
+ROOT = Path(__file__).resolve().parents[1]
+README = ROOT / "README.md"
 
 
 def test_readme_python_blocks_run(capsys):
@@ -13,3 +14,52 @@ def test_readme_python_blocks_run(capsys):
     for block in blocks:
         exec(compile(block, "README.md", "exec"), namespace)
     assert "total energy varies" in capsys.readouterr().out
+
+
+def listed_modules(block: str) -> set[str]:
+    """The modules a layout block lists, as paths under ``springlab/``: a line's first word, nested by its
+    indent (two spaces a level) under the folders above it (words ending in '/')."""
+    folders: list[tuple[int, str]] = []
+    out = set()
+    for line in block.splitlines():
+        if not line.strip():
+            continue
+        indent, word = len(line) - len(line.lstrip()), line.split()[0]
+        while folders and folders[-1][0] >= indent:
+            folders.pop()
+        path = "".join(f for _, f in folders) + word
+        if word.endswith("/"):
+            folders.append((indent, word))
+        elif path.startswith("springlab/") and path.endswith(".py"):
+            out.add(path.removeprefix("springlab/"))
+    return out
+
+
+def package_modules(root: Path) -> set[str]:
+    return {str(p.relative_to(root / "springlab")) for p in (root / "springlab").rglob("*.py")
+            if p.name != "__init__.py" and "__pycache__" not in p.parts}
+
+
+def layout_block(text: str) -> str:
+    section = text[text.index("\n## Layout"):]
+    return re.search(r"```\n(springlab/.*?)```", section, flags=re.S).group(1)
+
+
+def test_the_layout_lists_every_module_and_no_other():
+    listed, present = listed_modules(layout_block(README.read_text())), package_modules(ROOT)
+    assert not present - listed, f"modules missing from the README's layout: {sorted(present - listed)}"
+    assert not listed - present, f"modules listed in the README's layout but gone: {sorted(listed - present)}"
+
+
+def test_the_layout_check_catches_a_module_added_or_gone(tmp_path):
+    """The negative control: a package with one module more, and a listing with one module more."""
+    block = layout_block(README.read_text())
+    (tmp_path / "springlab" / "design").mkdir(parents=True)
+    for module in listed_modules(block):
+        (tmp_path / "springlab" / module).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / "springlab" / module).touch()
+    (tmp_path / "springlab" / "design" / "new_idea.py").touch()
+    assert package_modules(tmp_path) - listed_modules(block) == {"design/new_idea.py"}
+    gone = block.replace("springlab/\n", "springlab/\n  vanished.py   a module that is not there\n", 1)
+    assert listed_modules(gone) - package_modules(ROOT) == {"vanished.py"}
+    assert "mechanisms/dyad/algebra.py" in listed_modules(block)  # nested folders are read as nested
