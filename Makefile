@@ -33,13 +33,7 @@ $(VENV)/.bench-installed: $(STAMP)
 	touch $@
 
 bench: $(VENV)/.bench-installed
-	$(BIN)/python benchmarks/bench_energy.py
-	$(BIN)/python benchmarks/bench_sim.py
-	$(BIN)/python benchmarks/bench_efficiency.py
-	$(BIN)/python benchmarks/bench_design.py
-	$(BIN)/python benchmarks/bench_figures.py
-	$(BIN)/python benchmarks/bench_real_arms.py
-	$(BIN)/python benchmarks/bench_layouts.py
+	$(BIN)/python benchmarks/run_all.py
 
 lab: $(STAMP)
 	$(BIN)/jupyter lab notebooks/
