@@ -35,9 +35,10 @@ EARLIER = {  # s per notebook: (commit 0abe5ae, one after another, papermill's c
     "springlab_design_your_arm": (205, 214), "zhang2023_dyad": (25, 43),
 }
 """0abe5ae tested the rules against physics to n = 4 in the 000 notebook; from 4d58831 on, to n = 5."""
-BEFORE = "cf00226"
-"""The last commit before the book (52.6-57.4 s cold on this machine; c73f122, before the round of speed-ups,
-73-76 s), run again here so that before and after share a machine and a day."""
+BEFORE = ""
+"""No earlier commit by default: the last one before the book, cf00226 (52.6-57.4 s cold on this machine), builds
+its site with jupyter-server-mathjax, which the pinned environment no longer holds. ``--before COMMIT`` runs a
+commit that this environment runs, so that before and after share a machine and a day."""
 TARGET_COLD, TARGET_WARM = 45, 2  # s: the targets of the issue on reproducible figures (a fresh clone, then nothing changed)
 EARLIER_COLD = (430, 440)  # s, the whole of `make figures` from a fresh clone
 EARLIER_WARM = (430, 0.6)  # s, again with nothing changed (0abe5ae had no cache: it ran everything again)

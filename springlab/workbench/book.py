@@ -11,6 +11,8 @@ text changed, so Sphinx re-reads only those) and runs Sphinx with warnings as er
   a label ``<stem>-s<k>`` so the report can point at it;
 * ``report.md``: every claim beside the paper's value, each linked to the notebook section
   that makes it (the claim's cell, recorded by :class:`~springlab.workbench.claims.Claims`);
+* ``using.md`` and ``performance.md`` (:data:`PAGES`): the user's guide, written by hand beside
+  the notebooks, and what ``make bench`` last measured, written by it;
 * ``api/``: the library's docstrings (autodoc), each citation (a paper's key before an
   equation, table or figure) linked to the paper's chapter, and the source of every module
   (viewcode) with the citations in its comments linked too.
@@ -38,6 +40,10 @@ from springlab.workbench import prose
 from springlab.workbench.claims import REPORT_COLUMNS, html_table, report_column
 
 CONF_DIR = Path(__file__).resolve().parent / "bookconf"
+ROOT = Path(__file__).resolve().parents[2]
+PAGES = {"using": ROOT / "notebooks" / "using_springlab.md", "performance": ROOT / "benchmarks" / "RESULTS.md"}
+"""The book's pages that are not notebooks: the user's guide (the command line, arm files, the springs made
+real, what to do when something goes wrong, the package's layout) and the benchmarks' results."""
 MATHJAX_SCRIPT = "tex-svg-full.js"
 """MathJax 3's component the book loads from ``_static/mathjax``: TeX in (every extension
 preloaded, so nothing is fetched on demand), SVG out."""
@@ -215,6 +221,7 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
               "```{toctree}", ":hidden:", ":caption: The papers", "", *[s for s in stems if PAPERS.get(s, {}).get("key")],
               "```", "", "```{toctree}", ":hidden:", ":caption: Your arm", "",
               *[s for s in stems if not PAPERS.get(s, {}).get("key")], "```", "",
+              "```{toctree}", ":hidden:", ":caption: Using springlab", "", *PAGES, "```", "",
               "```{toctree}", ":hidden:", ":caption: Reference", "", "report", *(["api/index"] if api else []), "```", ""]
     return "\n".join(lines)
 
@@ -330,6 +337,9 @@ def stage(notebooks_dir, figures_dir, src, *, api: bool = True) -> list[str]:
         (src / f"{gone}.ipynb").unlink()
     _write_if_changed(src / "index.md", front_page(stems, notebooks, claims, api=api, thumbs=frozenset(thumbs)))
     _write_if_changed(src / "report.md", report_page(stems, notebooks, claims, labels))
+    for name, path in PAGES.items():
+        text = path.read_text() if path.exists() else f"# {name.title()}\n\n`make bench` writes this page.\n"
+        _write_if_changed(src / f"{name}.md", prose.link_markdown(text, None, names, labels))
     if api:
         for name, text in api_pages().items():
             _write_if_changed(src / "api" / name, text)
