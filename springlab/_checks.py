@@ -171,6 +171,10 @@ def sample_count(value, *, least: int = 2, name: str = "samples", why: str = "")
 MAX_LINKS = 10_000
 """The most links (ground included) any function accepts: structures grow as n^2 and searches faster."""
 
+MAX_FILE_BYTES = 16 * 2 ** 20
+"""The largest arm file or URDF read (16 MiB), checked before it is read: an arm file, even the URDF of a
+large robot, is well under 1 MiB."""
+
 
 def links(value, name: str = "n (links with the ground)", *, least: int = 2) -> int:
     """A number of links: an integer in ``least``..:data:`MAX_LINKS`."""

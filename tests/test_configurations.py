@@ -83,7 +83,8 @@ def test_grouping_writes_the_papers_alternatives():
 
 
 def test_the_sign_refutation_never_refutes_what_the_relaxation_admits():
-    from springlab.design.ground import any_sign_candidates, example_family
+    from springlab.design.ground import example_family
+    from springlab.design.screen import any_sign_candidates
 
     chain = example_family([4])[4].chain()
     candidates = any_sign_candidates(4, 3)  # 462 sets of three springs, any pattern, with S(1,4)

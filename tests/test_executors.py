@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from springlab.design import ground, rank, tolerance
+from springlab.design import ground, rank, screen, tolerance
 from springlab.errors import SpringlabError
 from springlab.executors import check_executor, map_ordered
 from springlab.model.armfile import load_arm
@@ -44,9 +44,9 @@ def test_screen_and_tolerance_study_on_a_dask_cluster(client):
     executor = client.get_executor()
     chain = load_arm(ARMS / "paper000_arm.toml").chain()
     assert ground.relaxation_screen(chain, 3, executor=executor) == ground.relaxation_screen(chain, 3)
-    candidates = ground.any_sign_candidates(4, 3)
-    assert ground.screen(chain, candidates, executor=executor) == ground.screen(chain, candidates)
-    assert any(ground.screen(chain, candidates))  # some sets of three pass the relaxation: the check can see a difference
+    candidates = screen.any_sign_candidates(4, 3)
+    assert screen.screen(chain, candidates, executor=executor) == screen.screen(chain, candidates)
+    assert any(screen.screen(chain, candidates))  # some sets of three pass the relaxation: the check can see a difference
     springs = rank.design_arm(ARMS / "paper000_arm.toml", max_designs=1).designs[0].springs
     X = rank.random_poses(chain, 50, 1)
     tol = tolerance.Tolerances(attachment=1e-3, stiffness=0.02)

@@ -12,9 +12,10 @@ import pytest
 
 from springlab.design.arms import design_model
 from springlab.energy import geometry
+from springlab.model.chain import point_springs
 from springlab.model.mjcf import TINY_MASS, to_mjcf
 from springlab.model.robots import load_robot, robot_urdf
-from springlab.model.springs import PointSpring, point_springs
+from springlab.model.springs import PointSpring
 from springlab.workbench.cli import main
 
 mujoco = pytest.importorskip("mujoco")

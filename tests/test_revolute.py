@@ -9,10 +9,10 @@ import pytest
 
 from springlab.energy import geometry, simulation
 from springlab.errors import GeometryError, SpringlabError
-from springlab.model.chain import serial_chain
+from springlab.model.chain import point_springs, serial_chain
 from springlab.model.revolute import RevoluteChain, body_frames, joint_axes
 from springlab.model.robots import ROBOTS, load_robot, robot_urdf
-from springlab.model.springs import PointSpring, Spring, point_springs
+from springlab.model.springs import PointSpring, Spring
 from springlab.model.urdf import read_revolute_chain
 from springlab.workbench.references import pinocchio_gravity
 

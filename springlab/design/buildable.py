@@ -56,8 +56,8 @@ from springlab import _checks
 from springlab.energy.geometry import holding_torques, spring_length
 from springlab.energy.pulley import cable_path, holding_torques_with_pulleys
 from springlab.errors import SpringlabError
-from springlab.model.chain import Chain
-from springlab.model.springs import Spring, check_springs
+from springlab.model.chain import Chain, check_springs
+from springlab.model.springs import Spring
 from springlab.tables import Table
 
 STEEL_DENSITY = 7800.0

@@ -25,8 +25,7 @@ from springlab import _checks
 from springlab.energy.geometry import attachment_points
 from springlab.errors import SpringlabError
 from springlab.model.armfile import LINK_RADIUS
-from springlab.model.chain import UP, Chain
-from springlab.model.springs import check_springs
+from springlab.model.chain import UP, Chain, check_springs
 from springlab.tables import Table
 
 

@@ -34,8 +34,7 @@ import numpy as np
 
 from springlab import _checks
 from springlab.energy.quadratic import gravity_entries, spring_entries
-from springlab.model.chain import Chain
-from springlab.model.springs import check_springs
+from springlab.model.chain import Chain, check_springs
 
 
 def spatial_system_efficiency(chain: Chain, springs, X) -> np.ndarray:

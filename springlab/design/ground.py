@@ -28,52 +28,21 @@ from springlab.design.rank import (
     random_poses,
     rank_key,
 )
-from springlab.design.rules import PATTERNS, SpringSlot, best_first_configurations
+from springlab.design.rules import best_first_configurations
+from springlab.design.screen import any_sign_candidates, screen
 from springlab.design.solve import (
     find_design,
     minimise_largest_force,
-    relaxation_margin,
-    sign_consistent,
 )
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.model.armfile import ArmSpec
 from springlab.model.chain import Chain
 from springlab.tables import Table
 
-CANDIDATE_RATE = 1e3
-"""Candidate configurations screened per second (one linear programme each), about."""
-
 
 def _chain_of(spec_or_chain) -> Chain:
     _checks.instance("spec_or_chain", spec_or_chain, ArmSpec | Chain, "ArmSpec or Chain")
     return spec_or_chain.chain() if isinstance(spec_or_chain, ArmSpec) else spec_or_chain
-
-
-def all_pattern_slots(n: int) -> list[SpringSlot]:
-    """Every spring S(i,j) of an n-link arm with every sign pattern, the paper's
-    criteria (000 Eq. 41, Fig. 10) ignored."""
-    n = _checks.links(n, "n")
-
-    return [SpringSlot(i, j, p) for i in range(1, n) for j in range(i + 1, n + 1) for p in PATTERNS]
-
-
-def any_sign_candidates(n: int, count: int) -> list[tuple[SpringSlot, ...]]:
-    """Every set of ``count`` slots, any sign pattern, that includes a same-sign S(1,n) (the
-    only spring with an entry (1, n), which gravity's G_1n > 0 needs: -k a b < 0)."""
-    import itertools
-    import math
-
-    count = _checks.count("count", count, least=1)
-    slots = all_pattern_slots(n)
-    end = [s for s in slots if (s.i, s.j) == (1, n) and s.pattern in ("(+,+)", "(-,-)")]
-    rest = [s for s in slots if s not in end]
-    if count > len(rest) + 1:
-        raise SpringlabError(f"count = {count} springs is more than the {len(rest) + 1} distinct slots of {n} links hold")
-    total = len(end) * math.comb(len(rest), count - 1)
-    _checks.poses(f"{count} springs on {n} links", total, rate=CANDIDATE_RATE, unit="candidate configurations",
-                  hint="each is a linear programme: ask for fewer springs")
-    _checks.memory(f"{total} candidate configurations of {count} springs", total * count, hint="ask for fewer springs")
-    return [(e, *others) for e in end for others in itertools.combinations(rest, count - 1)]
 
 
 def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = None, restarts: int = 20,
@@ -83,7 +52,7 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
     as the heuristics they are), ranked like :func:`springlab.design.rank.design_arm`.
 
     Every set of ``count`` slots that includes S(1,n) (the only spring with an entry
-    (1, n), which gravity's G_1n needs; (+,+) or (-,-)) is screened (:func:`screen`: the
+    (1, n), which gravity's G_1n needs; (+,+) or (-,-)) is screened (:func:`springlab.design.screen.screen`: the
     exact sign test, then the linear relaxation of 000 Eqs. (39)), then solved
     by least squares (free choices spent on the smallest largest force if
     ``minimise_force``) and verified by route 2 over ``samples`` random poses. The
@@ -116,45 +85,6 @@ def _solve_any_signs(chain, cfg, X, max_extension, seed, restarts, minimise_forc
         return None
 
 
-SCREEN_CHUNK = 2000
-"""Candidate sets per task of :func:`screen`."""
-
-
-def _passing(chain: Chain, candidates) -> list[bool]:
-    return [relaxation_margin(chain, cfg) > 1e-9 for cfg in candidates]
-
-
-def screen_verdicts(chain: Chain, candidates, *, executor=None, progress: bool = False,
-                    desc: str = "screen") -> list[str]:
-    """Per candidate set of springs: 'signs' (refuted by the exact sign test,
-    :func:`springlab.design.solve.sign_consistent`), 'relaxation' (refuted by the linear relaxation
-    of 000 Eqs. (39), :func:`springlab.design.solve.relaxation_margin`) or 'pass'. Both refutations
-    are proofs that the set cannot balance. The programmes run in tasks of :data:`SCREEN_CHUNK`
-    on ``executor`` (None: here)."""
-    from tqdm import tqdm
-
-    from springlab.executors import check_executor, map_ordered
-
-    _checks.instance("chain", chain, Chain)
-    executor = check_executor(executor)
-    candidates = list(candidates)
-    allowed = sign_consistent(chain, candidates) if candidates else np.zeros(0, dtype=bool)
-    rest = [cfg for cfg, ok in zip(candidates, allowed, strict=True) if ok]
-    chunks = [rest[k:k + SCREEN_CHUNK] for k in range(0, len(rest), SCREEN_CHUNK)]
-    out = []
-    for passed in tqdm(map_ordered(executor, _passing, [(chain, c) for c in chunks]), disable=not progress,
-                       desc=desc, mininterval=1.0):
-        out += passed
-    verdicts = iter(out)
-    return ["signs" if not ok else "pass" if next(verdicts) else "relaxation" for ok in allowed]
-
-
-def screen(chain: Chain, candidates, *, executor=None, progress: bool = False, desc: str = "screen") -> list[bool]:
-    """Per candidate set of springs: True when the exact sign test and the linear relaxation of
-    000 Eqs. (39) both admit it (:func:`screen_verdicts`; False is a proof that it cannot balance)."""
-    return [v == "pass" for v in screen_verdicts(chain, candidates, executor=executor, progress=progress, desc=desc)]
-
-
 def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False, executor=None) -> tuple[int, int]:
     """(candidates, survivors): how many sets of ``count`` springs, any sign pattern, any
     attachment (limits ignored), pass the linear relaxation of 000 Eqs. (39). No survivor
@@ -162,7 +92,7 @@ def relaxation_screen(spec_or_chain, count: int, *, progress: bool = False, exec
     relaxation only drops constraints (P k = A B per spring). Candidates the signs alone
     refute (:func:`springlab.design.solve.sign_consistent`, exact) get no linear programme:
     at n = 6 that is all 61,712 sets of four springs, screened in 0.2 s (97 s by programmes).
-    ``executor``: as :func:`screen`'s."""
+    ``executor``: as :func:`springlab.design.screen.screen`'s."""
     chain = _chain_of(spec_or_chain)
     candidates = any_sign_candidates(chain.n, count)
     return len(candidates), sum(screen(chain, candidates, executor=executor, progress=progress,

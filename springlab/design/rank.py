@@ -31,6 +31,7 @@ import numpy as np
 from springlab import _checks
 from springlab.design.efficiency import spatial_system_efficiency
 from springlab.design.rules import SpringSlot, as_slots, best_first_configurations
+from springlab.design.screen import all_pattern_slots, any_sign_candidates, screen_verdicts
 from springlab.design.solve import (
     balanced_core,
     find_design,
@@ -41,8 +42,8 @@ from springlab.design.solve import (
 from springlab.energy.geometry import energies, spring_length
 from springlab.errors import SearchExhaustedError, SpringlabError, UnbalanceableError
 from springlab.model.armfile import ArmSpec, load_arm
-from springlab.model.chain import Chain
-from springlab.model.springs import Spring, check_springs
+from springlab.model.chain import Chain, check_springs
+from springlab.model.springs import Spring
 from springlab.tables import Table
 
 METHODS = ("fewest springs", "no auxiliary links", "ground springs")
@@ -430,8 +431,6 @@ def _fewest_first(core: Chain, report: DesignReport, rules, executor=None):
     screened sets of n - 2 springs of any signs, the n - 1 ground springs, then ``rules``
     (paper 000's); a configuration met twice is tried once. Notes what the screen did."""
     import math
-
-    from springlab.design.ground import all_pattern_slots, any_sign_candidates, screen_verdicts
 
     n, count = core.n, core.n - 2
     seen = set()

@@ -37,8 +37,8 @@ from springlab.errors import (
     SpringlabError,
     UnbalanceableError,
 )
-from springlab.model.chain import Chain
-from springlab.model.springs import Spring, check_attachments, check_springs, sign_char
+from springlab.model.chain import Chain, check_attachments, check_springs
+from springlab.model.springs import Spring, sign_char
 
 
 @dataclass(frozen=True)
@@ -239,7 +239,7 @@ def _scales(chain: Chain) -> tuple[float, float, float]:
 def _end_limits(chain: Chain, slots, max_extension: float | None) -> tuple[np.ndarray, np.ndarray]:
     """Largest |a| and |b| (m) per slot: the link's length for an end on its link (a < 0 on
     link i >= 2, b > 0 on link j), else the bracket limit ``max_extension`` (default the
-    longest link; see :func:`springlab.model.springs.check_attachments`)."""
+    longest link; see :func:`springlab.model.chain.check_attachments`)."""
     reach = max_extension if max_extension is not None else max(chain.r)
     lim_a = np.array([chain.length(s.i) if (s.i >= 2 and s.sa < 0) else reach for s in slots], dtype=float)
     lim_b = np.array([chain.length(s.j) if s.sb > 0 else reach for s in slots], dtype=float)
@@ -275,7 +275,7 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
     of the slots' patterns, from random starts. Succeeds when every entry of
     000 Eqs. (39) is below ``tol`` times the largest G_1,j.
 
-    :param within_links: keep every end on its link (see :func:`springlab.model.springs.check_attachments`)
+    :param within_links: keep every end on its link (see :func:`springlab.model.chain.check_attachments`)
         and every bracket (an end beyond a joint) no longer than ``max_extension``
         (m; default the longest link). ``False`` asks for the signs only.
     :param max_stiffness: largest k (N/m), or None

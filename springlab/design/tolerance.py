@@ -26,8 +26,8 @@ import numpy as np
 from springlab import _checks
 from springlab.energy.geometry import holding_torques
 from springlab.errors import SpringlabError
-from springlab.model.chain import Chain
-from springlab.model.springs import Spring, check_springs
+from springlab.model.chain import Chain, check_springs
+from springlab.model.springs import Spring
 from springlab.tables import Table
 
 FACTORS = ("attachment", "free_length", "stiffness", "payload")

@@ -18,7 +18,7 @@ import numpy as np
 
 from springlab import _checks
 from springlab.errors import GeometryError, SpringlabError
-from springlab.model.chain import UP, Chain
+from springlab.model.chain import UP, Chain, check_springs
 from springlab.model.revolute import (
     RevoluteChain,
     body_frames,
@@ -28,7 +28,7 @@ from springlab.model.revolute import (
     remembered,
     world_points,
 )
-from springlab.model.springs import Spring, check_springs
+from springlab.model.springs import Spring
 
 DEFAULT_CHUNK = 8192
 

@@ -28,8 +28,8 @@ import numpy as np
 from springlab import _checks
 from springlab.energy.geometry import attachment_points, cable_geometry, holding_torques
 from springlab.errors import GeometryError
-from springlab.model.chain import Chain
-from springlab.model.springs import Spring, check_springs
+from springlab.model.chain import Chain, check_springs
+from springlab.model.springs import Spring
 
 
 def cable_path(chain: Chain, spring: Spring, X, radius: float) -> tuple[np.ndarray, np.ndarray]:

@@ -40,8 +40,8 @@ import sympy as sp
 
 from springlab import _checks
 from springlab.errors import SpringlabError
-from springlab.model.chain import Chain
-from springlab.model.springs import Spring, check_springs
+from springlab.model.chain import Chain, check_springs
+from springlab.model.springs import Spring
 
 DEFAULT_CHUNK = 16384
 

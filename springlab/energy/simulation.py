@@ -50,9 +50,8 @@ from springlab.energy.multibody import (
     solver_settings,
 )
 from springlab.errors import SpringlabError
-from springlab.model.chain import SPHERICAL, UP, Chain
+from springlab.model.chain import SPHERICAL, UP, Chain, check_attachments, check_springs
 from springlab.model.revolute import RevoluteChain, body_frames, check_point_springs
-from springlab.model.springs import check_attachments, check_springs
 from springlab.model.trajectories import Sweep
 from springlab.tables import Table
 

@@ -43,6 +43,8 @@ from pathlib import Path
 
 from springlab import _checks
 from springlab.errors import SpringlabError
+from springlab.model.chain import serial_chain
+from springlab.model.urdf import urdf_to_dict
 from springlab.tables import Table
 
 KINDS = {  # kind: (pint dimensionality, SI unit, units to suggest)
@@ -56,9 +58,9 @@ KINDS = {  # kind: (pint dimensionality, SI unit, units to suggest)
 right dimension is accepted ('16 in', '2.2 lbf/in', '1 g0'); a bare number is SI."""
 MAX_LINKS = 8
 
-MAX_FILE_BYTES = 16 * 2 ** 20
-"""The largest arm file read (16 MiB), checked before it is read: an arm file, even the URDF of a
-large robot, is well under 1 MiB."""
+MAX_FILE_BYTES = _checks.MAX_FILE_BYTES
+"""The largest arm file read (16 MiB, the limit the URDF reader
+shares), checked before it is read."""
 
 LINK_RADIUS = 0.025
 """m: a link's radius where the arm file gives none (a 50 mm tube or casting), for clearance."""
@@ -228,8 +230,6 @@ class ArmSpec:
 
     def chain(self, *, with_payload: bool = True):
         """The springlab :class:`~springlab.model.chain.Chain` (payload at the end link's COM)."""
-        from springlab.model.chain import serial_chain
-
         joints = None if all(j == "spherical" for j in self.joints) else list(self.joints)
         chain = serial_chain(self.r, self.d, self.m, _checks.number("g", self.g), joints=joints)
         return chain.with_payload(self.payload) if with_payload else chain
@@ -448,8 +448,6 @@ def load_arm(path, *, allow_large: bool = False, up=None, tip: str | None = None
 
 def _from_urdf(text: str, source: str, allow_large: bool, up, *, tip=None, base=None, payload=None) -> ArmSpec:
     import dataclasses
-
-    from springlab.model.urdf import urdf_to_dict
 
     data, arm = urdf_to_dict(text, source=source, up=up, max_links=None if allow_large else MAX_LINKS,
                              tip=tip, base=base, payload=payload)

@@ -16,6 +16,16 @@ d_j (m) from its proximal joint along x_j, and a mass m_j (kg).
 
 A pose is the set of link directions, ``X`` with shape (N, n, 3): X[:, 0] is
 x_1 = UP and X[:, j-1] is x_j. Every function is vectorised over the N poses.
+
+The papers' springs (:class:`~springlab.model.springs.Spring`, on the joint lines, 000 Eq. 19) are
+checked against a chain here (:func:`check_springs`, :func:`check_attachments`) and converted to
+springs between points of its revolute chain (:func:`point_springs`).
+
+References
+----------
+Juang, C.-W., Jhuang, C.-S., Chen, D.-Z. (2023). A novel spring gravity-balance method for
+spatial articulated manipulators without auxiliary links. Mechanism and Machine Theory 191,
+105497. doi:10.1016/j.mechmachtheory.2023.105497
 """
 
 from __future__ import annotations
@@ -25,13 +35,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.errors import SpringlabError
+from springlab.errors import AttachmentError, SpringlabError
+from springlab.model.revolute import RevoluteChain
 from springlab.model.rotations import (
     frames_from_directions,
     frames_from_relative,
     rot_axis,
     rot_xyz,
 )
+from springlab.model.springs import PointSpring, Spring, chain_body
 
 UP = np.array([1.0, 0.0, 0.0])
 """x_1, the ground link's direction: vertical, up. Gravity acts along -UP."""
@@ -124,11 +136,8 @@ class Chain:
         J_{j-1}, about x, the new y and the new z (the order of
         :func:`~springlab.model.rotations.rot_xyz`), carrying two massless bodies 'link j (x)',
         'link j (y)'. Joint coordinates: :meth:`joint_coordinates`; springs:
-        :func:`springlab.model.springs.point_springs`.
+        :func:`point_springs`.
         """
-        from springlab.model.revolute import RevoluteChain
-        from springlab.model.springs import chain_body
-
         bodies, joints, placements, axes, mass, com, inertia = ["ground"], [], [], [], [0.0], [np.zeros(3)], [np.zeros((3, 3))]
         for j in range(2, self.n + 1):
             P = np.eye(4)
@@ -454,3 +463,91 @@ def limited_poses(chain: Chain, size: int, rng, limits) -> np.ndarray:
             raise SpringlabError("the spherical joints' cones are too tight to sample by random joint angles "
                                  "(fewer than one draw in a thousand falls within them): widen them")
     return np.concatenate(kept)[:size]
+
+
+def check_springs(chain, springs) -> tuple[Spring, ...]:
+    """Validate that every spring fits the chain (j <= n) and that its energy over the
+    chain's reach is a finite number of joules; return them as a tuple."""
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
+    if isinstance(springs, Spring) or isinstance(springs, str) or not hasattr(springs, "__iter__"):
+        raise SpringlabError(f"springs must be a sequence of Spring objects, got {springs!r}")
+    springs = tuple(springs)
+    reach = float(sum(chain.r))
+    for s in springs:
+        if not isinstance(s, Spring):
+            raise SpringlabError(f"expected Spring objects, got {type(s).__name__}")
+        if s.j > chain.n:
+            raise SpringlabError(
+                f"{s.label} attaches to link {s.j}, but the chain has only {chain.n} links"
+            )
+        length = np.float64(reach + abs(s.a) + abs(s.b))  # numpy: an overflow is inf, not an OverflowError
+        with np.errstate(over="ignore"):
+            if not np.isfinite(length * length):
+                end, value = ("a", s.a) if abs(s.a) >= abs(s.b) else ("b", s.b)
+                raise SpringlabError(f"{end} of {s.label} = {value:g} m puts its end so far from its joint that the "
+                                     f"spring's energy overflows: give the attachment in m (the arm reaches {reach:g} m)")
+            if not np.isfinite(s.k * length * length):
+                raise SpringlabError(f"k of {s.label} = {s.k:g} N/m overflows the spring's energy "
+                                     f"(k L^2 with L ~ {float(length):g} m): give k in N/m")
+    return springs
+
+
+def measured_from_other_joints(chain, springs) -> tuple[Spring, ...]:
+    """The springs as they would be built if a and b were read from the other joint of each
+    link: end A at a from link i's **proximal** joint (A = J_{i-1} + a x_i, i.e. a - r_i in
+    the convention above; a ground spring keeps its a, the ground having one joint), end B at
+    b from link j's **distal** joint (B = J_j + b x_j, i.e. b + r_j). 000 Eq. (19) and the
+    text below it fix the reading of this module; this one shows why it matters.
+
+    :returns: springs in this module's convention (m, N/m)
+    """
+    out = []
+    for s in check_springs(chain, springs):
+        a = s.a - chain.length(s.i) if s.i >= 2 else s.a
+        out.append(Spring(s.i, s.j, a, s.b + chain.length(s.j), s.k, s.free_length, s.initial_tension))
+    return tuple(out)
+
+
+def check_attachments(chain, springs, *, max_extension: float | None = None) -> None:
+    """Raise :class:`~springlab.errors.AttachmentError` if a spring end lies off its link.
+
+    An end on the link side of its joint (a < 0 on link i >= 2, b > 0 on link j)
+    must stay within the link: |a| <= r_i, b <= r_j. An end on the other side
+    (a > 0 past link i's distal joint, b < 0 behind link j's proximal joint) sits
+    on a bracket that extends the link; ``max_extension`` (m) bounds it if given.
+    """
+    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
+    springs = check_springs(chain, springs)
+    max_extension = _checks.optional_positive("max_extension", max_extension, "m")
+    for s in springs:
+        if s.i >= 2 and s.a < 0 and -s.a > chain.length(s.i) * (1 + 1e-12):
+            raise AttachmentError(
+                f"a_{s.label} = {s.a:.6g} m puts end A beyond link {s.i}'s proximal joint "
+                f"(r_{s.i} = {chain.length(s.i):g} m): the attachment is off the link")
+        if s.b > 0 and s.b > chain.length(s.j) * (1 + 1e-12):
+            raise AttachmentError(
+                f"b_{s.label} = {s.b:.6g} m puts end B beyond link {s.j}'s distal joint "
+                f"(r_{s.j} = {chain.length(s.j):g} m): the attachment is off the link")
+        if max_extension is not None:
+            for name, value, extended in (("a", s.a, s.a > 0), ("b", s.b, s.b < 0)):
+                if extended and abs(value) > max_extension:
+                    raise AttachmentError(
+                        f"{name}_{s.label} = {value:.6g} m needs a bracket longer than "
+                        f"max_extension = {max_extension:g} m")
+
+
+def point_springs(chain, springs) -> tuple[PointSpring, ...]:
+    """The papers' springs S(i, j) on a chain's joint lines as springs between points of the bodies
+    of :meth:`springlab.model.chain.Chain.revolute_chain` (body 'ground' and 'link j', each
+    link's frame at its proximal joint with x along the link):
+
+    A = J_i + a x_i is (r_i + a, 0, 0) in link i's frame (a, 0, 0) on the ground, whose frame
+    is at the base joint with x up; B = J_{j-1} + b x_j is (b, 0, 0) in link j's frame.
+    """
+    springs = check_springs(chain, springs)
+    out = []
+    for s in springs:
+        point_a = (s.a if s.i == 1 else chain.length(s.i) + s.a, 0.0, 0.0)
+        out.append(PointSpring(chain_body(s.i), point_a, chain_body(s.j), (s.b, 0.0, 0.0), s.k,
+                               s.free_length, s.initial_tension))
+    return tuple(out)

@@ -43,6 +43,7 @@ import numpy as np
 from springlab import _checks
 from springlab.errors import SpringlabError
 from springlab.model.rotations import rot_axis
+from springlab.model.springs import PointSpring
 
 
 def _array(name: str, value, shape) -> np.ndarray:
@@ -512,8 +513,6 @@ def centres_of_mass(model: RevoluteChain, R: np.ndarray, o: np.ndarray) -> np.nd
 def check_point_springs(model: RevoluteChain, springs) -> tuple:
     """Validate springs on a model: each a :class:`~springlab.model.springs.PointSpring` whose
     bodies are the model's; returns them as a tuple."""
-    from springlab.model.springs import PointSpring
-
     _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
     if isinstance(springs, PointSpring | str) or not hasattr(springs, "__iter__"):
         raise SpringlabError(f"springs must be a sequence of PointSpring objects, got {springs!r}")
@@ -522,7 +521,7 @@ def check_point_springs(model: RevoluteChain, springs) -> tuple:
     for s in springs:
         if not isinstance(s, PointSpring):
             raise SpringlabError(f"expected PointSpring objects (springs between points of two bodies), got "
-                                 f"{type(s).__name__}; the papers' springs convert with springlab.model.springs.point_springs")
+                                 f"{type(s).__name__}; the papers' springs convert with springlab.model.chain.point_springs")
         ends = [model.locate(s.link_a, s.point_a), model.locate(s.link_b, s.point_b)]  # raises on a name
         if ends[0][0] == ends[1][0]:
             raise SpringlabError(f"{s.label}: both ends ride on body {model.bodies[ends[0][0]]!r} (fixed to each "

@@ -45,7 +45,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.errors import AttachmentError, SpringlabError
+from springlab.errors import SpringlabError
 
 
 def sign_char(value: float) -> str:
@@ -143,86 +143,11 @@ class Spring:
         return Spring(self.i, self.j, self.a, self.b, self.k * factor, self.free_length, self.initial_tension * factor)
 
 
-def check_springs(chain, springs) -> tuple[Spring, ...]:
-    """Validate that every spring fits the chain (j <= n) and that its energy over the
-    chain's reach is a finite number of joules; return them as a tuple."""
-    from springlab.model.chain import Chain
-
-    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
-    if isinstance(springs, Spring) or isinstance(springs, str) or not hasattr(springs, "__iter__"):
-        raise SpringlabError(f"springs must be a sequence of Spring objects, got {springs!r}")
-    springs = tuple(springs)
-    reach = float(sum(chain.r))
-    for s in springs:
-        if not isinstance(s, Spring):
-            raise SpringlabError(f"expected Spring objects, got {type(s).__name__}")
-        if s.j > chain.n:
-            raise SpringlabError(
-                f"{s.label} attaches to link {s.j}, but the chain has only {chain.n} links"
-            )
-        length = np.float64(reach + abs(s.a) + abs(s.b))  # numpy: an overflow is inf, not an OverflowError
-        with np.errstate(over="ignore"):
-            if not np.isfinite(length * length):
-                end, value = ("a", s.a) if abs(s.a) >= abs(s.b) else ("b", s.b)
-                raise SpringlabError(f"{end} of {s.label} = {value:g} m puts its end so far from its joint that the "
-                                     f"spring's energy overflows: give the attachment in m (the arm reaches {reach:g} m)")
-            if not np.isfinite(s.k * length * length):
-                raise SpringlabError(f"k of {s.label} = {s.k:g} N/m overflows the spring's energy "
-                                     f"(k L^2 with L ~ {float(length):g} m): give k in N/m")
-    return springs
-
-
-def measured_from_other_joints(chain, springs) -> tuple[Spring, ...]:
-    """The springs as they would be built if a and b were read from the other joint of each
-    link: end A at a from link i's **proximal** joint (A = J_{i-1} + a x_i, i.e. a - r_i in
-    the convention above; a ground spring keeps its a, the ground having one joint), end B at
-    b from link j's **distal** joint (B = J_j + b x_j, i.e. b + r_j). 000 Eq. (19) and the
-    text below it fix the reading of this module; this one shows why it matters.
-
-    :returns: springs in this module's convention (m, N/m)
-    """
-    out = []
-    for s in check_springs(chain, springs):
-        a = s.a - chain.length(s.i) if s.i >= 2 else s.a
-        out.append(Spring(s.i, s.j, a, s.b + chain.length(s.j), s.k, s.free_length, s.initial_tension))
-    return tuple(out)
-
-
-def check_attachments(chain, springs, *, max_extension: float | None = None) -> None:
-    """Raise :class:`~springlab.errors.AttachmentError` if a spring end lies off its link.
-
-    An end on the link side of its joint (a < 0 on link i >= 2, b > 0 on link j)
-    must stay within the link: |a| <= r_i, b <= r_j. An end on the other side
-    (a > 0 past link i's distal joint, b < 0 behind link j's proximal joint) sits
-    on a bracket that extends the link; ``max_extension`` (m) bounds it if given.
-    """
-    from springlab.model.chain import Chain
-
-    _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
-    springs = check_springs(chain, springs)
-    max_extension = _checks.optional_positive("max_extension", max_extension, "m")
-    for s in springs:
-        if s.i >= 2 and s.a < 0 and -s.a > chain.length(s.i) * (1 + 1e-12):
-            raise AttachmentError(
-                f"a_{s.label} = {s.a:.6g} m puts end A beyond link {s.i}'s proximal joint "
-                f"(r_{s.i} = {chain.length(s.i):g} m): the attachment is off the link")
-        if s.b > 0 and s.b > chain.length(s.j) * (1 + 1e-12):
-            raise AttachmentError(
-                f"b_{s.label} = {s.b:.6g} m puts end B beyond link {s.j}'s distal joint "
-                f"(r_{s.j} = {chain.length(s.j):g} m): the attachment is off the link")
-        if max_extension is not None:
-            for name, value, extended in (("a", s.a, s.a > 0), ("b", s.b, s.b < 0)):
-                if extended and abs(value) > max_extension:
-                    raise AttachmentError(
-                        f"{name}_{s.label} = {value:.6g} m needs a bracket longer than "
-                        f"max_extension = {max_extension:g} m")
-
-
 @dataclass(frozen=True)
 class PointSpring:
     """A spring between two points fixed in two bodies of a :class:`~springlab.model.revolute.RevoluteChain`:
     the general spring, attached anywhere (the papers' springs on the joint lines are special
-    cases: :func:`point_springs`). Its field names are the contract of ``springlab design --json``.
+    cases: :func:`springlab.model.chain.point_springs`). Its field names are the contract of ``springlab design --json``.
 
     :ivar link_a: the body of end A (its name)
     :ivar point_a: end A (m), in link_a's frame (a URDF link's own frame)
@@ -305,23 +230,6 @@ class PointSpring:
         if self.pulley_radius > 0:
             out |= {"pulley_radius": self.pulley_radius, "lead": list(self.lead)}
         return out
-
-
-def point_springs(chain, springs) -> tuple[PointSpring, ...]:
-    """The papers' springs S(i, j) on a chain's joint lines as springs between points of the bodies
-    of :meth:`springlab.model.chain.Chain.revolute_chain` (body 'ground' and 'link j', each
-    link's frame at its proximal joint with x along the link):
-
-    A = J_i + a x_i is (r_i + a, 0, 0) in link i's frame (a, 0, 0) on the ground, whose frame
-    is at the base joint with x up; B = J_{j-1} + b x_j is (b, 0, 0) in link j's frame.
-    """
-    springs = check_springs(chain, springs)
-    out = []
-    for s in springs:
-        point_a = (s.a if s.i == 1 else chain.length(s.i) + s.a, 0.0, 0.0)
-        out.append(PointSpring(chain_body(s.i), point_a, chain_body(s.j), (s.b, 0.0, 0.0), s.k,
-                               s.free_length, s.initial_tension))
-    return tuple(out)
 
 
 def chain_body(j: int) -> str:

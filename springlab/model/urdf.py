@@ -49,7 +49,7 @@ negative principal moment, or one larger than the sum of the other two, beyond
 base, whose inertia is never used, is only noted; on the general model, a mesh that would give a
 false outline (:class:`springlab.model.shapes.RefusedMeshError`).
 Refused at once, before the text is parsed into objects (its elements counted as they stream
-past): a text of more than :data:`springlab.model.armfile.MAX_FILE_BYTES`, more movable joints
+past): a text of more than 16 MiB, more movable joints
 than an arm of ``max_links`` links can have (or than :data:`MAX_MOVABLE_JOINTS`), more than
 :data:`MAX_BODIES` links. A file refused that another up (:data:`UP_AXES`) would read is refused
 with that up named (``--up 0,1,0`` for a y-up export). Trees of fixed bodies are walked with a
@@ -68,6 +68,8 @@ import numpy as np
 
 from springlab import _checks
 from springlab.errors import LineChainError, MeshError, SpringlabError, UpAdviceError
+from springlab.model.chain import STANDARD_GRAVITY
+from springlab.model.revolute import RevoluteChain
 from springlab.model.rotations import rot_axis, rot_rpy
 
 SLIDING = ("prismatic", "planar", "floating")
@@ -525,18 +527,15 @@ def _count(text: str, source: str) -> tuple[int, int]:
 
 def _check_size(text: str, source: str, max_links: int | None) -> None:
     """Refuse, before anything is built, a URDF text longer than
-    :data:`springlab.model.armfile.MAX_FILE_BYTES`, one of more than :data:`MAX_BODIES` links, or
+    16 MiB, one of more than :data:`MAX_BODIES` links, or
     one with more movable joints than an arm of ``max_links`` links (ground included; None: no
     such limit) can have, or than :data:`MAX_MOVABLE_JOINTS`."""
-    from springlab import _checks
-    from springlab.model.armfile import MAX_FILE_BYTES
-
     if max_links is not None:
         max_links = _checks.count("max_links", max_links, least=2,
                                   why=" (links with the ground), or None for no limit but MAX_MOVABLE_JOINTS")
-    if len(text) > MAX_FILE_BYTES:
+    if len(text) > _checks.MAX_FILE_BYTES:
         raise SpringlabError(f"{source}: {len(text) / 2 ** 20:.1f} MiB of URDF text is more than springlab reads "
-                             f"({MAX_FILE_BYTES / 2 ** 20:g} MiB; an arm's URDF is a few kB a link): give the URDF of "
+                             f"({_checks.MAX_FILE_BYTES / 2 ** 20:g} MiB; an arm's URDF is a few kB a link): give the URDF of "
                              "the arm's own serial chain")
     bodies, movable = _count(text, source)
     most = None if max_links is None else 3 * (max_links - 1)
@@ -864,9 +863,6 @@ def read_revolute_chain(text: str, *, source: str = "arm.urdf", up=None, tip: st
 
     The keywords ``tip``, ``base``, ``payload`` and ``up`` are those of :func:`read_urdf`.
     """
-    from springlab.model.chain import STANDARD_GRAVITY
-    from springlab.model.revolute import RevoluteChain
-
     g = STANDARD_GRAVITY if g is None else _checks.positive("g", g, unit="m/s^2")
     sel = _select(text, source=source, up=up, max_links=None, tip=tip, base=base, payload=payload)
     pose, owner, movers, frames = {sel.root: np.eye(4)}, {sel.root: 0}, [], [np.eye(4)]

@@ -266,7 +266,7 @@ def _design(args) -> int:
     if args.sheet:
         _write_sheet(args, spec, chosen, out)
     if mjcf:
-        from springlab.model.springs import point_springs
+        from springlab.model.chain import point_springs
 
         chain = spec.chain()
         _write_mjcf(mjcf, chain.revolute_chain(spec.name), point_springs(chain, chosen.springs), None)
