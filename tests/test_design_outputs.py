@@ -341,3 +341,23 @@ def test_payload_peaks_skip_poses_where_a_cable_has_no_line_of_action():
     fine = length > cable.pulley_radius
     expected = payload_torques(model, [cable], q[fine], ROBOTS["SO-101"].tip, [0.0, 0.5])
     np.testing.assert_array_equal(peaks, expected)
+
+
+def test_output_piped_into_a_reader_that_stops_is_no_internal_error(tmp_path):
+    """`springlab design arm.urdf | head -1`: the reader closes the pipe after one line; the command stops
+    quietly with the shell's SIGPIPE status (141), never 'internal error'. Negative control: read to the
+    end, it finishes with its own status."""
+    import subprocess
+    import sys
+
+    urdf = tmp_path / "two.urdf"
+    urdf.write_text(TWO_LINKS)
+    command = [sys.executable, "-m", "springlab.workbench.cli", "design", str(urdf), "--tip", "tool", "--quiet",
+               "--json", str(tmp_path / "d.json")]
+    run = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    run.stdout.readline()
+    run.stdout.close()  # as `head -1` does
+    err = run.stderr.read().decode()
+    assert run.wait(timeout=120) == 141 and "internal error" not in err, err
+    whole = subprocess.run(command, capture_output=True, text=True, timeout=120)
+    assert whole.returncode in (0, 3) and "internal error" not in whole.stderr

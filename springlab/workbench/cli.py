@@ -729,6 +729,9 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print("springlab: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # the output piped into a reader that stopped (`| head`): no defect, nothing to say
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # Python's exit flush must not fail again
+        return 141  # 128 + SIGPIPE, as a shell tool's
     except Exception as err:  # a defect in springlab: one line, the traceback on request
         if args.debug:
             raise
