@@ -8,9 +8,10 @@ import json
 import numpy as np
 import pytest
 
-from springlab.design.arms import design_model, structure
+from springlab.design.arms import design_model
 from springlab.design.hardware import parts, spring_clearance
 from springlab.design.layouts import belt_layout
+from springlab.design.structure import structure
 from springlab.energy.geometry import gravity_torques, joint_torques
 from springlab.errors import SpringlabError
 from springlab.model.robots import load_robot, robot_urdf

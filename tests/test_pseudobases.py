@@ -7,8 +7,9 @@ import json
 import numpy as np
 import pytest
 
-from springlab.design.arms import structure, workspace_ranges
+from springlab.design.arms import workspace_ranges
 from springlab.design.pseudobases import pseudobase_layout
+from springlab.design.structure import structure
 from springlab.energy.geometry import gravity_torques, joint_torques, potential
 from springlab.errors import SpringlabError
 from springlab.model.revolute import body_frames

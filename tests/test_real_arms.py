@@ -7,14 +7,8 @@ import json
 import numpy as np
 import pytest
 
-from springlab.design.arms import (
-    design_model,
-    ends_outside,
-    parse_workspace,
-    planar_springs,
-    structure,
-    workspace_ranges,
-)
+from springlab.design.arms import design_model, ends_outside, parse_workspace, workspace_ranges
+from springlab.design.structure import planar_springs, structure
 from springlab.energy import geometry, simulation
 from springlab.errors import SpringlabError
 from springlab.model.robots import OTHER_ARMS, load_robot, robot_urdf

@@ -10,13 +10,8 @@ import re
 import numpy as np
 import pytest
 
-from springlab.design.arms import (
-    BRACKET,
-    attachment_boxes,
-    ends_outside,
-    planar_springs,
-    structure,
-)
+from springlab.design.arms import ends_outside
+from springlab.design.structure import BRACKET, attachment_boxes, planar_springs, structure
 from springlab.energy import geometry
 from springlab.model.robots import load_robot, robot_urdf, robots_folder
 from springlab.model.shapes import ROUND_POINTS, Shape, link_shapes, resolve_mesh, shape_points

@@ -1,7 +1,7 @@
 """Spring layouts an engineer builds on a real arm, beside the search's two-point springs.
 
 **Belts carrying a level reference** (:func:`belt_layout`; paper 001's pseudobases on a real arm).
-Where the loaded joints form a planar chain (:func:`~springlab.design.arms.structure`), the body
+Where the loaded joints form a planar chain (:func:`~springlab.design.structure.structure`), the body
 before the first loaded joint turns about the vertical only: its axes are a level reference. A 1:1
 belt (:meth:`~springlab.model.revolute.RevoluteChain.with_belt`) carries those axes to each later
 loaded joint, and one zero-free-length spring per link, from a post on that level frame at the
@@ -10,7 +10,7 @@ above the joint and the point at c on the link, 001 Eq. (16), K l_CA l_CB = mu g
 when the post is along "up" (001 Eq. (13)) and c along the link's first moment sigma (001 Eq. (14)).
 Each spring spans one joint, so it stays as short as its lever: between |p| - |c| and |p| + |c|.
 
-In the plane (complex coordinates, :func:`~springlab.design.arms.planar_moments`) link k's gravity
+In the plane (complex coordinates, :func:`~springlab.design.structure.planar_moments`) link k's gravity
 energy is g Re(conj(i) e^{i theta_k} G_k), G_k its subsystem's first moment (001 Eq. (5), :func:`link_moments`
 by the paper-001 chapter's own code) and the spring's k Re(conj(c_0) c_k e^{i theta_k}) with
 c_0 = -p: their sum is constant when k conj(c_0) c_k = -g conj(i) G_k. Only the product is fixed;
@@ -38,7 +38,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.design.arms import END_GRID, PARALLEL, RATE_DIGITS, Structure, planar_moments
+from springlab.design.arms import END_GRID, RATE_DIGITS
+from springlab.design.structure import PARALLEL, Structure, planar_moments
 from springlab.errors import SpringlabError
 from springlab.model.revolute import RevoluteChain
 from springlab.model.springs import PointSpring
@@ -177,7 +178,7 @@ def without_light(model: RevoluteChain, found: Structure, share: float, q) -> St
     (named, with the torque they keep), its planar chain judged again on the poses ``q`` (N, n) rad: the
     SO-101's wrist roll, 0.3 % of its shoulder's peak, keeps its three lifting joints from being a planar
     chain otherwise. What the light joints' masses do to the heavier ones is then left to the check."""
-    from springlab.design.arms import planar_chain
+    from springlab.design.structure import planar_chain
     from springlab.model.revolute import body_frames, joint_axes
 
     peak = np.asarray(found.peak)

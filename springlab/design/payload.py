@@ -443,7 +443,7 @@ def _holds(nominal: float, travel) -> tuple[float, float]:
 def _travel(model: RevoluteChain, springs, dial: PayloadDial, reach) -> tuple[float, float]:
     """The payload changes (kg, low <= 0 <= high when every end starts inside) over which every end
     the dial moves stays in its body's box: each end moves on a line, so per box face a bound."""
-    from springlab.design.arms import attachment_boxes
+    from springlab.design.structure import attachment_boxes
 
     centres, half = attachment_boxes(model, reach)
     low, high = -np.inf, np.inf

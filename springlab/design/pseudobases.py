@@ -49,7 +49,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.design.arms import PARALLEL, Structure
 from springlab.design.layouts import (
     AXIAL_GAP,
     SHARE,
@@ -59,6 +58,7 @@ from springlab.design.layouts import (
     axial_extent,
     without_light,
 )
+from springlab.design.structure import PARALLEL, Structure
 from springlab.errors import SpringlabError
 from springlab.model.revolute import RevoluteChain
 from springlab.model.springs import PointSpring
@@ -154,7 +154,7 @@ def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = 
     :raises SpringlabError: when a joint before the first loaded one turns about a non-vertical axis (no body
         stays level), or ``share`` is outside [0, 1)
     """
-    from springlab.design.arms import zero_pose
+    from springlab.design.structure import zero_pose
     from springlab.mechanisms.pseudobase.subsystems import subsystem_moments
 
     share = _checks.number("share", share)

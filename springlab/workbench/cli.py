@@ -355,8 +355,9 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     print(design.tolerance_table())
     study = None
     if args.tip and design.ideal:
-        from springlab.design.arms import BRACKET, ends_outside
+        from springlab.design.arms import ends_outside
         from springlab.design.payload import payload_study
+        from springlab.design.structure import BRACKET
 
         nominal = payload or 0.0
         low, high = args.payloads or (0.0, nominal + 1.0)
