@@ -2,31 +2,12 @@
 from a URDF's own frames), its structure with proof, exact balance where the structure allows
 it and the best springs elsewhere.
 
-**Structure** (:func:`~springlab.design.structure.structure`). A joint's gravity torque is a trigonometric polynomial of the
-joint angles; one that vanishes at every pose of a random sample (round-off aside) vanishes
-identically (a nonzero trigonometric polynomial is zero only on a set of measure zero). Such a
-joint is *unloaded*: the energy does not depend on it (dV/dq_i = its gravity torque = 0). The
-reason is named: a vertical axis (its own and every axis before it parallel to gravity, so it
-stays vertical), or the mass beyond it centred on its axis. The *loaded* joints form a
-**planar chain** when they are consecutive, their axes parallel, and every joint before them
-turns about the vertical: then their axes stay horizontal at every pose, gravity acts in their
-plane, and the energy is that of a planar chain whose links carry the bodies beyond (the
-unloaded joints after them do not change it).
+**Structure** (:func:`~springlab.design.structure.structure`, in :mod:`springlab.design.structure`):
+which joints gravity loads, with proof, and whether the loaded joints form a **planar chain**.
 
-**Exact balance of a planar chain** (:func:`~springlab.design.structure.planar_springs`). In the plane (a complex coordinate
-z = x + i y, y up), a point fixed to planar link k sits at
-z = o + sum_{t<k} e^{i theta_t} l_t + e^{i theta_k} c, theta_t the link's absolute angle, l_t the
-vector from joint t to joint t+1. Gravity's energy is g sum_k Re(conj(i) e^{i theta_k} G_k)
-(G_k: the first moment of everything link k carries about its joint, the links beyond counted at
-its next joint), and a zero-free-length spring S(j, k) of rate kappa, from c_j before joint j+1
-to c_k beyond joint k, adds kappa Re(conj(c_s) c_t e^{i (theta_t - theta_s)}) for every pair
-j <= s < t <= k of the links it spans (|B - A|^2 expanded). Balance: every pair's coefficient
-vanishes. A spring's own pair (j, k) takes any complex value kappa conj(c_j) c_k; the pairs
-inside its span take what its intermediate links give. So the springs are chosen from the
-longest span to the shortest, each cancelling what its pair has collected: one spring per pair
-at most (m (m + 1) / 2 for m planar links), every one solvable, hence **exact balance exists for
-every planar chain**, centres of mass anywhere in or off the plane (an offset along the axes is
-horizontal and costs nothing). Ends off the plane (along the axes) add a constant length only.
+**Exact balance of a planar chain** (:func:`~springlab.design.structure.planar_springs`): one
+zero-free-length spring per pair of planar links at most, every one solvable
+(:mod:`springlab.design.structure` derives it).
 
 **Best springs elsewhere** (:func:`best_springs`): attachment points within each body's reach
 and rates that minimise the largest holding torque over the workspace (a greedy choice of springs,

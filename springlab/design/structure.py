@@ -11,8 +11,20 @@ turns about the vertical: then their axes stay horizontal at every pose, gravity
 plane, and the energy is that of a planar chain whose links carry the bodies beyond (the
 unloaded joints after them do not change it).
 
-**Exact balance of a planar chain** (:func:`planar_springs`): see :mod:`springlab.design.arms`, which
-designs an arm from these (the search, its realisation and its report).
+**Exact balance of a planar chain** (:func:`planar_springs`). In the plane (a complex coordinate
+z = x + i y, y up), a point fixed to planar link k sits at
+z = o + sum_{t<k} e^{i theta_t} l_t + e^{i theta_k} c, theta_t the link's absolute angle, l_t the
+vector from joint t to joint t+1. Gravity's energy is g sum_k Re(conj(i) e^{i theta_k} G_k)
+(G_k: the first moment of everything link k carries about its joint, the links beyond counted at
+its next joint), and a zero-free-length spring S(j, k) of rate kappa, from c_j before joint j+1
+to c_k beyond joint k, adds kappa Re(conj(c_s) c_t e^{i (theta_t - theta_s)}) for every pair
+j <= s < t <= k of the links it spans (|B - A|^2 expanded). Balance: every pair's coefficient
+vanishes. A spring's own pair (j, k) takes any complex value kappa conj(c_j) c_k; the pairs
+inside its span take what its intermediate links give. So the springs are chosen from the
+longest span to the shortest, each cancelling what its pair has collected: one spring per pair
+at most (m (m + 1) / 2 for m planar links), every one solvable, hence **exact balance exists for
+every planar chain**, centres of mass anywhere in or off the plane (an offset along the axes is
+horizontal and costs nothing). Ends off the plane (along the axes) add a constant length only.
 """
 
 from __future__ import annotations
