@@ -71,10 +71,19 @@ def on_grid(x) -> tuple:
     return tuple(float(np.round(v / END_GRID) * END_GRID) + 0.0 for v in x)
 
 
+@dataclass(frozen=True)
 class Plane:
     """What a spring's plane (:class:`SpringPlane`, :class:`springlab.design.pseudobases.Subsystem`) shares:
-    its link's body ``link``, the frame its post stands on (``level``, ``level_origin``, ``level_rotation``) and
-    the zero pose's frames (``R0``, ``o0``)."""
+    its link's body ``link``, the frame its post stands on (``level``, ``level_origin``, ``level_rotation``),
+    the zero pose's frames (``R0``, ``o0``) and the link's gravity term ``gG`` (N m)."""
+
+    link: int
+    level: str
+    level_origin: np.ndarray
+    level_rotation: np.ndarray
+    R0: np.ndarray
+    o0: np.ndarray
+    gG: complex
 
     def placed(self, model: RevoluteChain, point, post, k: float) -> PointSpring:
         """The spring from ``point`` on the link to ``post`` (world, zero pose, m), rate ``k`` (N/m), its ends on
@@ -103,13 +112,6 @@ class SpringPlane(Plane):
     up: np.ndarray
     w: np.ndarray
     d: float
-    link: int
-    level: str
-    level_origin: np.ndarray
-    level_rotation: np.ndarray
-    R0: np.ndarray
-    o0: np.ndarray
-    gG: complex
 
     def spring(self, model: RevoluteChain, c: complex, p: complex, k: float) -> PointSpring:
         """The spring from c on the link to the post p (complex offsets from the joint, in the plane), rate k
@@ -280,8 +282,8 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE,
         else:
             out = out.with_belt(model.joints[joint], model.bodies[first])
             level, level_origin = out.belts[-1].name, joint_at[k]
-        plane = SpringPlane(np.asarray(joint_at[k]), h, up, w, float(d), link, level, np.asarray(level_origin), R0[first],
-                       R0, o0, complex(model.g * G[k]))
+        plane = SpringPlane(link, level, np.asarray(level_origin), R0[first], R0, o0, complex(model.g * G[k]),
+                            joint_at=np.asarray(joint_at[k]), h=h, up=up, w=w, d=float(d))
         planes.append(plane)
         rooms.append(length)
         springs.append(plane.spring(out, c, p, kappa))

@@ -86,13 +86,6 @@ class Subsystem(Plane):
     ghat: np.ndarray
     ghat_link: np.ndarray
     up: np.ndarray
-    link: int
-    level: str
-    level_origin: np.ndarray
-    level_rotation: np.ndarray
-    R0: np.ndarray
-    o0: np.ndarray
-    gG: complex
 
     turn = False  # 001 Eqs. (13)-(14): the post on the vertical, the point on sigma
     tilt = 0.0  # the lead along sigma: the cable's path depends on phi alone
@@ -230,8 +223,8 @@ def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = 
             W = -model.g * np.conj(1j) * G  # the spring's k conj(c_0) c_k, as belt_layout's
             p = 1j * r_a
             c = W / (kappa * np.conj(-p))
-            plane = SpringPlane(np.asarray(o0[t + 1]), h, up, w[t], along, b, level, np.asarray(origin), R0[first],
-                                R0, o0, complex(model.g * G))
+            plane = SpringPlane(b, level, np.asarray(origin), R0[first], R0, o0, complex(model.g * G),
+                                joint_at=np.asarray(o0[t + 1]), h=h, up=up, w=w[t], d=along)
             springs.append(plane.spring(out, c, p, kappa))
             leads.append(plane.towards(c))
             side = 1.0 if along > 0 else -1.0
@@ -239,8 +232,8 @@ def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = 
         else:
             out = out.with_pseudobase(model.joints[t], level_name, along=along)
             level, origin = out.belts[-1].name, C[t]
-            plane = Subsystem(C[t], ghat, R0[b].T @ ghat, up, b, level, origin, R0[first], R0, o0,
-                              complex(model.g * size))
+            plane = Subsystem(b, level, origin, R0[first], R0, o0, complex(model.g * size),
+                              C=C[t], ghat=ghat, ghat_link=R0[b].T @ ghat, up=up)
             springs.append(plane.spring(out, complex(r_b), complex(0.0, r_a), kappa))
             leads.append(plane.towards(0j))
             outward.append((np.zeros(3), np.zeros(3)))  # C is already beside the links, its coils' width too
