@@ -29,35 +29,37 @@ def _run_id() -> str:
     return os.environ.get("PYTEST_XDIST_TESTRUNUID", f"pid {os.getpid()}")
 
 
-def quick_run(stem: str) -> Path:
-    """``build/test-notebooks/<stem>.ipynb``, notebook ``stem`` executed with quick=True in this
-    test run (its figures and claims in ``build/test-notebooks/figures/<stem>``)."""
-    OUT.mkdir(parents=True, exist_ok=True)
-    executed, done = OUT / f"{stem}.ipynb", OUT / f"{stem}.run"
-    with open(OUT / f"{stem}.lock", "w") as lock:
+def once(folder: Path, name: str, make: Callable[[], None]) -> None:
+    """``make()`` once in this test run, by whichever worker asks first: under the file lock
+    ``folder/<name>.lock``, unless ``folder/<name>.run`` says this run (xdist's run id) made it already."""
+    folder.mkdir(parents=True, exist_ok=True)
+    done = folder / f"{name}.run"
+    with open(folder / f"{name}.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if not (done.exists() and done.read_text() == _run_id()):
             done.unlink(missing_ok=True)
-            executed.unlink(missing_ok=True)
-            shutil.rmtree(FIGURES / stem, ignore_errors=True)
-            run_notebook(ROOT / "notebooks" / f"{stem}.ipynb", executed,
-                         {"quick": True, "figures_dir": str(FIGURES / stem)})
+            make()
             done.write_text(_run_id())
+
+
+def quick_run(stem: str) -> Path:
+    """``build/test-notebooks/<stem>.ipynb``, notebook ``stem`` executed with quick=True in this
+    test run (its figures and claims in ``build/test-notebooks/figures/<stem>``)."""
+    executed = OUT / f"{stem}.ipynb"
+
+    def make():
+        executed.unlink(missing_ok=True)
+        shutil.rmtree(FIGURES / stem, ignore_errors=True)
+        run_notebook(ROOT / "notebooks" / f"{stem}.ipynb", executed,
+                     {"quick": True, "figures_dir": str(FIGURES / stem)})
+
+    once(OUT, stem, make)
     return executed
 
 
 def shared(name: str, build: Callable[[], object]) -> object:
-    """``build()``, called once in this test run by whichever worker asks first; the others wait for it
-    and read its pickle (``build/test-notebooks/shared/<name>.pickle``)."""
-    folder = OUT / "shared"
-    folder.mkdir(parents=True, exist_ok=True)
-    stored, done = folder / f"{name}.pickle", folder / f"{name}.run"
-    with open(folder / f"{name}.lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        if done.exists() and done.read_text() == _run_id():
-            return pickle.loads(stored.read_bytes())
-        done.unlink(missing_ok=True)
-        result = build()
-        stored.write_bytes(pickle.dumps(result))
-        done.write_text(_run_id())
-        return result
+    """``build()``, called once in this test run by whichever worker asks first (:func:`once`); every
+    caller reads its pickle (``build/test-notebooks/shared/<name>.pickle``)."""
+    stored = OUT / "shared" / f"{name}.pickle"
+    once(OUT / "shared", name, lambda: stored.write_bytes(pickle.dumps(build())))
+    return pickle.loads(stored.read_bytes())

@@ -17,7 +17,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from quickruns import FIGURES, quick_run
+from quickruns import FIGURES, once, quick_run
 from quickruns import OUT as RUNS
 from quickruns import STEMS as ALL_STEMS
 
@@ -37,24 +37,19 @@ needs_browser = pytest.mark.skipif(site.find_browser() is None and not REQUIRED,
 def built():
     """build/book-check/site: the book of every notebook's quick run, with the API reference,
     built once per test run: the first worker to get here builds it, under a lock, and the
-    others (pytest-xdist) read it."""
-    import fcntl
+    others (pytest-xdist) read it (tests/quickruns.py's ``once``)."""
 
-    run = os.environ.get("PYTEST_XDIST_TESTRUNUID", f"pid {os.getpid()}")
-    OUT.parent.mkdir(parents=True, exist_ok=True)
-    with open(OUT.parent / "book-check.lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        done = OUT / "built-by"
-        if not (done.exists() and done.read_text() == run):
-            shutil.rmtree(OUT, ignore_errors=True)
-            for stem in reversed(ALL_STEMS):  # the notebook tests run them first to last: meet in the middle
-                assert site.executed_errors(quick_run(stem)) == []
-            notebooks = OUT / "notebooks"
-            notebooks.mkdir(parents=True)
-            for stem in ALL_STEMS:
-                shutil.copyfile(RUNS / f"{stem}.ipynb", notebooks / f"{stem}.ipynb")
-            site.build_site(notebooks, OUT / "site", FIGURES, OUT / "work")
-            done.write_text(run)
+    def make():
+        shutil.rmtree(OUT, ignore_errors=True)
+        for stem in reversed(ALL_STEMS):  # the notebook tests run them first to last: meet in the middle
+            assert site.executed_errors(quick_run(stem)) == []
+        notebooks = OUT / "notebooks"
+        notebooks.mkdir(parents=True)
+        for stem in ALL_STEMS:
+            shutil.copyfile(RUNS / f"{stem}.ipynb", notebooks / f"{stem}.ipynb")
+        site.build_site(notebooks, OUT / "site", FIGURES, OUT / "work")
+
+    once(OUT.parent, "book-check", make)
     return OUT / "site"
 
 
