@@ -13,16 +13,12 @@ import time
 import numpy as np
 import pytest
 
-from springlab.design import arms
-from springlab.design.arms import (
-    AUDIT_SAMPLES,
-    ArmDesign,
-    defined_torques,
-    design_model,
-    workspace_ranges,
-)
+from springlab.design import realise
+from springlab.design.arms import ArmDesign, design_model, workspace_ranges
+from springlab.design.audit import AUDIT_SAMPLES
 from springlab.design.collision import Sampler
 from springlab.design.payload import payload_study
+from springlab.design.realise import defined_torques
 from springlab.energy.geometry import gravity_torques, joint_torques
 from springlab.errors import SpringlabError
 from springlab.model.robots import ROBOTS, load_robot, robot_urdf
@@ -124,12 +120,12 @@ def test_a_rebalanced_spring_left_with_nothing_is_left_out(monkeypatch):
     model = load_robot("SO-101")
     q = model.random_q(200, 3)
     spring = PointSpring("shoulder_link", (-0.03, -0.05, -0.05), "lower_arm_link", (0.04, 0.0, 0.0), 200.0)
-    monkeypatch.setattr(arms, "_worst", lambda *a: 1.0)  # the leads "leave too much": re-balance
-    monkeypatch.setattr(arms, "_rebalance", lambda m, springs, cable, *a: [s.scaled(1e-3) for s in springs])
-    realised, kinds, _ = arms.realise_springs(model, [spring], q, pulley_radius=0.005)
+    monkeypatch.setattr(realise, "_worst", lambda *a: 1.0)  # the leads "leave too much": re-balance
+    monkeypatch.setattr(realise, "_rebalance", lambda m, springs, cable, *a: [s.scaled(1e-3) for s in springs])
+    realised, kinds, _ = realise.realise_springs(model, [spring], q, pulley_radius=0.005)
     assert realised == (None,) and "carries next to nothing" in kinds[0] and "S1" in kinds[0]
-    monkeypatch.setattr(arms, "_rebalance", lambda m, springs, cable, *a: [s.scaled(0.5) for s in springs])
-    realised, kinds, _ = arms.realise_springs(model, [spring], q, pulley_radius=0.005)  # the control: kept
+    monkeypatch.setattr(realise, "_rebalance", lambda m, springs, cable, *a: [s.scaled(0.5) for s in springs])
+    realised, kinds, _ = realise.realise_springs(model, [spring], q, pulley_radius=0.005)  # the control: kept
     assert realised[0] is not None and sum(r.k for r in realised) == pytest.approx(100.0)  # side by side: k / m each
 
 
@@ -247,8 +243,8 @@ def test_a_xacro_file_is_refused_with_how_to_expand_it(tmp_path, capsys):
 
 
 def test_a_spring_left_out_is_named_in_the_changes_and_the_json(monkeypatch):
-    monkeypatch.setattr(arms, "_worst", lambda *a: 1.0)
-    monkeypatch.setattr(arms, "_rebalance", lambda m, springs, cable, *a: [
+    monkeypatch.setattr(realise, "_worst", lambda *a: 1.0)
+    monkeypatch.setattr(realise, "_rebalance", lambda m, springs, cable, *a: [
         s.scaled(1e-3) if i == cable[0] else s for i, s in enumerate(springs)])
     design = design_model(load_robot("SO-101"), samples=40, fit_poses=60, max_springs=3, pulley_radius=0.005,
                           collisions=False)  # what the realisation leaves out: the limits' box will do
@@ -284,7 +280,8 @@ def test_an_output_that_overwrites_the_arm_or_another_output_is_refused(outputs,
 
 
 def test_a_cable_whose_end_crosses_its_lead_line_is_found_and_avoided(ur5):
-    from springlab.design.arms import CROSSING, Audit, lead_angles
+    from springlab.design.audit import Audit
+    from springlab.design.realise import CROSSING, lead_angles
 
     model, ranges = ur5.model, workspace_ranges(ur5.model)
     spring = dataclasses.replace(ur5.ideal[1], pulley_radius=0.005, lead=(0.0, 1.0, 0.0))  # S2 along link y
@@ -312,7 +309,7 @@ def test_a_cable_whose_end_crosses_its_lead_line_is_found_and_avoided(ur5):
 def test_the_audits_worst_poses_leave_every_case_defined():
     # a cable undefined near some poses (|B - A| within its pulley's radius) beside springs defined everywhere:
     # the poses the other cases climb to join the check only where the cable has a line of action too
-    from springlab.design.arms import Audit
+    from springlab.design.audit import Audit
     from springlab.energy.geometry import spring_lengths
     from springlab.model.revolute import body_frames
 

@@ -192,7 +192,7 @@ def test_a_spring_too_strong_for_one_wire_is_wound_as_two_side_by_side():
     """The UR10's elbow spring (2692 N/m, some 1600 N) exceeds every stocked wire's stress within the
     share the sheet designs to; two springs of half the rate on the same ends carry it, and with point
     pulleys the realised set holds the arm as the ideal one does."""
-    from springlab.design.arms import realise_springs
+    from springlab.design.realise import realise_springs
 
     model = load_robot("UR10")
     springs = planar_springs(model, structure(model))
@@ -230,7 +230,7 @@ def test_a_rebalanced_cable_that_meets_its_pulley_keeps_its_designed_ends(monkey
     """The cable springs' re-balance sees the fitting poses only; ends it moves so that the cable's end
     comes within the pulley's radius of A at a pose of the check (a spring that cannot be built) must
     give way to the designed ends, not stop the design with an error."""
-    import springlab.design.arms as arms
+    import springlab.design.realise as arms
     from springlab.model.revolute import body_frames, world_points
 
     model = load_robot("UR5")
@@ -263,7 +263,7 @@ def test_a_group_at_round_off_chooses_no_rows_of_the_polish():
     whose torques are round-off (the Panda's vertical joint 1 with springs on its axis) would have
     those rows chosen by round-off: two CPUs' 1e-17 differ, so their programmes, and their springs,
     would differ. Such a group has no rows; the control shows the rows matter when the group is real."""
-    from springlab.design.arms import _minimax
+    from springlab.design.search import minimax
 
     def run(noise, size=1.0):
         def residual(v):  # group 0: x - 1; group 1: noise plus slopes 0.5 and 2 away from x = 0
@@ -272,7 +272,7 @@ def test_a_group_at_round_off_chooses_no_rows_of_the_polish():
         def jacobian(v, r):
             return np.array([[1.0], [0.5 * size], [2.0 * size]])
 
-        return _minimax(np.array([0.0]), np.array([-1.0]), np.array([1.0]), np.array([10.0]), residual, jacobian, 1,
+        return minimax(np.array([0.0]), np.array([-1.0]), np.array([1.0]), np.array([10.0]), residual, jacobian, 1,
                         groups=np.array([0, 1, 1]), spread=1.0)
 
     one, other = run([1e-17, 0.9e-17]), run([1e-17, 0.5e-17])  # the second row in, then out, at 0.7 (one step)
@@ -284,7 +284,7 @@ def test_springs_the_target_does_without_are_dropped():
     """The greedy search can add a spring that later ones make idle; the design keeps none the target
     does without. Spring 0 cancels gravity exactly, spring 1 has no rate: 1 goes, 0 stays (without it
     the whole gravity torque is left: the control)."""
-    from springlab.design.arms import _pruned
+    from springlab.design.search import _pruned
 
     rng = np.random.default_rng(0)
     F = rng.normal(size=(2, 16, 5, 2))  # two pairs' features at 5 poses, 2 joints

@@ -275,7 +275,7 @@ def test_clearance_is_measured_from_the_outlines_and_can_fail(tmp_path):
 def test_a_cable_whose_ends_meet_runs_over_a_point_pulley(tmp_path):
     """A spring whose ends pass within the pulley's radius of each other (here 4 mm apart, across the
     elbow) cannot wrap a 5 mm pulley: it is realised with a point pulley and named, never a crash."""
-    from springlab.design.arms import realise_springs
+    from springlab.design.realise import realise_springs
 
     model, _ = _arm(tmp_path)
     spring = PointSpring("upper", (0.0, 0.004, 0.4), "fore", (0.0, 0.0, 0.0), 50.0)

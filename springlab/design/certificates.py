@@ -55,7 +55,9 @@ from fractions import Fraction
 import numpy as np
 
 from springlab import _checks
+from springlab.design.highs import INF, solve
 from springlab.design.rules import as_slots
+from springlab.design.solve import linear_columns
 from springlab.energy.quadratic import gravity_entries
 from springlab.errors import SpringlabError
 from springlab.model.chain import Chain
@@ -83,7 +85,6 @@ def exact_system(chain: Chain, slots) -> tuple[list, list, dict]:
     sign, {entry: coefficient}) with the coefficients of 000 Eqs. (23a-d) (P: -1 at (i, j);
     A: -r_v at (i, v); B: r_u at (u, j); k: r_u r_v at (u, v)); ``gravity``: {(1, j): G_1,j}
     (000 Eq. 18). Every float of the arm is read exactly (``Fraction(x)``)."""
-    from springlab.design.solve import linear_columns
 
     _checks.instance("chain", chain, Chain)
     slots = list(as_slots(slots))
@@ -271,7 +272,6 @@ def relaxation_certificate(chain: Chain, slots, *, system: SignedSystem | None =
     """The Stiemke certificate that the linear relaxation of 000 Eqs. (39) has no solution with
     every quantity of its sign (module docstring), checked exactly; None when the relaxation has
     a solution (or no exact certificate could be made)."""
-    from springlab.design.highs import INF, solve
 
     system = system or SignedSystem(chain, slots)
     if not system.slots:
@@ -308,8 +308,6 @@ def coupling_certificate(chain: Chain, slots, *, system: SignedSystem | None = N
     variable.
     """
     from scipy.sparse import csc_matrix
-
-    from springlab.design.highs import INF, solve
 
     system = system or SignedSystem(chain, slots)
     if not system.slots or not system.couplings:

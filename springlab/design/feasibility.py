@@ -42,9 +42,30 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from springlab import _checks
-from springlab.design.rules import SpringSlot, as_slots, rule_violations
+from springlab.design.certificates import (
+    GRAVITY,
+    SignedSystem,
+    coupling_certificate,
+    relaxation_certificate,
+    relaxation_certificate_from,
+    sign_certificate,
+)
+from springlab.design.highs import INF, new_model, solve
+from springlab.design.highs import solve as solve_lp
+from springlab.design.rules import (
+    PATTERNS,
+    SpringSlot,
+    as_slots,
+    best_first_configurations,
+    enumerate_configurations,
+    rule_violations,
+)
+from springlab.design.solve import linear_columns
+from springlab.energy.geometry import gravity_energy, total_energy
+from springlab.energy.quadratic import balance_residual, gravity_entries
 from springlab.errors import SearchExhaustedError, SolverError, SpringlabError
-from springlab.model.chain import Chain
+from springlab.model.chain import Chain, random_directions, serial_chain
+from springlab.model.springs import Spring
 from springlab.tables import Table
 
 EPS = 1e-3
@@ -73,7 +94,6 @@ def alphabet(n: int, signs: str = "paper") -> list[SpringSlot]:
     n = _checks.links(n, "n")
     if signs not in SIGNS:
         raise SpringlabError(f"signs must be one of {SIGNS}, got {signs!r}")
-    from springlab.design.rules import PATTERNS
 
     out = []
     for i in range(1, n):
@@ -94,7 +114,6 @@ def _quantities(chain: Chain, s: SpringSlot) -> list[tuple[int, dict[tuple[int, 
     :func:`springlab.design.solve.linear_columns` (000 Eqs. 23a-d written linearly), with lengths
     measured in the mean link length. A quantity that enters no entry (A and B of a spring
     over one joint, k of one over fewer than three) is left out."""
-    from springlab.design.solve import linear_columns
 
     length = float(np.mean(chain.r))
     cols = linear_columns(chain, [s])[0]
@@ -114,7 +133,6 @@ class _Programme:
 
 def _programme(chain: Chain, items) -> _Programme:
     """The linear relaxation's equations for ``items``."""
-    from springlab.energy.quadratic import gravity_entries
 
     G = gravity_entries(chain.r, chain.d, chain.m, chain.g)
     scale = max(abs(v) for v in G.values())
@@ -167,7 +185,6 @@ def _phase_one_lp(prog: _Programme):
 
 def _new_highs():
     """A silent HiGHS model (:func:`springlab.design.highs.new_model`)."""
-    from springlab.design.highs import new_model
 
     return new_model()
 
@@ -216,8 +233,6 @@ class _Relaxation:
     def __init__(self, chain: Chain, kinds):
         import highspy
 
-        from springlab.design.certificates import GRAVITY, SignedSystem
-
         self.system = SignedSystem(chain, kinds)
         E = self.system.E
         self.col_scale = 1.0 / np.maximum(np.abs(E).max(axis=0), 1e-300)
@@ -240,7 +255,6 @@ class _Relaxation:
         """Stiemke multipliers for an infeasible relaxation chosen to leave few springs that could break
         them: minimise the negative parts of the absent kinds' coefficients (plus a little of |y|),
         with the present ones >= 0 summing to 1. One entry per equation, unscaled; None if none found."""
-        from springlab.design.highs import INF, solve
 
         rows, m = self.Es.shape
         present = np.ones(m, dtype=bool)
@@ -279,7 +293,6 @@ def relaxation_feasible(chain: Chain, slots) -> bool:
     every spring's quantities strictly of their signs; False is proved by the exact certificate
     :func:`springlab.design.certificates.relaxation_certificate`."""
     _checks.instance("chain", chain, Chain)
-    from springlab.design.certificates import relaxation_certificate
 
     slots = list(as_slots(slots))
     return bool(slots) and relaxation_certificate(chain, slots) is None
@@ -299,7 +312,6 @@ def balances_by_geometry(chain: Chain, springs, *, poses: int = ROUTE_TWO_POSES,
     _checks.instance("chain", chain, Chain)
     poses = _checks.count("poses", poses, least=2)
     seed = _checks.count("seed", seed)
-    from springlab.energy.geometry import gravity_energy, total_energy
 
     X = _random_poses(chain.n, poses, seed)
     return float(np.ptp(total_energy(chain, springs, X)) / np.ptp(gravity_energy(chain, X)))
@@ -308,7 +320,6 @@ def balances_by_geometry(chain: Chain, springs, *, poses: int = ROUTE_TWO_POSES,
 @functools.lru_cache(maxsize=16)
 def _random_poses(n: int, poses: int, seed) -> np.ndarray:
     """Route 2's poses, made once per (n, poses, seed): the searches check hundreds of designs."""
-    from springlab.model.chain import random_directions
 
     X = random_directions(n, poses, np.random.default_rng(seed))
     X.flags.writeable = False
@@ -367,11 +378,6 @@ def decide(chain: Chain, slots, *, seed=0) -> Decision:
     with every variable as a factor."""
     _checks.instance("chain", chain, Chain)
     slots = list(as_slots(slots))
-    from springlab.design.certificates import (
-        SignedSystem,
-        relaxation_certificate,
-        sign_certificate,
-    )
 
     system = SignedSystem(chain, slots)
     signed = _one_signed(_entry_terms(system), range(len(slots)), ())
@@ -388,7 +394,6 @@ def _after_relaxation(chain: Chain, slots, *, seed=0, system=None) -> Decision:
     as factors (one linear programme, infeasible at once for a multiset that balances), the rest of
     the design search (:func:`confirm`'s), and last the degree-2 certificate with every variable as a
     factor."""
-    from springlab.design.certificates import coupling_certificate
 
     searches = _searches(chain, slots, seed=seed)
     found = next(searches, None)  # Newton steps from the centre: cheap, and most balanceable multisets end here
@@ -481,11 +486,6 @@ def minimal_balanceable(chain: Chain, *, signs: str = "paper", max_nodes: int = 
     if most_springs is not None:
         most_springs = _checks.count("most_springs", most_springs, least=0)
     from tqdm import tqdm
-
-    from springlab.design.certificates import (
-        relaxation_certificate_from,
-        sign_certificate,
-    )
 
     start = time.perf_counter()
     items = alphabet(chain.n, signs)
@@ -601,10 +601,6 @@ def _searches(chain: Chain, slots, *, starts: int = 2, seed=0):
     if not slots:
         return  # no spring balances an arm with G_1,j > 0
     from scipy.optimize import least_squares, minimize
-
-    from springlab.design.highs import solve as solve_lp
-    from springlab.energy.quadratic import balance_residual, gravity_entries
-    from springlab.model.springs import Spring
 
     slots = list(slots)
     prog = _programme(chain, slots)
@@ -767,7 +763,6 @@ def random_arm(n: int, rng) -> Chain:
     masses 0.5-5 kg, g = 9.81 m/s^2."""
     n = _checks.links(n, "n")
     rng = _checks.rng("rng", rng)
-    from springlab.model.chain import serial_chain
 
     rng = np.random.default_rng(rng)
     r = rng.uniform(0.15, 0.45, n - 1)
@@ -881,8 +876,6 @@ def rules_against_physics(n: int, *, arms: int = 3, seed: int = 0, progress: boo
     seed = _checks.count("seed", seed)
     from tqdm import tqdm
 
-    from springlab.design.rules import enumerate_configurations
-
     rng = np.random.default_rng(seed)
     chains = [random_arm(n, rng) for _ in range(arms)]
     searches = [minimal_balanceable(c, progress=progress) for c in chains]
@@ -968,7 +961,6 @@ def fewest_springs(n: int, *, seed: int = 0, signs: str = "paper", max_nodes: in
     balanceable multiset of fewer springs would contain a minimal one, which the search would find.
     If it finds one, the smallest it finds is the fewest.
     """
-    from springlab.design.rules import best_first_configurations
 
     n = _checks.links(n, "n")
     start = time.perf_counter()

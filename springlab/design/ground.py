@@ -34,9 +34,11 @@ from springlab.design.solve import (
     find_design,
     minimise_largest_force,
 )
+from springlab.energy.simulation import hold_test
 from springlab.errors import SpringlabError, UnbalanceableError
+from springlab.executors import check_executor, map_ordered
 from springlab.model.armfile import ArmSpec
-from springlab.model.chain import Chain
+from springlab.model.chain import Chain, random_directions
 from springlab.tables import Table
 
 
@@ -61,8 +63,6 @@ def fewer_springs(spec_or_chain, count: int, *, max_extension: float | None = No
     the serial one.
     """
     from tqdm import tqdm
-
-    from springlab.executors import check_executor, map_ordered
 
     chain = _chain_of(spec_or_chain)
     executor = check_executor(executor)
@@ -173,9 +173,6 @@ def springs_per_n(family: dict, *, screen_up_to: int) -> list[SpringsPerN]:
     """For each arm of ``family`` ({n: ArmSpec}): the rules' best design (:func:`springlab.design.rank.design_arm`),
     the ground-spring design checked in exudyn (two poses, 2 s), and for n <= ``screen_up_to``
     the relaxation screen of every n - 2 spring set (:func:`relaxation_screen`)."""
-    from springlab.energy.simulation import hold_test
-    from springlab.model.chain import random_directions
-
     out = []
     for n, spec_n in family.items():
         arm_n = spec_n.chain()

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from springlab.design.cables import pulley_width, rope_mass
+from springlab.design.cables import ALUMINIUM, pulley_mass, pulley_width, rope_mass
 from springlab.design.collision import MARGIN, Piece, clearances
 from springlab.energy.geometry import cable_geometry
 from springlab.model.revolute import RevoluteChain, body_frames, world_points
@@ -254,7 +254,6 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
     :data:`BELT_TENSION`), or each RSSR module that keeps a pseudobase's vertical line (one per link, sized to its couple). Its
     loads are the largest over ``q``: a cable's pull, a pulley's load on its shaft, a post's force and bending
     moment at its root, a belt's moment and tension, a module's couple and its auxiliary link's force."""
-    from springlab.design.cables import ALUMINIUM, pulley_mass
 
     q = model.check_q(q)
     R, o = body_frames(model, q)
@@ -369,7 +368,6 @@ def _modules(model: RevoluteChain, couples: dict) -> list:
     pseudobase at or beyond its link. Its auxiliary link is a tube as long as the link, offset
     :data:`RSSR_OFFSET` of it, sized to buckle at :data:`BUCKLING` times the couple over the offset, with two ball
     joints; each pseudobase adds one."""
-    from springlab.design.cables import ALUMINIUM
 
     out = []
     links = sorted({t for b in couples for t in range(b.level, b.joint)})

@@ -38,10 +38,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.design.arms import END_GRID, RATE_DIGITS
-from springlab.design.structure import PARALLEL, Structure, planar_moments
+from springlab.design.buildable import Fitted
+from springlab.design.hardware import HOOK_GAP
+from springlab.design.realise import cable_for, coil_for, length_range
+from springlab.design.search import END_GRID, RATE_DIGITS, compass_search
+from springlab.design.structure import PARALLEL, Structure, planar_chain, planar_moments
 from springlab.errors import SpringlabError
-from springlab.model.revolute import RevoluteChain
+from springlab.mechanisms.pseudobase.subsystems import subsystem_moments
+from springlab.model.revolute import RevoluteChain, body_frames, joint_axes
 from springlab.model.springs import PointSpring
 from springlab.rounding import significant
 
@@ -66,7 +70,7 @@ have to swivel half a turn at once (the post sweeps a circle about the joint tha
 plane would cross)."""
 
 def on_grid(x) -> tuple:
-    """Coordinates (m, or a direction's components) rounded to :data:`~springlab.design.arms.END_GRID`, as
+    """Coordinates (m, or a direction's components) rounded to :data:`~springlab.design.search.END_GRID`, as
     the search keeps its ends: another CPU's round-off then moves none of them."""
     return tuple(float(np.round(v / END_GRID) * END_GRID) + 0.0 for v in x)
 
@@ -87,7 +91,7 @@ class Plane:
 
     def placed(self, model: RevoluteChain, point, post, k: float) -> PointSpring:
         """The spring from ``point`` on the link to ``post`` (world, zero pose, m), rate ``k`` (N/m), its ends on
-        :data:`~springlab.design.arms.END_GRID` and its rate to :data:`~springlab.design.arms.RATE_DIGITS`
+        :data:`~springlab.design.search.END_GRID` and its rate to :data:`~springlab.design.search.RATE_DIGITS`
         significant digits, as the search's: another CPU's round-off (1e-16) then moves no end and no rate,
         and draws the same figure."""
         on_link = self.R0[self.link].T @ (np.asarray(point) - self.o0[self.link])
@@ -180,8 +184,6 @@ def without_light(model: RevoluteChain, found: Structure, share: float, q) -> St
     (named, with the torque they keep), its planar chain judged again on the poses ``q`` (N, n) rad: the
     SO-101's wrist roll, 0.3 % of its shoulder's peak, keeps its three lifting joints from being a planar
     chain otherwise. What the light joints' masses do to the heavier ones is then left to the check."""
-    from springlab.design.structure import planar_chain
-    from springlab.model.revolute import body_frames, joint_axes
 
     peak = np.asarray(found.peak)
     largest = float(np.max(peak))
@@ -205,7 +207,6 @@ def link_moments(model: RevoluteChain, plane: dict) -> list:
     by :func:`springlab.mechanisms.pseudobase.subsystems.subsystem_moments`, the code the paper-001 chapter
     verifies: link k's bodies (from its joint's child to the next loaded joint; the last link carries every
     body beyond) lumped, O_{k-1} its joint's origin and O_k the next loaded joint's (the last link's own)."""
-    from springlab.mechanisms.pseudobase.subsystems import subsystem_moments
 
     R0, o0, bodies, joint_at, m = (plane[k] for k in ("R0", "o0", "bodies", "joint_at", "m"))
     masses, s_rows, r_rows = [], [], []
@@ -356,11 +357,10 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
     ``turn=False`` keeps both directions (only the rate and the two lengths move: paper 001's post stays on
     the vertical and the point on sigma, 001 Eqs. 13-14); ``tilt`` is the lead's out of the plane (rad). The
     search is a compass search that compares to 9 significant digits
-    (:func:`springlab.design.arms.compass_search`), so another CPU's round-off takes no other step.
+    (:func:`springlab.design.search.compass_search`), so another CPU's round-off takes no other step.
     Returns them unchanged for rho = 0."""
     if rho == 0:
         return c, p, k
-    from springlab.design.arms import compass_search
 
     theta = np.linspace(0.0, 2 * np.pi, ANGLES, endpoint=False) if angles is None else np.asarray(angles, float)
 
@@ -395,59 +395,15 @@ def _link_angles(plane: SpringPlane, R) -> np.ndarray:
     return np.radians(np.unique(np.round(theta)))
 
 
-BLOCKS = (1, 2, 3, 4)
-"""The pulley blocks a coil too long for its link is tried with, in turn: the coil moves 1 / n of the cable's
-path at n times its pull."""
-
-
-def coil_for(k: float, lengths, room: float, material: str, *, block: float = 0.0):
-    """The coil, pulley block and side-by-side count for a cable spring of rate ``k`` (N/m) over cable paths
-    ``lengths`` (m): the fewest side by side (up to :data:`~springlab.design.arms.MAX_PARALLEL`), then the
-    least block (:data:`BLOCKS`) whose coil is no longer than ``room`` (m) in service (less ``block``, m,
-    what a block's travelling sheave takes, for a block); where none fits, the
-    shortest coil of the fewest side by side (the design's flags then say so). Returns (coil, ratio, parallel) or (None, why)."""
-    from springlab.design.arms import MAX_PARALLEL
-    from springlab.design.buildable import cable_spring
-
-    lengths = np.asarray(lengths, dtype=float)
-    best, why = None, ""
-    for parallel in range(1, MAX_PARALLEL + 1):
-        for n in BLOCKS:
-            coil, reason = cable_spring(k * n * n / parallel, lengths / n, material)
-            why = why or reason
-            if coil is None:
-                continue
-            if coil.max_length <= room - (block if n > 1 else 0.0):
-                return coil, n, parallel
-            if best is None or (parallel, coil.max_length) < (best[2], best[0].max_length):
-                best = (coil, n, parallel)  # none fits: the fewest side by side, the shortest of those
-    return best if best is not None else (None, why)
-
-
-
-def cable_for(pull: float, given: float | None):
-    """The stocked cable for a pull (N) over a given pulley (m; None or 0: sized to the cable): the one with
-    the least pulley that carries it, among those the given pulley fits where one does (else by strength
-    alone: the design's flags name the pulley too small for it)."""
-    from springlab.design.cables import choose_cable
-
-    if given:
-        try:
-            return choose_cable(pull, pulley_radius=given)
-        except SpringlabError:
-            pass
-    return choose_cable(pull)
-
-
 def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_radius: float | None = 0.0,
                    cable=None) -> tuple:
     """Each spring of a layout as a coil on its link behind a pulley at its point, the cable running to the
     post (:func:`springlab.design.buildable.cable_spring`; up to
-    :data:`~springlab.design.arms.MAX_PARALLEL` side by side where one wire is too weak, and over a pulley
+    :data:`~springlab.design.realise.MAX_PARALLEL` side by side where one wire is too weak, and over a pulley
     block, :data:`BLOCKS`, where the coil would reach past its joint). Returns the realised springs,
     their kinds, their coils (:class:`~springlab.design.buildable.Fitted`: the coil, the cable's paths, the
     block and the cable) and the index of the layout's spring each realises, as
-    :func:`~springlab.design.arms.realise_springs` does; the coil lies along the link towards the joint
+    :func:`~springlab.design.realise.realise_springs` does; the coil lies along the link towards the joint
     (the cable arrives from there).
 
     The cable (:func:`springlab.design.cables.choose_cable`, or ``cable``) carries the spring's largest pull
@@ -459,10 +415,6 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
     :raises SpringlabError: naming a spring no stocked wire realises or no stocked cable carries, or a given
         cable that a given pulley is too small for
     """
-    from springlab.design.arms import length_range
-    from springlab.design.buildable import Fitted
-    from springlab.design.hardware import HOOK_GAP
-    from springlab.model.revolute import body_frames
 
     model = layout.model
     q = model.check_q(q)

@@ -22,6 +22,7 @@ from springlab.design.ground import ground_spring_design
 from springlab.design.rank import VERIFY_TOLERANCE, DesignReport, design_arm, workspace_poses
 from springlab.errors import SpringlabError, UnbalanceableError
 from springlab.model.armfile import ArmSpec
+from springlab.model.chain import UP
 from springlab.tables import Table
 
 
@@ -55,7 +56,6 @@ def pseudobase_summary(spec: ArmSpec, *, aux_mass_ratio: float = 0.09, pseudobas
     body and spring end placed for each workspace pose.
     """
     _checks.instance("spec", spec, ArmSpec, "ArmSpec (load_arm(path))")
-    from springlab.model.chain import UP
 
     chain = spec.chain()
     if not (0 <= aux_mass_ratio and pseudobase_mass >= 0 and post > 0):

@@ -36,9 +36,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from springlab import _checks
-from springlab.energy.geometry import joint_torques
-from springlab.errors import SpringlabError
-from springlab.model.revolute import RevoluteChain, check_point_springs
+from springlab.design.arms import ArmDesign, ends_outside
+from springlab.design.realise import defined_torques
+from springlab.design.structure import attachment_boxes
+from springlab.energy.geometry import gravity_torques, joint_torques, spring_lengths
+from springlab.errors import GeometryError, SpringlabError
+from springlab.model.revolute import RevoluteChain, body_frames, check_point_springs
 from springlab.model.springs import PointSpring
 from springlab.tables import Table
 
@@ -111,7 +114,6 @@ def _moved(spring: PointSpring, end: str, by) -> PointSpring:
 
 def _ground(model: RevoluteChain, q) -> int:
     """The last body the loaded joints do not move: bodies 0..this index are the loaded chain's base."""
-    from springlab.energy.geometry import gravity_torques
 
     peak = np.max(np.abs(gravity_torques(model, q)), axis=0)
     loaded = np.flatnonzero(peak > 1e-10 * max(float(np.max(peak)), 1e-300))
@@ -239,7 +241,6 @@ def _defined(model, springs, q) -> np.ndarray:
     """Route 2's holding torques (N m) at the poses where every spring has a line of action (a dial
     turned far can bring a cable's end within its pulley's radius: those poses count as 0 here, and
     :func:`payload_study` names them)."""
-    from springlab.design.arms import defined_torques
 
     tau = defined_torques(model, springs, q)[0]
     return np.where(np.isnan(tau), 0.0, tau)
@@ -247,7 +248,6 @@ def _defined(model, springs, q) -> np.ndarray:
 
 def _undefined(model, springs, q) -> int:
     """How many of the poses ``q`` leave a spring of ``springs`` without a line of action."""
-    from springlab.design.arms import defined_torques
 
     return int(np.sum(np.isnan(defined_torques(model, springs, q)[0][:, 0])))
 
@@ -396,7 +396,6 @@ def payload_study(design, frame: str, masses, *, nominal: float = 0.0, point=(0.
     ``point`` (m) in ``frame``: its dials (fitted on the design's first ``dial_poses`` poses) and
     route 2's peak holding torques at ``masses`` (kg) over all its poses. The realised springs' dial
     moves the same ends as the ideal springs' where the two designs pair spring by spring."""
-    from springlab.design.arms import ArmDesign, ends_outside
 
     _checks.instance("design", design, ArmDesign, "springlab ArmDesign (design_model)")
     masses = _checks.real_array("masses", masses, shape=(None,))
@@ -418,7 +417,6 @@ def payload_study(design, frame: str, masses, *, nominal: float = 0.0, point=(0.
     outside = np.array([ends_outside(model, ideal.turned(design.ideal, float(m) - nominal), reach) for m in masses])
     holds = {which: _holds(nominal, _travel(model, getattr(design, which), dial, reach))
              for which, dial in (("ideal", ideal), ("realised", realised))}
-    from springlab.model.revolute import body_frames
 
     frames = body_frames(model, q)
     stretch = tuple(_stretch(design, realised.turned(design.realised, float(m) - nominal), *frames) for m in masses)
@@ -443,7 +441,6 @@ def _holds(nominal: float, travel) -> tuple[float, float]:
 def _travel(model: RevoluteChain, springs, dial: PayloadDial, reach) -> tuple[float, float]:
     """The payload changes (kg, low <= 0 <= high when every end starts inside) over which every end
     the dial moves stays in its body's box: each end moves on a line, so per box face a bound."""
-    from springlab.design.structure import attachment_boxes
 
     centres, half = attachment_boxes(model, reach)
     low, high = -np.inf, np.inf
@@ -467,8 +464,6 @@ def _travel(model: RevoluteChain, springs, dial: PayloadDial, reach) -> tuple[fl
 def _stretch(design, turned, R, o) -> tuple[float, str]:
     """How far (m) the longest of the turned realised springs is stretched (over the design's poses,
     whose body frames are R, o) beyond the longest length its coil was wound for, and which spring."""
-    from springlab.energy.geometry import spring_lengths
-    from springlab.errors import GeometryError
 
     worst = (0.0, "")
     for n, spring, (_, span, *_) in zip(design.realised_names, turned, design.coils, strict=True):

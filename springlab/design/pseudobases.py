@@ -58,8 +58,9 @@ from springlab.design.layouts import (
     axial_extent,
     without_light,
 )
-from springlab.design.structure import PARALLEL, Structure
+from springlab.design.structure import PARALLEL, Structure, zero_pose
 from springlab.errors import SpringlabError
+from springlab.mechanisms.pseudobase.subsystems import subsystem_moments
 from springlab.model.revolute import RevoluteChain
 from springlab.model.springs import PointSpring
 
@@ -147,8 +148,6 @@ def pseudobase_layout(model: RevoluteChain, found: Structure, *, share: float = 
     :raises SpringlabError: when a joint before the first loaded one turns about a non-vertical axis (no body
         stays level), or ``share`` is outside [0, 1)
     """
-    from springlab.design.structure import zero_pose
-    from springlab.mechanisms.pseudobase.subsystems import subsystem_moments
 
     share = _checks.number("share", share)
     if not 0.0 <= share < 1.0:

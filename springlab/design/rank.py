@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from springlab import _checks
+from springlab.design.clearance import clearance
 from springlab.design.efficiency import spatial_system_efficiency
 from springlab.design.rules import SpringSlot, as_slots, best_first_configurations
 from springlab.design.screen import all_pattern_slots, any_sign_candidates, screen_verdicts
@@ -39,10 +40,12 @@ from springlab.design.solve import (
     minimise_largest_force,
     relaxation_margin,
 )
+from springlab.energy import geometry
 from springlab.energy.geometry import energies, spring_length
 from springlab.errors import SearchExhaustedError, SpringlabError, UnbalanceableError
+from springlab.executors import check_executor, map_ordered
 from springlab.model.armfile import ArmSpec, load_arm
-from springlab.model.chain import Chain, check_springs
+from springlab.model.chain import Chain, check_springs, limited_poses, random_directions
 from springlab.model.springs import Spring
 from springlab.tables import Table
 
@@ -74,8 +77,6 @@ def random_poses(chain: Chain, samples: int, seed) -> np.ndarray:
                    hint="use fewer samples")
     rng = _checks.rng("seed", seed)
     if chain.all_spherical:
-        from springlab.model.chain import random_directions
-
         return random_directions(chain.n, samples, rng)
     return chain.directions(chain.random_angles(samples, rng))
 
@@ -86,8 +87,6 @@ def workspace_poses(spec: ArmSpec, chain: Chain) -> np.ndarray:
     _checks.instance("spec", spec, ArmSpec, "ArmSpec (load_arm(path))")
     _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
     if spec.limits:
-        from springlab.model.chain import limited_poses
-
         return limited_poses(chain, spec.samples, _checks.rng("seed", spec.seed), spec.limits)
     return random_poses(chain, spec.samples, spec.seed)
 
@@ -170,7 +169,6 @@ class DesignReport:
                        f"{d.efficiency:.4f}", f"{d.energy_variation:.1e}")
                       for rank, d in enumerate(self.designs, start=1)])
 
-
     def csv(self) -> str:
         """Every ranked design as CSV for a spreadsheet: one row a design (rank, family, largest
         force N, clearance m, sum of k N/m, efficiency, energy variation), then one column group
@@ -233,7 +231,6 @@ def evaluate(method: str, chain: Chain, configuration, springs, X, *, link_radii
     """Verify ``springs`` by route 2 and measure them over the poses X: the largest force, the efficiency,
     and the clearance from the links (:func:`springlab.design.clearance.clearance`, links of ``link_radii``
     m, None for the default, the springs as lines)."""
-    from springlab.design.clearance import clearance
 
     rel = verify(chain, springs, X)
     force = 0.0
@@ -301,7 +298,6 @@ def design_arm(arm, *, method: str = "fewest springs", max_designs: int = 10, ma
     seed = _checks.count("seed", seed)
     force_starts = _checks.count("force_starts", force_starts, least=1)
     time_limit = _checks.optional_positive("time_limit", time_limit, "s")
-    from springlab.executors import check_executor, map_ordered
 
     executor = check_executor(executor)
     batch = _checks.count("batch", batch, least=1) if executor is not None else 1
@@ -392,7 +388,6 @@ def offset_note(spec: ArmSpec, chain: Chain, springs) -> str:
     design, by route 2: the total energy's variation with the true centres
     (:func:`springlab.energy.geometry.com_offset_energy`) over :func:`workspace_angles`, relative
     to gravity's range."""
-    from springlab.energy import geometry
 
     _checks.instance("spec", spec, ArmSpec, "ArmSpec (load_arm(path))")
     _checks.instance("chain", chain, Chain, "springlab Chain (spec.chain())")

@@ -21,6 +21,7 @@ from springlab import _checks
 from springlab.design.rules import PATTERNS, SpringSlot
 from springlab.design.solve import relaxation_margin, sign_consistent
 from springlab.errors import SpringlabError
+from springlab.executors import check_executor, map_ordered
 from springlab.model.chain import Chain
 
 CANDIDATE_RATE = 1e3
@@ -67,8 +68,6 @@ def screen_verdicts(chain: Chain, candidates, *, executor=None, progress: bool =
     are proofs that the set cannot balance. The programmes run in tasks of :data:`SCREEN_CHUNK`
     on ``executor`` (None: here)."""
     from tqdm import tqdm
-
-    from springlab.executors import check_executor, map_ordered
 
     _checks.instance("chain", chain, Chain)
     executor = check_executor(executor)

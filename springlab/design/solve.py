@@ -28,7 +28,7 @@ import sympy as sp
 from scipy.optimize import least_squares, linprog
 
 from springlab import _checks
-from springlab.design.rules import SpringSlot, as_slots
+from springlab.design.rules import SpringSlot, as_slots, is_admissible, iter_configurations
 from springlab.energy.quadratic import gravity_entries, spring_entries
 from springlab.errors import (
     AttachmentError,
@@ -334,7 +334,6 @@ def find_design(chain: Chain, slots, *, seed=0, restarts: int = 30, tol: float =
         uses[base:base + 4, col] = 1.0
         uses[[base, base + 1], col + 1] = 1.0
         uses[[base, base + 2], col + 2] = 1.0
-
 
     def jacobian(z):
         with np.errstate(over="ignore", invalid="ignore"):
@@ -774,8 +773,6 @@ def compare_rules_with_feasibility(chain: Chain, configurations, *, restarts: in
     """
     from tqdm import tqdm
 
-    from springlab.design.rules import is_admissible
-
     configurations = list(configurations)
     out = []
     for cfg in tqdm(configurations, disable=not progress, mininterval=2.0, desc="configurations"):
@@ -832,7 +829,6 @@ def design_for(chain: Chain, *, seed=0, restarts: int = 30):
         found no design within ``restarts`` starts
     """
     _checks.instance("chain", chain, Chain, "springlab Chain (serial_chain(r, d, m))")
-    from springlab.design.rules import iter_configurations
 
     restarts = _checks.count("restarts", restarts, least=0)
     core = balanced_core(chain)

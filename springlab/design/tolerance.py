@@ -26,6 +26,7 @@ import numpy as np
 from springlab import _checks
 from springlab.energy.geometry import holding_torques
 from springlab.errors import SpringlabError
+from springlab.executors import check_executor, map_ordered
 from springlab.model.chain import Chain, check_springs
 from springlab.model.springs import Spring
 from springlab.tables import Table
@@ -116,8 +117,6 @@ def tolerance_study(chain: Chain, springs, X, tol: Tolerances, *, samples: int =
         its own child of ``seed``: the same results as serially); None runs them here
     """
     from tqdm import tqdm
-
-    from springlab.executors import check_executor, map_ordered
 
     springs = check_springs(chain, springs)
     X = chain.check_directions(X)

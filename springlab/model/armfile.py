@@ -43,7 +43,7 @@ from pathlib import Path
 
 from springlab import _checks
 from springlab.errors import SpringlabError
-from springlab.model.chain import serial_chain
+from springlab.model.chain import limited_poses, serial_chain
 from springlab.model.urdf import urdf_to_dict
 from springlab.tables import Table
 
@@ -214,8 +214,6 @@ class ArmSpec:
             _checks.positive(f"link {j}: radius", rad, allow_zero=True, unit="m")
         chain = self.chain()  # validates r, d, m, g and the joints, naming the link
         if self.limits:
-            from springlab.model.chain import limited_poses
-
             limited_poses(chain, 1, 0, self.limits)  # validates the limits against the joints
 
     @property

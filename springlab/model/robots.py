@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from springlab.errors import SpringlabError
+from springlab.model.urdf import read_revolute_chain
 
 
 @dataclass(frozen=True)
@@ -107,7 +108,6 @@ def robot_urdf(label: str) -> Path:
 
 def load_robot(label: str, *, payload: float | None = None):
     """A robot of :data:`ROBOTS` (or :data:`OTHER_ARMS`) as a :class:`~springlab.model.revolute.RevoluteChain`, from its base to its tip."""
-    from springlab.model.urdf import read_revolute_chain
 
     robot = _robot(label)
     path = robot_urdf(label)

@@ -71,6 +71,7 @@ from springlab.errors import LineChainError, MeshError, SpringlabError, UpAdvice
 from springlab.model.chain import STANDARD_GRAVITY
 from springlab.model.revolute import RevoluteChain
 from springlab.model.rotations import rot_axis, rot_rpy
+from springlab.model.shapes import RefusedMeshError, link_shapes, shape_points, shape_solid
 
 SLIDING = ("prismatic", "planar", "floating")
 """Joint types springlab's arms do not have: refused on the arm's path, locked at zero off it."""
@@ -932,7 +933,6 @@ def _outlines(text, owner, T_body, names, folder, package_dirs, length, source) 
     not (a mesh not found or unreadable, an outline out of proportion, a body with no geometry). A
     mesh that would give a false outline (:class:`~springlab.model.shapes.RefusedMeshError`) is
     refused, with its link named."""
-    from springlab.model.shapes import RefusedMeshError, link_shapes, shape_points, shape_solid
 
     found, notes = link_shapes(text)
     points = [[] for _ in names]

@@ -101,8 +101,8 @@ it) and MuJoCo's side sites part from it within 1e-5 rad (:mod:`springlab.model.
 
 def away_from_lead_lines(design: ArmDesign) -> np.ndarray:
     """Per pose of the design's check, (N,) bool: no realised cable's end lies within :data:`LEAD_BAND`
-    of its lead's line (:func:`springlab.design.arms.lead_angles`), where MuJoCo is compared with route 2."""
-    from springlab.design.arms import lead_angles
+    of its lead's line (:func:`springlab.design.realise.lead_angles`), where MuJoCo is compared with route 2."""
+    from springlab.design.realise import lead_angles
 
     away = np.ones(len(design.q), dtype=bool)
     for s in design.realised:
