@@ -26,7 +26,7 @@ import itertools
 import time
 from pathlib import Path
 
-from springlab.design import feasibility
+from springlab.design import feasibility, rulecheck
 from springlab.design.ground import ground_spring_design, relaxation_screen
 from springlab.design.rank import design_arm
 from springlab.design.rules import best_first_configurations, iter_configurations
@@ -55,7 +55,7 @@ def main() -> None:
               f"{len(search.undecided)} undecided, {search.seconds:.2f} s")
     print("the fewest springs, proved (a design, and every multiset of fewer springs refuted):")
     for n in range(2, args.fewest + 1):
-        fewest = feasibility.fewest_springs(n, max_nodes=5_000_000)
+        fewest = rulecheck.fewest_springs(n, max_nodes=5_000_000)
         print(f"  n = {n}: {fewest.springs} spring{'s' if fewest.springs > 1 else ''} (R1-R6's fewest {fewest.rules_fewest}), "
               f"{len(fewest.search.refuted)} multisets of fewer springs refuted ({fewest.search.kinds()}), "
               f"route 2 {fewest.route_two:.1e}, {fewest.seconds:.1f} s")

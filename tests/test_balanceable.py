@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from springlab.design import feasibility as bal
+from springlab.design import rulecheck
 from springlab.design.rules import enumerate_configurations, slot
 from springlab.energy import geometry
 from springlab.model.chain import random_directions
@@ -14,7 +15,7 @@ def test_n4_rules_are_exactly_the_minimal_balanceable_multisets():
     arm = bal.random_arm(4, 3)
     search = bal.minimal_balanceable(arm)
     assert search.complete and search.nodes > len(search.minimal)
-    assert sorted(map(bal._label, search.multisets)) == sorted(map(bal._label, enumerate_configurations(4)))
+    assert sorted(map(bal.multiset_label, search.multisets)) == sorted(map(bal.multiset_label, enumerate_configurations(4)))
     for cfg, springs in search.minimal:  # each with its design, balanced by direct geometry
         assert [(s.i, s.j, s.pattern) for s in springs] == [(s.i, s.j, s.pattern) for s in cfg]
         assert bal.balances_by_geometry(arm, springs) <= bal.ROUTE_TWO_TOLERANCE
@@ -73,33 +74,33 @@ def test_the_coupling_refutes_what_the_relaxation_allows():
 
 
 def test_the_warm_started_phase_one_gives_the_fresh_solves_value():
-    from springlab.design.feasibility import (
-        _new_highs,
-        _phase_one_lp,
-        _Programme,
-        _programme,
-        _WarmPhaseOne,
+    from springlab.design.programme import (
+        Programme,
+        WarmPhaseOne,
+        new_highs,
+        phase_one_lp,
+        programme,
     )
 
     def fresh_solve(prog):  # the same programme passed to a new model and solved from scratch
-        highs = _new_highs()
-        highs.passModel(_phase_one_lp(prog))
+        highs = new_highs()
+        highs.passModel(phase_one_lp(prog))
         highs.run()
         return highs.getInfo().objective_function_value
 
     chain = bal.random_arm(5, np.random.default_rng(3))
-    prog = _programme(chain, [slot(s) for s in ("S(1,2)", "S(1,5)", "S(2,5)(+,-)", "S(2,5)(-,-)", "S(1,4)")])
+    prog = programme(chain, [slot(s) for s in ("S(1,2)", "S(1,5)", "S(2,5)(+,-)", "S(2,5)(-,-)", "S(1,4)")])
     cols = len(prog.signs)
     row = np.zeros((1, cols))
     row[0, 0] = 1.0  # one extra row x_0 - c x_3 = 0, c varied
     row[0, 3] = -1.0
-    base = _Programme(prog.items, prog.owner, prog.signs, np.vstack([prog.A_eq, row]), np.append(prog.b_eq, 0.0))
-    warm = _WarmPhaseOne(base, [(prog.A_eq.shape[0], 3)])
+    base = Programme(prog.items, prog.owner, prog.signs, np.vstack([prog.A_eq, row]), np.append(prog.b_eq, 0.0))
+    warm = WarmPhaseOne(base, [(prog.A_eq.shape[0], 3)])
     values = []
     for c in np.random.default_rng(0).uniform(-3.0, 3.0, 40):
         A = base.A_eq.copy()
         A[-1, 3] = c
-        fresh = fresh_solve(_Programme(base.items, base.owner, base.signs, A, base.b_eq))
+        fresh = fresh_solve(Programme(base.items, base.owner, base.signs, A, base.b_eq))
         values.append(fresh)
         assert abs(warm([c]) - fresh) <= 1e-9 * max(1.0, fresh)
     assert max(values) > 1e-3 and min(values) < max(values)  # the coefficient matters
@@ -149,11 +150,11 @@ def test_the_warm_relaxation_agrees_with_the_exact_certificates():
     """The enumeration's warm-started relaxation says infeasible exactly where an exact relaxation
     certificate exists, on random multisets and on balanceable ones with a spring added."""
     from springlab.design.certificates import relaxation_certificate
-    from springlab.design.feasibility import _Relaxation
+    from springlab.design.programme import Relaxation
 
     arm = bal.random_arm(5, 2)
     kinds = sorted(set(bal.alphabet(5)))
-    warm = _Relaxation(arm, kinds)
+    warm = Relaxation(arm, kinds)
     rng = np.random.default_rng(0)
     verdicts = []
     balanced = [np.array([[slot(x) for x in c.split()].count(k) for k in kinds]) for c in BALANCEABLE_N5]
@@ -184,7 +185,7 @@ def test_highs_prints_no_banner():
 
 
 def test_the_fewest_springs_are_proved():
-    f = bal.fewest_springs(4, seed=1)
+    f = rulecheck.fewest_springs(4, seed=1)
     assert f.springs == 4 == f.rules_fewest == len(f.configuration) and f.search.complete and not f.search.minimal
     assert f.route_two <= bal.ROUTE_TWO_TOLERANCE and f.search.refuted
     assert all(c.check(f.search.arm) for c in f.search.refuted.values())  # every multiset of <= 3 springs met
@@ -195,5 +196,5 @@ def test_a_size_limit_keeps_the_search_complete_below_it():
     arm = bal.random_arm(4, 3)
     full = bal.minimal_balanceable(arm, signs="all")
     limited = bal.minimal_balanceable(arm, signs="all", most_springs=4)
-    assert sorted(map(bal._label, limited.multisets)) == sorted(bal._label(c) for c in full.multisets if len(c) <= 4)
+    assert sorted(map(bal.multiset_label, limited.multisets)) == sorted(bal.multiset_label(c) for c in full.multisets if len(c) <= 4)
     assert limited.complete and limited.nodes < full.nodes

@@ -157,7 +157,7 @@ class Audit:
 
 def _climb(model: RevoluteChain, springs, start, j: int, lo, hi, allowed=None) -> tuple[np.ndarray, float, tuple | None]:
     """The largest |holding torque| (N m) of joint ``j`` near the pose ``start`` within the bounds [lo, hi]
-    (rad), by :func:`compass_search` on route 2's torques, moving only to poses ``allowed`` (a function of poses
+    (rad), by :func:`~springlab.design.search.compass_search` on route 2's torques, moving only to poses ``allowed`` (a function of poses
     (M, n) -> (M,) bool; None: all). Returns the pose, its |torque|, and the first trial pose where a
     spring had no line of action with the reason (None where every trial had one)."""
     broken = []

@@ -400,7 +400,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
     """Each spring of a layout as a coil on its link behind a pulley at its point, the cable running to the
     post (:func:`springlab.design.buildable.cable_spring`; up to
     :data:`~springlab.design.realise.MAX_PARALLEL` side by side where one wire is too weak, and over a pulley
-    block, :data:`BLOCKS`, where the coil would reach past its joint). Returns the realised springs,
+    block, :data:`~springlab.design.realise.BLOCKS`, where the coil would reach past its joint). Returns the realised springs,
     their kinds, their coils (:class:`~springlab.design.buildable.Fitted`: the coil, the cable's paths, the
     block and the cable) and the index of the layout's spring each realises, as
     :func:`~springlab.design.realise.realise_springs` does; the coil lies along the link towards the joint

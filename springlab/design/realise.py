@@ -262,7 +262,7 @@ def _dense(model: RevoluteChain, q):
 def nearest_approach(model: RevoluteChain, spring, q, lo, hi, frames=None, enough: float = 0.0):
     """The pose (rad) and angle (rad) where B comes nearest a cable spring's lead line
     (:func:`lead_angles`): the nearest of the poses ``q`` (``frames``: their body frames, where already
-    computed), refined by :func:`compass_search` within [lo, hi] until the angle is below ``enough``."""
+    computed), refined by :func:`~springlab.design.search.compass_search` within [lo, hi] until the angle is below ``enough``."""
     angle = lead_angles(model, spring, q, frames)
     start = q[int(np.argmin(angle))]
     if angle.min() < enough:  # already near enough: no need to refine
@@ -272,7 +272,7 @@ def nearest_approach(model: RevoluteChain, spring, q, lo, hi, frames=None, enoug
 
 
 def _lead_clearance(model: RevoluteChain, spring, dense) -> float:
-    """rad: how near B comes to a cable spring's lead line over the poses of ``dense`` (:func:`_dense`),
+    """rad: how near B comes to a cable spring's lead line over the poses of ``dense`` (``_dense``),
     refined towards it (:func:`nearest_approach`) until it is taken to cross (:data:`CROSSING`)."""
     q, frames, lo, hi = dense
     return sig(nearest_approach(model, spring, q, lo, hi, frames, enough=CROSSING)[1])
@@ -314,7 +314,7 @@ def _leads(model: RevoluteChain, springs, cable, q, radius: float, scale, clear_
 def _rebalance(model: RevoluteChain, springs, cable, q, reach, max_stiffness, scale) -> list:
     """Move the cable springs' rates and ends (within :func:`~springlab.design.structure.attachment_boxes`) to bring the largest
     holding torque at the poses ``q``, relative to each joint's ``scale`` (N m), down
-    (:func:`minimax`, at most :data:`REBALANCE_STEPS` programmes on a finite-difference Jacobian).
+    (:func:`~springlab.design.search.minimax`, at most :data:`REBALANCE_STEPS` programmes on a finite-difference Jacobian).
     Kept only where it lowers the largest torque."""
     centres, half = attachment_boxes(model, reach)
     ends = {i: (model.locate(springs[i].link_a, springs[i].point_a), model.locate(springs[i].link_b, springs[i].point_b))

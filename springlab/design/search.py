@@ -72,7 +72,7 @@ def minimax(x, lo, hi, scale, residual, jacobian, iterations: int, rows: float =
     """min over x in [lo, hi] of max_g m_g + ``spread`` mean_g m_g + :data:`PULL` |(x - x0) / scale|_1 from
     x0 = ``x``, m_g the largest |residual(x)| of group g (``groups``: each residual's group, its joint;
     None: one group), by sequential linear programming (HiGHS), at most ``iterations`` programmes, every
-    point it steps to put on the grid (:func:`_on_grid`). ``jacobian(x, r)`` gives d residual / dx at x.
+    point it steps to put on the grid (``_on_grid``). ``jacobian(x, r)`` gives d residual / dx at x.
 
     The mean (``spread`` > 0) moves the search where the largest cannot move yet: each joint's own peak
     is its scale, so one spring lowers one joint's largest torque but not the largest of all.
