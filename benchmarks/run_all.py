@@ -23,11 +23,12 @@ BENCHES = ("bench_energy", "bench_sim", "bench_efficiency", "bench_design", "ben
 
 
 def _title(script: Path) -> str:
-    """The first line of a benchmark's docstring, without its 'Benchmark: '."""
+    """The first line of a benchmark's docstring, without its 'Benchmark: ', as a heading (capitalised)."""
     import ast
 
     doc = ast.get_docstring(ast.parse(script.read_text())) or script.stem
-    return doc.splitlines()[0].removeprefix("Benchmark: ").rstrip(".")
+    title = doc.splitlines()[0].removeprefix("Benchmark: ").rstrip(".")
+    return title[:1].upper() + title[1:]
 
 
 def as_markdown(lines: list[str]) -> list[str]:
