@@ -265,3 +265,30 @@ def test_bad_inputs_are_refused_with_the_parameter_named():
                       np.zeros((2, 3, 3)), [0, 0, 0])
     with pytest.raises(SpringlabError, match="not one of springlab's example robots"):
         load_robot("R2-D2")
+
+
+def test_the_frames_unchecked_rotations_are_rot_axis_bit_for_bit():
+    # body_frames turns each body by its model's (checked) axis without rot_axis's checks: the same
+    # arithmetic, so the same bits; a rotation about another axis must differ (the negative control)
+    from springlab.model import revolute
+    from springlab.model.rotations import rot_axis
+
+    rng = np.random.default_rng(0)
+    for _ in range(50):
+        u = rng.normal(size=3)
+        u /= np.linalg.norm(u)
+        angles = rng.uniform(-7.0, 7.0, 40)
+        assert np.array_equal(revolute._turns(u, angles), rot_axis(u, angles))
+    assert not np.array_equal(revolute._turns(u, angles), rot_axis(np.roll(u, 1), angles))
+
+
+def test_route_2s_cross_product_is_numpys_bit_for_bit():
+    # route 2 takes a x b by its components (numpy.cross's arithmetic without its axis handling): the
+    # same bits on batches and broadcasts; the negative control, b x a, differs
+    from springlab.energy.geometry import _cross
+
+    rng = np.random.default_rng(1)
+    for a_shape, b_shape in (((3,), (3,)), ((50, 3), (50, 3)), ((7, 5, 3), (5, 3)), ((40, 3), (3,))):
+        a, b = rng.normal(size=a_shape), rng.normal(size=b_shape)
+        assert np.array_equal(_cross(a, b), np.cross(a, b))
+    assert not np.array_equal(_cross(b, a), np.cross(a, b))

@@ -11,6 +11,7 @@ none of the search's choices.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -54,7 +55,14 @@ def sig(value, digits: int = 9) -> float:
 
     :raises SpringlabError: for a value that is not a finite number
     """
-    return significant(_checks.finite("value", value), digits)
+    if type(value) not in _FLOATS:  # the search's own values are floats: checked the quick way
+        value = _checks.finite("value", value)
+    elif not math.isfinite(value):
+        raise SpringlabError(f"value must be finite, got {value!r}")
+    return significant(value, digits)
+
+
+_FLOATS = (float, np.float64)
 
 
 def _on_grid(x, lo, hi) -> np.ndarray:
