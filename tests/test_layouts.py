@@ -11,6 +11,7 @@ import pytest
 from springlab.design.arms import design_model
 from springlab.design.hardware import parts, spring_clearance
 from springlab.design.layouts import belt_layout
+from springlab.design.search import END_GRID
 from springlab.design.structure import structure
 from springlab.energy.geometry import gravity_torques, joint_torques
 from springlab.errors import SpringlabError
@@ -196,3 +197,44 @@ def test_the_drawing_shows_each_spring_as_built(ur5):
     labels |= {h.get_label() for ax in fig.axes for h in ax.get_lines()}
     assert {"cables", "pulleys (circles of their radius)"} <= labels
     plt.close(fig)
+
+
+def _turned_plane():
+    """A belt spring's plane on the UR5's upper arm, and its frames over poses that reach down towards the
+    table: the shoulder lifted from -120 to 0 deg, the rest at zero."""
+    model = load_robot("UR5")
+    lay = belt_layout(model, structure(model))
+    plane = lay.planes[0]
+    q = np.zeros((181, model.n))
+    q[:, 1] = np.radians(np.linspace(-120.0, 0.0, 181))
+    return lay, plane, q
+
+
+def test_a_spring_turned_about_its_joint_clears_the_table_and_keeps_every_length():
+    from springlab.design.collision import mounting_plane
+    from springlab.design.layouts import turned_clear_of_table
+    from springlab.energy.geometry import spring_lengths
+    from springlab.model.revolute import body_frames
+
+    lay, plane, q = _turned_plane()
+    R, o = body_frames(lay.model, q)
+    floor = mounting_plane(lay.model)
+    c, p = plane.offsets(lay.springs[0])
+    k = lay.springs[0].k
+
+    def lowest(c):  # m: the point's height above the mounting plane over the poses
+        s = plane.spring(lay.model, c, p, k)
+        at = lay.model.locate(s.link_a, s.point_a)
+        return float(np.min(np.einsum("pij,j->pi", R[:, at[0]], at[1]) @ lay.model.up + o[:, at[0]] @ lay.model.up
+                            - floor))
+
+    assert turned_clear_of_table(plane, R, o, floor, c, p, lowest(c) - 0.01) == 1  # clear already: not turned
+    room = lowest(c) + 0.05  # the negative control: as laid out, the point comes lower than this
+    turn = turned_clear_of_table(plane, R, o, floor, c, p, room)
+    assert turn != 1 and lowest(c * turn) >= room - 1e-9
+    # turning the point and the post together changes no length at any pose: the balance is the same
+    before = spring_lengths(lay.model, [plane.spring(lay.model, c, p, k)], R, o)[0]
+    after = spring_lengths(lay.model, [plane.spring(lay.model, c * turn, p * turn, k)], R, o)[0]
+    assert np.max(np.abs(after - before)) < 4 * END_GRID  # m: each end is placed on the search's grid
+    other = spring_lengths(lay.model, [plane.spring(lay.model, c * turn, p, k)], R, o)[0]  # the point alone
+    assert np.max(np.abs(other - before)) > 1e-3

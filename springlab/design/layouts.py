@@ -16,7 +16,10 @@ by the paper-001 chapter's own code) and the spring's k Re(conj(c_0) c_k e^{i th
 c_0 = -p: their sum is constant when k conj(c_0) c_k = -g conj(i) G_k. Only the product is fixed;
 this module takes |c| = :data:`LEVER` of the link's length and |p| = :data:`POST` of it: the pulley
 near the link's far end, so that the coil lies along the link between it and the joint (over a pulley
-block where it would be longer), and the cable's path spans 0.65 to 1.15 of the link's length. Both ends
+block where it would be longer), and the cable's path spans 0.65 to 1.15 of the link's length. Point and post
+may also turn together about the joint, which changes no length at any pose: the realisation turns them
+where the pulley would otherwise come within its radius, its rope and the margin of the table the arm
+stands on (:func:`turned_clear_of_table`). Both ends
 move along the joint's axis together
 (which changes no length's variation) to one side of the links, :data:`AXIAL_GAP` beyond the
 farther of the two links' shapes, so that the spring and its post run beside the links.
@@ -39,6 +42,7 @@ import numpy as np
 
 from springlab import _checks
 from springlab.design.buildable import Fitted
+from springlab.design.collision import MARGIN, mounting_plane
 from springlab.design.hardware import HOOK_GAP
 from springlab.design.realise import cable_for, coil_for, length_range
 from springlab.design.search import END_GRID, RATE_DIGITS, compass_search
@@ -294,6 +298,32 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE,
     return Layout(out, tuple(springs), tuple(leads), tuple(notes), tuple(outward), tuple(planes), tuple(rooms))
 
 
+TABLE_SLACK = 0.005
+"""m: what a spring's pulley and post keep above the mounting plane at every pose of the design's check, beyond
+the pulley's radius, its rope and the clearance margin: the poses the design's audit adds lie between them."""
+
+
+def turned_clear_of_table(plane: SpringPlane, R, o, floor: float, c: complex, p: complex, room: float) -> complex:
+    """The turn (a unit complex number) of a spring's point c and post p (complex, m, from the joint in the
+    plane) about the joint that keeps both ``room`` (m) above the mounting plane at every pose of ``R``, ``o``:
+    none where they already are, else the least turn that does, else the one that keeps them highest (on a
+    half-degree grid). Turning both together changes no length at any pose, so neither the balance nor the
+    pulley's compensation: only conj(p) c is fixed (001 Eq. (16)). Where a link reaches down to the table,
+    a pulley at its far end would otherwise run into the table beside it."""
+    link, up = plane.link, plane.up
+    base = plane.R0[link].T @ (np.asarray(plane.joint_at) - plane.o0[link])  # the joint, in the link's frame
+    zero = np.einsum("pij,j->pi", R[:, link], base) @ up + o[:, link] @ up - floor  # its height, per pose
+    z_h = np.einsum("pij,j->pi", R[:, link], plane.R0[link].T @ plane.h) @ up  # the plane's axes' heights
+    z_u = np.einsum("pij,j->pi", R[:, link], plane.R0[link].T @ up) @ up
+    turns = np.exp(1j * np.radians(np.concatenate([np.arange(0, 180.5, 0.5), -np.arange(0.5, 180, 0.5)])))
+    point = c * turns  # (angles,)
+    heights = zero[:, None] + point.real[None] * z_h[:, None] + point.imag[None] * z_u[:, None]
+    low = np.minimum(heights.min(axis=0), zero.min() + (p * turns).imag)
+    keys = [significant(v, 9) for v in low]
+    fits = [i for i in np.argsort(np.abs(np.angle(turns)), kind="stable") if keys[i] >= room]
+    return complex(turns[fits[0] if fits else int(np.argmax(keys))])
+
+
 REFIT = 0.3
 """A pulley's compensation moves the lever and the post by at most this share of their lengths (the coil's
 stroke and the spring's proportion stay the layout's)."""
@@ -425,6 +455,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
                              f"D/d of {cable.ratio:g} asks for {1e3 * cable.pulley_radius:g} mm); give a larger "
                              "--pulley-radius or a finer --cable")
     R, o = body_frames(model, q)
+    floor = mounting_plane(model)
     realised, kinds, coils, origins = [], [], [], []
     rooms = layout.rooms or (np.inf,) * len(layout.springs)
     rows = zip(layout.springs, layout.leads, layout.outward, layout.planes, rooms, strict=True)
@@ -446,6 +477,9 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
                     break
                 c, p, k = compensate_pulley(plane, c, p, k, rho, plane.angles(R), turn=plane.turn,
                                             tilt=plane.tilt)
+                if plane.turn:  # clear of the table the arm stands on, the pulley and its rope with the margin
+                    turn = turned_clear_of_table(plane, R, o, floor, c, p, rho + chosen.diameter + MARGIN + TABLE_SLACK)
+                    c, p = c * turn, p * turn
                 s = plane.spring(model, c, p, k)
                 towards = plane.towards(c)
             lead = tuple(-np.cos(plane.tilt) * np.asarray(towards) - np.sin(plane.tilt) * np.asarray(out_a))  # from
