@@ -238,3 +238,14 @@ def test_a_spring_turned_about_its_joint_clears_the_table_and_keeps_every_length
     assert np.max(np.abs(after - before)) < 4 * END_GRID  # m: each end is placed on the search's grid
     other = spring_lengths(lay.model, [plane.spring(lay.model, c * turn, p, k)], R, o)[0]  # the point alone
     assert np.max(np.abs(other - before)) > 1e-3
+
+
+def test_the_realisation_turns_a_spring_for_the_margin_it_is_given():
+    from springlab.design.layouts import realise_layout
+
+    lay, _, q = _turned_plane()
+    kept = realise_layout(lay, q, pulley_radius=None)[0]
+    wide = realise_layout(lay, q, pulley_radius=None, margin=0.1)[0]  # 10 cm: the upper arm's spring must turn
+    assert kept[0].point_a != wide[0].point_a and kept[0].k == wide[0].k
+    with pytest.raises(SpringlabError, match="margin"):
+        realise_layout(lay, q, pulley_radius=None, margin=float("nan"))

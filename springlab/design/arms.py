@@ -760,7 +760,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         share = SHARE if share is None else share
         lay = arrange(model, found, share=share, q=check)
         realised, kinds, coils, origins = realise_layout(lay, check, material=material, cable=cable,
-                                                         pulley_radius=None if sized else pulley_radius)
+                                                         pulley_radius=None if sized else pulley_radius, margin=margin)
         bare = (model.mass, model.com, model.inertia)
         for _ in range(CARRY_ROUNDS):  # the springs' own steel rides on the links: designed for too
             arm = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2])  # the arm alone, with the belts
@@ -774,7 +774,8 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
             lay = arrange(carried, structure(carried, check), share=share, q=check,
                           **({"widths": widths} if spatial else {}))
             realised, kinds, coils, origins = realise_layout(lay, check, material=material, cable=cable,
-                                                             pulley_radius=None if sized else pulley_radius)
+                                                             pulley_radius=None if sized else pulley_radius,
+                                                             margin=margin)
         model, ideal = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2]), lay.springs
         if spatial:
             method = "pseudobases: a vertical line carried to each loaded joint by paper 001's RSSR modules"

@@ -426,7 +426,7 @@ def _link_angles(plane: SpringPlane, R) -> np.ndarray:
 
 
 def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_radius: float | None = 0.0,
-                   cable=None) -> tuple:
+                   cable=None, margin: float = MARGIN) -> tuple:
     """Each spring of a layout as a coil on its link behind a pulley at its point, the cable running to the
     post (:func:`springlab.design.buildable.cable_spring`; up to
     :data:`~springlab.design.realise.MAX_PARALLEL` side by side where one wire is too weak, and over a pulley
@@ -440,7 +440,8 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
     with the stated safety factor; the pulley is sized to it (``pulley_radius=None``: the rope maker's
     ratio) or given (m; 0: a point pulley, no hardware). With a pulley each spring's lever, post and rate
     are first re-fitted for it (:func:`compensate_pulley`), and the cable chosen again for the re-fitted
-    pull.
+    pull. Each spring's pulley and post are turned about their joint where that keeps the pulley ``margin`` (m)
+    clear of the mounting plane (:func:`turned_clear_of_table`).
 
     :raises SpringlabError: naming a spring no stocked wire realises or no stocked cable carries, or a given
         cable that a given pulley is too small for
@@ -450,6 +451,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
     q = model.check_q(q)
     given = None if pulley_radius is None else _checks.positive("pulley_radius", pulley_radius, allow_zero=True,
                                                                 unit="m")
+    margin = _checks.positive("margin", margin, allow_zero=True, unit="m")
     if cable is not None and given is not None and given > 0 and not cable.fits(given):
         raise SpringlabError(f"cable {cable.name}: a pulley of {1e3 * given:g} mm is too small for it (the rope maker's "
                              f"D/d of {cable.ratio:g} asks for {1e3 * cable.pulley_radius:g} mm); give a larger "
@@ -478,7 +480,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
                 c, p, k = compensate_pulley(plane, c, p, k, rho, plane.angles(R), turn=plane.turn,
                                             tilt=plane.tilt)
                 if plane.turn:  # clear of the table the arm stands on, the pulley and its rope with the margin
-                    turn = turned_clear_of_table(plane, R, o, floor, c, p, rho + chosen.diameter + MARGIN + TABLE_SLACK)
+                    turn = turned_clear_of_table(plane, R, o, floor, c, p, rho + chosen.diameter + margin + TABLE_SLACK)
                     c, p = c * turn, p * turn
                 s = plane.spring(model, c, p, k)
                 towards = plane.towards(c)
