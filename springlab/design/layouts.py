@@ -45,7 +45,7 @@ from springlab.design.buildable import Fitted
 from springlab.design.collision import MARGIN, mounting_plane
 from springlab.design.hardware import HOOK_GAP
 from springlab.design.realise import cable_for, coil_for, length_range
-from springlab.design.search import END_GRID, RATE_DIGITS, compass_search
+from springlab.design.search import END_GRID, RATE_DIGITS, compass_search, sig
 from springlab.design.structure import PARALLEL, Structure, planar_chain, planar_moments
 from springlab.errors import SpringlabError
 from springlab.mechanisms.pseudobase.subsystems import subsystem_moments
@@ -319,7 +319,7 @@ def turned_clear_of_table(plane: SpringPlane, R, o, floor: float, c: complex, p:
     point = c * turns  # (angles,)
     heights = zero[:, None] + point.real[None] * z_h[:, None] + point.imag[None] * z_u[:, None]
     low = np.minimum(heights.min(axis=0), zero.min() + (p * turns).imag)
-    keys = [significant(v, 9) for v in low]
+    keys = [sig(v) for v in low]  # the search's key: round-off decides no turn
     fits = [i for i in np.argsort(np.abs(np.angle(turns)), kind="stable") if keys[i] >= room]
     return complex(turns[fits[0] if fits else int(np.argmax(keys))])
 
