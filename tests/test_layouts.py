@@ -249,3 +249,77 @@ def test_the_realisation_turns_a_spring_for_the_margin_it_is_given():
     assert kept[0].point_a != wide[0].point_a and kept[0].k == wide[0].k
     with pytest.raises(SpringlabError, match="margin"):
         realise_layout(lay, q, pulley_radius=None, margin=float("nan"))
+
+
+@pytest.fixture(scope="module")
+def pendulum():
+    """The double pendulum with belt springs: each link too short for its coil, or its pulley too near the table,
+    so both coils ride on brackets of the level frame."""
+    return design_model(load_robot("double pendulum"), pulley_radius=None, layout="belts", samples=600)
+
+
+def test_a_pulley_at_the_post_wraps_a_quarter_turn_as_route_2_computes_it():
+    # the bracket's closed form (the lead along the joint's axis) against route 2's cable over the pulley,
+    # turning the SO-101's elbow alone; and its torque against a central difference of its own energy
+    from springlab.design.layouts import _cable_terms
+    from springlab.energy.geometry import spring_lengths
+    from springlab.model.revolute import body_frames
+
+    model = load_robot("SO-101")
+    lay = belt_layout(model, structure(model, model.random_q(256, 0)), q=model.random_q(256, 0))
+    plane, ideal, (_, out_b) = lay.planes[1], lay.springs[1], lay.outward[1]
+    c, p = plane.offsets(ideal)
+    rho = 0.01
+    s = plane.posted(lay.model, c, p, ideal.k)
+    s = dataclasses.replace(s, pulley_radius=rho, lead=plane.bracket_lead(out_b))
+    c, p = plane.offsets(dataclasses.replace(s, link_a=s.link_b, point_a=s.point_b, link_b=s.link_a,
+                                             point_b=s.point_a))  # as placed, on the search's grid
+    q = np.zeros((73, model.n))
+    q[:, model.joints.index("elbow_flex")] = np.radians(np.linspace(-180.0, 180.0, 73))
+    R, o = body_frames(lay.model, q)
+    v = np.einsum("pij,j->pi", R[:, plane.link], plane.R0[plane.link].T @ plane.h)
+    theta = np.arctan2(v @ plane.up, v @ plane.h)
+    path = spring_lengths(lay.model, [s], R, o)[0]
+    x = np.array([ideal.k, c.real, c.imag, p.real, p.imag])
+    energy, torque = _cable_terms(x, rho, theta, plane.gG, at_post=True)
+    gravity = np.real(np.conj(1j) * np.exp(1j * theta) * plane.gG)
+    closed = np.sqrt(2 * (energy - gravity) / ideal.k)  # m: the cable's path in the closed form
+    assert np.max(np.abs(closed - path)) < 1e-6  # m: the URDF's elbow and wrist axes are parallel to 6e-6 rad
+    h = 1e-6
+    numeric = (_cable_terms(x, rho, theta + h, plane.gG, at_post=True)[0]
+               - _cable_terms(x, rho, theta - h, plane.gG, at_post=True)[0]) / (2 * h)
+    assert np.max(np.abs(numeric - torque)) < 1e-6 * np.max(np.abs(torque))
+    inplane = np.sqrt(2 * (_cable_terms(x, rho, theta, plane.gG)[0] - gravity) / ideal.k)  # the control: a pulley
+    assert np.max(np.abs(inplane - path)) > 1e-3  # m: on the link, the cable wraps otherwise
+
+
+def test_coils_without_room_on_their_links_ride_brackets_and_still_hold_the_arm(pendulum):
+    from springlab.model.mjcf import to_mjcf
+    from springlab.workbench.references import mujoco_holding_torques
+
+    assert all("on a bracket of the level frame" in kind for kind in pendulum.kinds) and pendulum.flags() == ()
+    assert all(fit.bracket is not None for fit in pendulum.coils)
+    assert all(gap >= 0.005 for *_, gap in pendulum.clearance.rows)  # m: the margin, table included
+    assert np.all(pendulum.removed_by(pendulum.realised) >= 95.0)  # carrying the brackets, pulleys and coils
+    bare = pendulum.model  # the control: the same springs on the arm without their hardware hold it worse
+    q = pendulum.q
+    kept = np.abs(joint_torques(bare, pendulum.realised, q)).max(axis=0) / np.abs(gravity_torques(bare, q)).max(axis=0)
+    assert np.any(kept > 1 - 0.95)
+    kinds = {p.kind: p for p in parts(pendulum.model, pendulum.realised, pendulum.kinds, pendulum.coils,
+                                      pendulum.realised_names, q) if p.name.endswith("bracket")}
+    assert set(kinds) == {"post"}  # each bracket listed, its mass carried by the link at its joint
+    pytest.importorskip("mujoco")
+    theirs = mujoco_holding_torques(to_mjcf(pendulum.model, pendulum.realised), pendulum.model, q[:200])
+    ours = joint_torques(pendulum.model, pendulum.realised, q[:200])
+    assert np.max(np.abs(theirs - ours)) < 1e-9 * np.max(np.abs(gravity_torques(pendulum.model, q[:200])))
+
+
+def test_a_bracket_too_short_for_its_coil_is_flagged(pendulum):
+    assert not pendulum.hardware_flags()
+    short = [fit._replace(bracket=0.01) for fit in pendulum.coils]  # the control: 1 cm of room beyond each post
+    flags = dataclasses.replace(pendulum, coils=tuple(short)).hardware_flags()
+    assert len(flags) == len(short) and all("bracket" in flag for flag in flags)
+
+
+def test_a_coil_that_fits_its_link_stays_on_it(ur5):
+    assert not any("bracket" in kind for kind in ur5.kinds)  # the UR5's coils fit their links, clear of the table

@@ -42,7 +42,14 @@ from springlab import _checks
 from springlab.design.audit import Audit
 from springlab.design.buildable import COIL_COLUMNS, check_tolerances, coil_cells, maker_note
 from springlab.design.collision import MARGIN, Sampler, has_geometry
-from springlab.design.hardware import HOOK_GAP, coil_ends, parts, spring_clearance, with_spring_mass
+from springlab.design.hardware import (
+    HOOK_GAP,
+    balanced_body,
+    coil_ends,
+    parts,
+    spring_clearance,
+    with_spring_mass,
+)
 from springlab.design.layouts import SHARE, belt_layout, realise_layout, without_light
 from springlab.design.pseudobases import pseudobase_layout
 from springlab.design.realise import (
@@ -321,7 +328,7 @@ class ArmDesign:
         pulls (F_i' + k' (path / n + c - L_0')) / n, a spring of rate k' / n^2, initial tension F_i' / n and
         free length n (L_0' - c) along the path."""
         out = []
-        for r, (coil, _, ratio, _) in zip(self.realised, self.coils, strict=True):
+        for r, (coil, _, ratio, *_) in zip(self.realised, self.coils, strict=True):
             offset = coil.free_length - r.free_length / ratio  # the cable's offset; 0 for a zero-length spring
             k = r.k * _checks.positive("stiffness", stiffness)
             L0 = ratio * (coil.free_length * _checks.positive("free_length", free_length) - offset)
@@ -446,6 +453,14 @@ class ArmDesign:
                            f"(D/d {fit.cable.ratio:g}): give a larger --pulley-radius, or leave it to be sized")
             body, at = self.model.locate(r.link_a, r.point_a)
             behind = r.pulley_radius + HOOK_GAP + (2 * (r.pulley_radius + fit.cable.diameter) if fit.ratio > 1 else 0.0)
+            bracket = getattr(fit, "bracket", None)
+            if bracket is not None:  # on a bracket of the level frame: the room its layout gave it
+                room = bracket - (2 * (r.pulley_radius + fit.cable.diameter) if fit.ratio > 1 else 0.0)
+                if fit.coil.max_length > room * (1 + 1e-9):
+                    out.append(f"the realised spring {name}'s coil is {1e3 * fit.coil.max_length:.0f} mm long in "
+                               f"service, longer than the {1e3 * room:.0f} mm its bracket has beyond its post within "
+                               "its link's length: the bracket would outgrow the arm")
+                continue
             if 0 < body <= self.model.n:  # in the plane of its joint's turning (an axial offset is no room)
                 w = np.asarray(self.model.axes[body - 1], dtype=float)
                 room = float(np.linalg.norm(at - (at @ w) * w)) - behind
@@ -769,7 +784,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
             carried = replace(with_spring_mass(arm, realised, kinds, coils, check), belts=())
             widths = {}  # a pseudobase's C moves beside the links by half its coils' width too
             for r, fit in zip(realised, coils, strict=True):
-                t = model.bodies.index(r.link_a) - 1
+                t = balanced_body(lay.model, r) - 1
                 widths[t] = widths.get(t, 0.0) + fit.coil.outer_diameter
             lay = arrange(carried, structure(carried, check), share=share, q=check,
                           **({"widths": widths} if spatial else {}))

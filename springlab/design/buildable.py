@@ -291,12 +291,16 @@ class Fitted(NamedTuple):
         at ratio times the cable's pull (its rate is ratio^2 times the spring's), so that a coil too long
         for its link fits; the coil's length is path / ratio + its cable offset
     :ivar cable: the cable (:class:`springlab.design.cables.Cable`) a cable spring runs on, or None
+    :ivar bracket: for a coil on a bracket of the level frame beyond its pulley at the post (a layout's, where its
+        link has no room for it), the room (m) the bracket gives it: its link's length less the post's and the
+        pulley's; None for a coil on its link
     """
 
     coil: ExtensionSpring
     span: tuple
     ratio: int = 1
     cable: object = None
+    bracket: float | None = None
 
     def coil_length(self, path):
         """The coil's length (m, inside the hooks) at the cable's paths ``path`` (m): path / ratio plus the

@@ -58,6 +58,15 @@ def _lead(model: RevoluteChain, s, R, o, ia, A, B) -> np.ndarray:
     return d / max(float(np.linalg.norm(d)), 1e-12)
 
 
+def balanced_body(model: RevoluteChain, spring) -> int:
+    """The body a layout's spring balances (:mod:`springlab.design.layouts`): the farther of its two ends' bodies
+    from the base, not counting a belt's frame: end A's on its link, or end B's where end A is the post on a
+    bracket of the level frame that carries its pulley and coil."""
+    bodies = [model.locate(link, point)[0] for link, point in ((spring.link_a, spring.point_a),
+                                                                 (spring.link_b, spring.point_b))]
+    return max(b for b in bodies if b <= model.n)
+
+
 def link_length(model: RevoluteChain, body: int) -> float:
     """The length (m) of a body: from its joint to the next joint (the last body: to its centre of mass), or
     its outline's longest side where that is longer (a body between two joints at one point still has a
@@ -237,6 +246,11 @@ class Part:
             k: float(v) if isinstance(v, (float, np.floating)) else v for k, v in (self.size | self.loads).items()}
 
 
+def _joint_in(model: RevoluteChain, body: int) -> np.ndarray:
+    """The origin (m, the body's frame) of the joint after ``body``: where a post or bracket on it stands."""
+    return np.asarray(model.placements[body][:3, 3], dtype=float) if body < model.n else np.zeros(3)
+
+
 def _rod(force: float, length: float) -> float:
     """m: the diameter of an aluminium rod cantilevered ``length`` m with ``force`` N at its end, at
     :data:`ROD_STRESS` (32 F L / (pi d^3)), at least 6 mm."""
@@ -289,7 +303,7 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
             out.append(Part("spring", f"{name} coil", s.link_a, tuple(centre), coil.mass,
                             {"wire_diameter": coil.wire, "outer_diameter": coil.outer_diameter,
                              "free_length": coil.free_length, "longest": coil.max_length, "block_ratio": fit.ratio},
-                            {"largest_force_N": float(coil.max_force)}, ((s.link_a, tuple(centre), coil.mass),)))
+                            {"largest_force_N": float(coil.max_force)}, (on(s.link_a, centre) + (coil.mass,),)))
             hook = fixed + u * mid
             run = float(np.linalg.norm(pa - hook))
             free = float(np.max(path))
@@ -300,7 +314,7 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
             out.append(Part("cable", f"{name} cable", s.link_a, tuple((hook + pa) / 2), m_cable,
                             {"diameter": d, "length": fit.ratio * run + free},
                             {"largest_pull_N": float(np.max(pull))} | rating,
-                            ((s.link_a, tuple((hook + pa) / 2), m_cable * fit.ratio * run / (fit.ratio * run + free)),
+                            (on(s.link_a, (hook + pa) / 2) + (m_cable * fit.ratio * run / (fit.ratio * run + free),),
                              on(s.link_a, pa) + (m_cable * free / (fit.ratio * run + free) / 2,),
                              on(s.link_b, pb) + (m_cable * free / (fit.ratio * run + free) / 2,))))
             if rho > 0 and cable is not None:
@@ -310,12 +324,28 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
                 shaft = pull * np.linalg.norm(out_dir - lead, axis=1)
                 out.append(Part("pulley", f"{name} pulley", s.link_a, tuple(pa), m,
                                 {"tread_diameter": 2 * rho - d, "cable_radius": rho},
-                                {"shaft_load_N": float(np.max(shaft))}, ((s.link_a, tuple(pa), m),)))
+                                {"shaft_load_N": float(np.max(shaft))}, (on(s.link_a, pa) + (m,),)))
                 if fit.ratio > 1:
                     sheave = hook + u * (rho + d)
                     out.append(Part("pulley", f"{name} block sheave", s.link_a, tuple(sheave), m,
                                     {"tread_diameter": 2 * rho - d, "cable_radius": rho, "ratio": fit.ratio},
-                                    {"shaft_load_N": float(coil.max_force)}, ((s.link_a, tuple(sheave), m),)))
+                                    {"shaft_load_N": float(coil.max_force)}, (on(s.link_a, sheave) + (m,),)))
+            if getattr(fit, "bracket", None) is not None:  # the pulley and the coil on a bracket of the level frame
+                belt = model.belts[ia - model.n - 1] if ia > model.n else None
+                root = np.zeros(3) if belt is not None else _joint_in(model, ia)
+                reach = float(np.linalg.norm(fixed - root))  # from the joint's axis out to the coil's fixed hook
+                F = float(np.max(shaft)) if rho > 0 and cable is not None else float(np.max(pull))
+                arm = float(np.linalg.norm(np.asarray(pa) - root))
+                dia = _rod(F, arm)
+                m = ALUMINIUM * np.pi * dia**2 / 4 * reach
+                centre = (fixed + root) / 2
+                out.append(Part("post", f"{name} bracket", s.link_a, tuple(centre), m,
+                                {"length": reach, "rod_diameter": dia},
+                                {"largest_force_N": F, "root_moment_Nm": F * arm}, (on(s.link_a, centre) + (m,),)))
+                if belt is not None:  # the cable's pull on the bracket, about the frame's origin: the belt carries it
+                    w = R[:, belt.joint + 1] @ model.axes[belt.joint]
+                    force = pull[:, None] * (B - T) / np.maximum(np.linalg.norm(B - T, axis=1), 1e-12)[:, None]
+                    moments[belt.name] = moments[belt.name] + np.einsum("pi,pi->p", w, np.cross(T - o[:, ia], force))
             towards, at = T, B
         level = model.belts[0].level if model.belts else None
         if ib > model.n or ib == level:  # end B stands on a post at its joint: on a belt's frame, or the level body

@@ -43,7 +43,7 @@ import numpy as np
 from springlab import _checks
 from springlab.design.buildable import Fitted
 from springlab.design.collision import MARGIN, mounting_plane
-from springlab.design.hardware import HOOK_GAP
+from springlab.design.hardware import HOOK_GAP, link_length
 from springlab.design.realise import cable_for, coil_for, length_range
 from springlab.design.search import END_GRID, RATE_DIGITS, compass_search, sig
 from springlab.design.structure import PARALLEL, Structure, planar_chain, planar_moments
@@ -120,6 +120,7 @@ class SpringPlane(Plane):
     up: np.ndarray
     w: np.ndarray
     d: float
+    mast: float = 0.0  # m: the room of a coil on a bracket of the level frame at its joint: the longer link there
 
     def spring(self, model: RevoluteChain, c: complex, p: complex, k: float) -> PointSpring:
         """The spring from c on the link to the post p (complex offsets from the joint, in the plane), rate k
@@ -128,7 +129,23 @@ class SpringPlane(Plane):
         post = self.joint_at + p.real * self.h + p.imag * self.up + self.d * self.w
         return self.placed(model, point, post, k)
 
+    def posted(self, model: RevoluteChain, c: complex, p: complex, k: float) -> PointSpring:
+        """:meth:`spring` with its ends swapped: end A the post p, where a bracket of the level frame carries the
+        pulley and, beyond it, the coil; end B the point c on the link, where the cable is clamped."""
+        s = self.spring(model, c, p, k)
+        return PointSpring(s.link_b, s.point_b, s.link_a, s.point_a, s.k)
+
+    @staticmethod
+    def bracket_lead(out_b) -> tuple:
+        """The lead (unit, the level frame's axes) of a pulley at the post: from the coil on the bracket beyond
+        the post along the joint's axis (``out_b``, the level frame's outward axis, away from the links), back
+        towards the links. The cable's path then depends on the spring's length alone: the point c sweeps
+        a whole turn about the joint, and a lead in the plane would have the cable wrap from none to half a
+        turn of the pulley as it does."""
+        return tuple(-np.asarray(out_b, dtype=float))
+
     turn = True  # the compensation may turn the lever and the post (compensate_pulley)
+    bracket = True  # where its link has no room or its pulley would meet the table, the coil may ride the level frame
     tilt = LEAD_TILT  # rad: the lead's out of the plane
     beside = True  # the realised ends move beside the links by the coils' width
 
@@ -287,8 +304,10 @@ def belt_layout(model: RevoluteChain, found: Structure, *, share: float = SHARE,
         else:
             out = out.with_belt(model.joints[joint], model.bodies[first])
             level, level_origin = out.belts[-1].name, joint_at[k]
+        carrier = (float(np.linalg.norm(np.asarray(joint_at[k]) - joint_at[k - 1])) if k > 1 else
+                   link_length(model, first))  # the link before the joint (the base: unbounded)
         plane = SpringPlane(link, level, np.asarray(level_origin), R0[first], R0, o0, complex(model.g * G[k]),
-                            joint_at=np.asarray(joint_at[k]), h=h, up=up, w=w, d=float(d))
+                            joint_at=np.asarray(joint_at[k]), h=h, up=up, w=w, d=float(d), mast=max(length, carrier))
         planes.append(plane)
         rooms.append(length)
         springs.append(plane.spring(out, c, p, kappa))
@@ -303,24 +322,40 @@ TABLE_SLACK = 0.005
 the pulley's radius, its rope and the clearance margin: the poses the design's audit adds lie between them."""
 
 
-def turned_clear_of_table(plane: SpringPlane, R, o, floor: float, c: complex, p: complex, room: float) -> complex:
-    """The turn (a unit complex number) of a spring's point c and post p (complex, m, from the joint in the
-    plane) about the joint that keeps both ``room`` (m) above the mounting plane at every pose of ``R``, ``o``:
-    none where they already are, else the least turn that does, else the one that keeps them highest (on a
-    half-degree grid). Turning both together changes no length at any pose, so neither the balance nor the
-    pulley's compensation: only conj(p) c is fixed (001 Eq. (16)). Where a link reaches down to the table,
-    a pulley at its far end would otherwise run into the table beside it."""
+def _heights(plane: SpringPlane, R, o, floor: float) -> tuple:
+    """Per pose of ``R``, ``o``: the joint's height (m) above the mounting plane ``floor`` and the heights of
+    the link's in-plane axes h and up (a point c on the link is zero + Re(c) z_h + Im(c) z_u high)."""
     link, up = plane.link, plane.up
     base = plane.R0[link].T @ (np.asarray(plane.joint_at) - plane.o0[link])  # the joint, in the link's frame
     zero = np.einsum("pij,j->pi", R[:, link], base) @ up + o[:, link] @ up - floor  # its height, per pose
     z_h = np.einsum("pij,j->pi", R[:, link], plane.R0[link].T @ plane.h) @ up  # the plane's axes' heights
     z_u = np.einsum("pij,j->pi", R[:, link], plane.R0[link].T @ up) @ up
+    return zero, z_h, z_u
+
+
+def table_room(plane: SpringPlane, R, o, floor: float, c: complex, p: complex) -> tuple[float, float]:
+    """The least heights (m) above the mounting plane ``floor`` of a spring's point c on the link and of its post p
+    on the level frame (complex, m, from the joint in the plane) over the poses of ``R``, ``o``."""
+    zero, z_h, z_u = _heights(plane, R, o, floor)
+    return float(np.min(zero + c.real * z_h + c.imag * z_u)), float(np.min(zero) + p.imag)
+
+
+def turned_clear_of_table(plane: SpringPlane, R, o, floor: float, c: complex, p: complex, room: float,
+                          post_room: float | None = None) -> complex:
+    """The turn (a unit complex number) of a spring's point c and post p (complex, m, from the joint in the
+    plane) about the joint that keeps the point ``room`` (m) and the post ``post_room`` (default ``room``)
+    above the mounting plane at every pose of ``R``, ``o``: none where they already are, else the least turn
+    that does, else the one that keeps them highest (on a half-degree grid). Turning both together changes no length at any pose, so neither the balance nor the
+    pulley's compensation: only conj(p) c is fixed (001 Eq. (16)). Where a link reaches down to the table,
+    a pulley at its far end would otherwise run into the table beside it."""
+    zero, z_h, z_u = _heights(plane, R, o, floor)
     turns = np.exp(1j * np.radians(np.concatenate([np.arange(0, 180.5, 0.5), -np.arange(0.5, 180, 0.5)])))
     point = c * turns  # (angles,)
     heights = zero[:, None] + point.real[None] * z_h[:, None] + point.imag[None] * z_u[:, None]
-    low = np.minimum(heights.min(axis=0), zero.min() + (p * turns).imag)
+    post_room = room if post_room is None else post_room
+    low = np.minimum(heights.min(axis=0) - room, zero.min() + (p * turns).imag - post_room)  # above what each needs
     keys = [sig(v) for v in low]  # the search's key: round-off decides no turn
-    fits = [i for i in np.argsort(np.abs(np.angle(turns)), kind="stable") if keys[i] >= room]
+    fits = [i for i in np.argsort(np.abs(np.angle(turns)), kind="stable") if keys[i] >= 0]
     return complex(turns[fits[0] if fits else int(np.argmax(keys))])
 
 
@@ -342,26 +377,34 @@ ANGLES = 360
 
 
 def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex,
-                 tilt: float = LEAD_TILT) -> tuple[np.ndarray, np.ndarray]:
+                 tilt: float = LEAD_TILT, at_post: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """The link's gravity energy plus its cable spring's (J) at the link's angles ``theta`` (rad): the
     spring k (x[0]) from a pulley of radius ``rho`` centred at c = x[1] + i x[2] on the link (its cable
     arriving along the lead, ``tilt`` (rad, default :data:`LEAD_TILT`) out of the plane from c's direction: from the coil on the
     joint's side) to the post p = x[3] + i x[4]; route 2's path over the pulley
     (:func:`springlab.energy.geometry.cable_geometry`: the angle alpha between the lead and B - A). ``x``
-    may hold several designs, (M, 5): the energies are then (M, len(theta)). Returns the energy and
+    may hold several designs, (M, 5): the energies are then (M, len(theta)). With ``at_post`` the pulley is
+    at the post instead, on a bracket of the level frame that carries the coil beyond it along the joint's
+    axis, away from the links: the cable arrives along the axis, the pulley swivels about it and wraps a
+    quarter turn, alpha = pi / 2 at every angle, and runs to the point c on the link. Returns the energy and
     its derivative dV/dtheta (N m, the torque) in closed form: a finite difference would lose some ten digits
     to cancellation, and the compass search compares its values to nine."""
     x = np.asarray(x, dtype=float)
     k, c, p = x[..., 0, None], (x[..., 1] + 1j * x[..., 2])[..., None], (x[..., 3] + 1j * x[..., 4])[..., None]
     turn = np.exp(1j * theta)
-    A = turn * c
-    D = p - A
-    dD = -1j * A  # d/dtheta
+    if at_post:  # the pulley at p, fixed in the plane; the cable runs from it to c on the link
+        D = turn * c - p
+        dD = 1j * turn * c  # d/dtheta
+        along = d_along = np.zeros(np.broadcast_shapes(D.shape))  # the lead along the joint's axis: alpha = pi / 2
+    else:  # the pulley at c, on the link; the cable runs from it to the post p
+        A = turn * c
+        D = p - A
+        dD = -1j * A
+        u = turn * c / np.abs(c)  # the lead's direction in the plane, turning with the link
+        along = np.cos(tilt) * np.real(np.conj(u) * D)
+        d_along = np.cos(tilt) * np.real(np.conj(1j * u) * D + np.conj(u) * dD)
     L = np.abs(D)
     dL = np.real(np.conj(D) * dD) / L
-    u = turn * c / np.abs(c)  # the lead's direction in the plane, turning with the link
-    along = np.cos(tilt) * np.real(np.conj(u) * D)
-    d_along = np.cos(tilt) * np.real(np.conj(1j * u) * D + np.conj(u) * dD)
     ratio = np.clip(along / L, -1.0, 1.0)
     alpha = np.arccos(ratio)
     d_ratio = (d_along * L - along * dL) / L**2
@@ -377,7 +420,8 @@ def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex,
 
 
 def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho: float,
-                      angles=None, *, turn: bool = True, tilt: float = LEAD_TILT) -> tuple[complex, complex, float]:
+                      angles=None, *, turn: bool = True, tilt: float = LEAD_TILT,
+                      at_post: bool = False) -> tuple[complex, complex, float]:
     """The offsets and rate (c, p, k) that hold the link best with a pulley of radius ``rho`` (m):
     the least mean square of the torque dV/dtheta (in closed form) over the link's angles ``angles`` (rad;
     default a full turn, :data:`ANGLES`; its gravity term and its
@@ -385,7 +429,9 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
     point-pulley design it starts from, the lever's and the post's lengths within :data:`REFIT` of theirs,
     their directions and the rate free; the lead stays on the line from the pulley to the joint. The
     ``turn=False`` keeps both directions (only the rate and the two lengths move: paper 001's post stays on
-    the vertical and the point on sigma, 001 Eqs. 13-14); ``tilt`` is the lead's out of the plane (rad). The
+    the vertical and the point on sigma, 001 Eqs. 13-14); ``tilt`` is the lead's out of the plane (rad);
+    ``at_post`` puts the pulley at the post, its coil on a bracket beyond it along the joint's axis (the
+    cable's wrap is then a quarter turn at every angle). The
     search is a compass search that compares to 9 significant digits
     (:func:`springlab.design.search.compass_search`), so another CPU's round-off takes no other step.
     Returns them unchanged for rho = 0."""
@@ -401,7 +447,7 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
         return np.stack([v[..., 0] * k, c_.real, c_.imag, p_.real, p_.imag], axis=-1)
 
     def torque(v):  # dV/dtheta over |g G| at each angle, (M, len(theta)) for designs v (M, 5)
-        return _cable_terms(cartesian(v), rho, theta, plane.gG, tilt)[1] / abs(plane.gG)
+        return _cable_terms(cartesian(v), rho, theta, plane.gG, tilt, at_post)[1] / abs(plane.gG)
 
     start = np.array([1.0, 1.0, np.angle(c), 1.0, np.angle(p)])
     swing = np.pi if turn else 0.0
@@ -462,56 +508,89 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
     rooms = layout.rooms or (np.inf,) * len(layout.springs)
     rows = zip(layout.springs, layout.leads, layout.outward, layout.planes, rooms, strict=True)
     for index, (ideal, ideal_towards, (out_a, out_b), plane, room) in enumerate(rows):
-        pull = ideal.k * length_range(model, ideal, R, o)[1]
-        chosen = cable
-        left = None
-        for _ in range(4):  # the cable for the pull, its pulley, the spring re-fitted for it, and again
-            if chosen is None or chosen.working < pull:
-                chosen = cable_for(pull, given)
-            rho = chosen.pulley_radius if given is None else given
-            s, towards = ideal, ideal_towards
-            c0, p0 = plane.offsets(ideal)
-            if rho > 0:  # the pulley adds k rho (its wrap's change): c, p and k re-fitted for it
-                try:
-                    c, p, k = plane.prepare(c0, p0, s.k, rho)
-                except SpringlabError as why:
-                    left = f"not realised: spring S{index + 1} ({ideal.label}, k = {ideal.k:.4g} N/m): {why}"
+        def attempt(at_post: bool, swap: bool = False, ideal=ideal, ideal_towards=ideal_towards, out_a=out_a,
+                    out_b=out_b, plane=plane, room=room, index=index) -> dict:
+            """The spring realised with its pulley on its link (or ``at_post``: on the level frame's bracket;
+            ``swap``: with the point's and the post's lengths swapped, the cable's clamp near the joint)."""
+            pull = ideal.k * length_range(model, ideal, R, o)[1]
+            chosen = cable
+            for _ in range(4):  # the cable for the pull, its pulley, the spring re-fitted for it, and again
+                if chosen is None or chosen.working < pull:
+                    chosen = cable_for(pull, given)
+                rho = chosen.pulley_radius if given is None else given
+                s, towards = ideal, ideal_towards
+                c0, p0 = plane.offsets(ideal)
+                if swap:  # conj(p) c is what 001 Eq. (16) fixes: |c| and |p| trade places
+                    c0, p0 = c0 * abs(p0) / abs(c0), p0 * abs(c0) / abs(p0)
+                c, p = c0, p0
+                d = chosen.diameter if rho > 0 else 0.0
+                need = rho + d + margin + TABLE_SLACK  # a pulley's (and its rope's) room above the table
+                clamp = d + margin + TABLE_SLACK  # a cable's clamp's
+                if rho > 0:  # the pulley adds k rho (its wrap's change): c, p and k re-fitted for it
+                    try:
+                        c, p, k = plane.prepare(c0, p0, s.k, rho)
+                    except SpringlabError as why:
+                        return {"left": f"not realised: spring S{index + 1} ({ideal.label}, k = {ideal.k:.4g} N/m): "
+                                        f"{why}"}
+                    c, p, k = compensate_pulley(plane, c, p, k, rho, plane.angles(R), turn=plane.turn,
+                                                tilt=plane.tilt, at_post=at_post)
+                    if plane.turn:  # clear of the table: the pulley and its rope, and the cable's clamp, with the margin
+                        turn = (turned_clear_of_table(plane, R, o, floor, c, p, clamp, need) if at_post else
+                                turned_clear_of_table(plane, R, o, floor, c, p, need))
+                        c, p = c * turn, p * turn
+                    s = plane.posted(model, c, p, k) if at_post else plane.spring(model, c, p, k)
+                    towards = plane.towards(c)
+                if at_post:  # from the coil on the bracket beyond the post, towards the joint
+                    lead = plane.bracket_lead(out_b)
+                else:  # from the coil, on the joint's side and out of the plane, the cable arrives at the pulley
+                    lead = tuple(-np.cos(plane.tilt) * np.asarray(towards) - np.sin(plane.tilt) * np.asarray(out_a))
+                led = PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, pulley_radius=rho,
+                                  lead=lead if rho > 0 else None)
+                lengths = length_range(model, led, R, o)
+                behind = rho + HOOK_GAP + d
+                fits_in = plane.mast - behind if at_post else plane.coil_room(c0 if rho == 0 else c, room, behind)
+                found = coil_for(s.k, lengths, fits_in, material, block=2 * (rho + d))
+                if found[0] is None:
+                    raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, "
+                                         f"even side by side or over a pulley block ({found[1]})")
+                coil, ratio, parallel = found
+                pull = s.k / parallel * lengths[1]  # each side-by-side spring has its own cable
+                if chosen.working >= pull or cable is not None:
                     break
-                c, p, k = compensate_pulley(plane, c, p, k, rho, plane.angles(R), turn=plane.turn,
-                                            tilt=plane.tilt)
-                if plane.turn:  # clear of the table the arm stands on, the pulley and its rope with the margin
-                    turn = turned_clear_of_table(plane, R, o, floor, c, p, rho + chosen.diameter + margin + TABLE_SLACK)
-                    c, p = c * turn, p * turn
-                s = plane.spring(model, c, p, k)
-                towards = plane.towards(c)
-            lead = tuple(-np.cos(plane.tilt) * np.asarray(towards) - np.sin(plane.tilt) * np.asarray(out_a))  # from
-            # the coil, on the joint's side and out of the plane, the cable arrives at the pulley
-            led = PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, s.k, pulley_radius=rho,
-                              lead=lead if rho > 0 else None)
-            lengths = length_range(model, led, R, o)
-            d = chosen.diameter if rho > 0 else 0.0
-            fits_in = plane.coil_room(c0 if rho == 0 else c, room, rho + HOOK_GAP + d)  # on its own link
-            found = coil_for(s.k, lengths, fits_in, material, block=2 * (rho + d))
-            if found[0] is None:
-                raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, even "
-                                     f"side by side or over a pulley block ({found[1]})")
-            coil, ratio, parallel = found
-            pull = s.k / parallel * lengths[1]  # each side-by-side spring has its own cable
-            if chosen.working >= pull or cable is not None:
-                break
+            clear = 0.0  # a pseudobase's spring: its table is the clearance check's
+            if plane.turn:
+                point, post = table_room(plane, R, o, floor, c, p)
+                clear = sig(min(post - need, point - clamp) if at_post else min(point, post) - need)
+            return {"s": s, "lead": lead, "rho": rho, "chosen": chosen, "lengths": lengths, "coil": coil,
+                    "ratio": ratio, "parallel": parallel, "room": fits_in if at_post else None,
+                    "fits": coil.max_length <= fits_in - (2 * (rho + d) if ratio > 1 else 0.0), "clear": clear >= 0}
+
+        got = attempt(False)
+        if "left" not in got and given != 0 and plane.bracket and not (got["fits"] and got["clear"]):
+            for swap in (False, True):  # its link has no room for the coil, or the pulley meets the table
+                other = attempt(True, swap)
+                if other["fits"] + other["clear"] > got["fits"] + got["clear"]:
+                    got = other
+                if got["fits"] and got["clear"]:
+                    break
+        left = got.get("left")
         if left is not None:  # no room for its pulley: the design leaves it out and says so
             realised.append(None)
             kinds.append(left)
             coils.append(None)
             origins.append(index)
             continue
+        s, lead, rho, chosen, lengths = (got[key] for key in ("s", "lead", "rho", "chosen", "lengths"))
+        coil, ratio, parallel, bracket = got["coil"], got["ratio"], got["parallel"], got["room"]
         shift = parallel * coil.outer_diameter if plane.beside else 0.0  # beside the links by the coils' width
+        out_a, out_b = layout.outward[index] if bracket is None else layout.outward[index][::-1]
         s = PointSpring(s.link_a, on_grid(np.asarray(s.point_a) + shift * out_a), s.link_b,
                         on_grid(np.asarray(s.point_b) + shift * out_b), s.k)
         lead = on_grid(lead)  # on the same grid: another CPU's round-off moves nothing
         k = s.k / parallel
         tension = coil.initial_tension / ratio  # along the cable: the block divides the coil's pull
-        block = f", with a {ratio}:1 pulley block" if ratio > 1 else ""
+        block = (" on a bracket of the level frame" if bracket is not None else "") + (
+            f", with a {ratio}:1 pulley block" if ratio > 1 else "")
         single = parallel > 1 and coil_for(s.k, lengths, np.inf, material)[0] is not None
         for m in range(parallel):
             realised.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, tension / k, tension, rho,
@@ -519,6 +598,6 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
             kinds.append("cable over a pulley" + block + (f" ({m + 1} of {parallel} side by side"
                                                           + (", so that each coil fit its link)" if single else ")")
                                                           if parallel > 1 else ""))
-            coils.append(Fitted(coil, lengths, ratio, chosen if rho > 0 else None))
+            coils.append(Fitted(coil, lengths, ratio, chosen if rho > 0 else None, bracket))
             origins.append(index)
     return tuple(realised), tuple(kinds), tuple(coils), tuple(origins)

@@ -91,6 +91,7 @@ class Subsystem(Plane):
     turn = False  # 001 Eqs. (13)-(14): the post on the vertical, the point on sigma
     tilt = 0.0  # the lead along sigma: the cable's path depends on phi alone
     beside = False  # C is already beside the links (its coil's width counted: pseudobase_layout's widths)
+    bracket = False  # the coil rides its link: the pseudobase's post is a vertical line, not a level frame
 
     def prepare(self, c: complex, p: complex, k: float, rho: float) -> tuple[complex, complex, float]:
         """The spring's (c, p, k) with room for a pulley of radius ``rho`` (m): the post lowered to

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab.design.arms import ArmDesign, design_model, ends_outside
-from springlab.design.hardware import link_length
+from springlab.design.hardware import balanced_body, link_length
 from springlab.energy import geometry, simulation
 from springlab.model.mjcf import to_mjcf
 from springlab.model.robots import ROBOTS, load_robot, robot_urdf
@@ -358,7 +358,7 @@ def hardware_table(designs: dict) -> Table:
             shares[case] = 100 * (1 - np.max(np.abs(geometry.joint_torques(arm, springs, q)), axis=0) / peak)
         near = {row[0]: row for row in design.clearance.rows}
         for name, s, fit in zip(design.realised_names, design.realised, design.coils, strict=True):
-            body = design.model.bodies.index(s.link_a)
+            body = balanced_body(design.model, s)
             joint = body - 1
             _, piece, nearest, _, gap = near[name]
             cable = (f"{1e3 * fit.cable.diameter:.2f} {fit.cable.construction}: {s.k * fit.span[1]:.0f} of "
