@@ -79,6 +79,16 @@ def link_length(model: RevoluteChain, body: int) -> float:
     return span
 
 
+def coil_bound(model: RevoluteChain, spring, fit) -> float:
+    """The length (m) a realised spring's coil is held to: its link's (:func:`link_length` of the body it
+    balances, :func:`balanced_body`), or for a coil on a bracket of the level frame, the room its layout gave
+    it plus what lies behind its pulley (the pulley, the hook's gap and the rope): the longer link at its
+    joint (the base: unbounded)."""
+    if getattr(fit, "bracket", None) is None:
+        return link_length(model, balanced_body(model, spring))
+    return fit.bracket + spring.pulley_radius + HOOK_GAP + _cable_diameter(fit)
+
+
 def _cable_diameter(fit) -> float:
     return fit.cable.diameter if getattr(fit, "cable", None) is not None else CABLE_DIAMETER
 

@@ -19,7 +19,15 @@ near the link's far end, so that the coil lies along the link between it and the
 block where it would be longer), and the cable's path spans 0.65 to 1.15 of the link's length. Point and post
 may also turn together about the joint, which changes no length at any pose: the realisation turns them
 where the pulley would otherwise come within its radius, its rope and the margin of the table the arm
-stands on (:func:`turned_clear_of_table`). Both ends
+stands on (:func:`turned_clear_of_table`). Where that fails, or where the link is too short for the coil
+even over a pulley block, the realisation turns the spring inside out: its pulley stands at the post, on
+a bracket of the level frame, with the coil beyond it along the joint's axis (away from the links), and
+the cable runs from the pulley to a clamp at the point on the link (:meth:`SpringPlane.posted`). The
+cable then arrives along the pulley's axis of swivel, so it wraps a quarter turn at every angle and its
+path depends on the spring's length alone (a lead in the plane would have it wrap from none to half a
+turn as the point sweeps about the joint); the point's and the post's lengths may trade places
+(conj(p) c alone is fixed), which brings the clamp near the joint where the link sweeps down to the
+table. Such a coil is held to the longer of the two links that meet at its joint. Both ends
 move along the joint's axis together
 (which changes no length's variation) to one side of the links, :data:`AXIAL_GAP` beyond the
 farther of the two links' shapes, so that the spring and its post run beside the links.

@@ -396,7 +396,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
                  "the springs' clearance from the links is not among these checks (no link shapes): see its table")
         print("\nstatus: passed (better than its negative control; no joint left worse than gravity alone; every "
               f"spring with a line of action at every pose checked, no cable's end crossing its pulley's lead; every "
-              "cable within its working load over a pulley its rope maker allows; every coil between its pulley and its joint; "
+              "cable within its working load over a pulley its rope maker allows; every coil within its room (between its pulley and its joint, or on its bracket); "
               f"{clear})")
         return 0
     print(f"\nstatus: flagged, {len(flags)} of the design's own checks fail:")

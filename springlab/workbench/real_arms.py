@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab.design.arms import ArmDesign, design_model, ends_outside
-from springlab.design.hardware import balanced_body, link_length
+from springlab.design.hardware import balanced_body, coil_bound
 from springlab.energy import geometry, simulation
 from springlab.model.mjcf import to_mjcf
 from springlab.model.robots import ROBOTS, load_robot, robot_urdf
@@ -341,11 +341,18 @@ def mujoco_agreement(design: ArmDesign, poses: int = 200) -> tuple[float, float]
     return tuple(out)
 
 
+def _mm(length: float) -> str:
+    """A length (m) in whole mm, or 'unbounded'."""
+    return f"{1e3 * length:.0f}" if np.isfinite(length) else "unbounded"
+
+
 def hardware_table(designs: dict) -> Table:
     """Per arm and spring of each design (label -> :class:`~springlab.design.arms.ArmDesign`): the share of its
     link's joint's peak removed on the arm carrying the springs' hardware (ideal, realised) and, as the
     control, by the realised springs on the bare arm; the spring's nearest approach to a link (coal, the
-    URDF's meshes); its coil's longest length beside its link's length and its pulley block; its largest
+    URDF's meshes); its coil's longest length beside the length it is held to (its link's, or for a coil on a
+    bracket of the level frame, the longer link's at its joint: :func:`springlab.design.hardware.coil_bound`)
+    and its pulley block; its largest
     force; its cable with the largest pull beside the cable's working load, and its pulley's tread; its mass."""
     rows = []
     for label, design in designs.items():
@@ -366,10 +373,10 @@ def hardware_table(designs: dict) -> Table:
             tread = f"{1e3 * fit.cable.pulley_diameter:.0f}" if fit.cable is not None and s.pulley_radius > 0 else ""
             rows.append((label, name, design.model.joints[joint], *(f"{shares[c][joint]:.1f}" for c in shares),
                          f"{1e3 * gap:.0f} ({piece}, {nearest})", f"{1e3 * fit.coil.max_length:.0f}",
-                         f"{1e3 * link_length(design.model, body):.0f}", f"{fit.ratio}:1" if fit.ratio > 1 else "none",
+                         _mm(coil_bound(design.model, s, fit)), f"{fit.ratio}:1" if fit.ratio > 1 else "none",
                          f"{fit.coil.max_force:.0f}", cable, tread, f"{1e3 * fit.coil.mass:.0f}"))
     return Table(["arm", "spring", "its joint", "removed, ideal (%)", "realised (%)", "realised, bare arm (%)",
-                  "nearest link (mm)", "longest coil (mm)", "its link (mm)", "block", "coil's largest force (N)",
+                  "nearest link (mm)", "longest coil (mm)", "its room (mm)", "block", "coil's largest force (N)",
                   "cable (mm): pull of working load (N)", "pulley tread (mm)", "coil mass (g)"], rows)
 
 
