@@ -236,7 +236,7 @@ pseudobase (001 Fig. 5)."""
 
 @dataclass(frozen=True)
 class Part:
-    """A part of the springs' hardware: its kind ('spring', 'cable', 'pulley', 'belt', 'post', 'rssr'), name, the
+    """A part of the springs' hardware: its kind ('spring', 'cable', 'pulley', 'belt', 'post', 'bracket', 'rssr'), name, the
     link (frame) it rides on and its centre there (m), its mass (kg), its sizes (m) and the loads it
     carries (N, N m) over the workspace, and where its mass is carried in the balance: (link, point m,
     kg) each."""
@@ -349,7 +349,7 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
                 dia = _rod(F, arm)
                 m = ALUMINIUM * np.pi * dia**2 / 4 * reach
                 centre = (fixed + root) / 2
-                out.append(Part("post", f"{name} bracket", s.link_a, tuple(centre), m,
+                out.append(Part("bracket", f"{name} bracket", s.link_a, tuple(centre), m,
                                 {"length": reach, "rod_diameter": dia},
                                 {"largest_force_N": F, "root_moment_Nm": F * arm}, (on(s.link_a, centre) + (m,),)))
                 if belt is not None:  # the cable's pull on the bracket, about the frame's origin: the belt carries it
