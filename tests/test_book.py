@@ -236,3 +236,23 @@ def test_the_book_links_equations_and_names_papers(built):
     text = re.sub(r"(?s)<(script|style|pre|code)\b.*?</\1>|<[^>]+>", " ", (built / "springlab_design_your_arm.html").read_text())
     assert not re.search(r"(?<![\w.,/-])00[0-4](?!\w)", text)  # no paper by its key
     assert 'href="juang2023_spatial_balance.html"' in (built / "springlab_design_your_arm.html").read_text()
+
+
+def test_each_chapter_defines_its_statuses_above_its_first_claims_table(built):
+    from springlab.workbench.claims import REPORT_COLUMNS
+
+    report = (built / "report.html").read_text()
+    assert 'id="statuses"' in report and all(f"<strong>{s}</strong>" in report for s in REPORT_COLUMNS)
+    shown_any = 0
+    for stem in ALL_STEMS:
+        page = (built / f"{stem}.html").read_text()
+        if '<table class="claims">' not in page:
+            continue
+        shown_any += 1
+        start, table = page.find('class="claims-legend"'), page.index('<table class="claims">')
+        assert 0 <= start < table, stem  # a reader meets the legend before the first verdict
+        legend = page[start:table]
+        used = set(re.findall(r'<tr class="claim [^"]*"><td>.*?<td><strong>([^<]+)</strong></td>', page))
+        assert used and all(f"<strong>{s}</strong>" in legend for s in used), (stem, used)
+        assert 'href="report.html#statuses"' in legend
+    assert shown_any >= 5  # every paper chapter shows claims

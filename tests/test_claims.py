@@ -41,8 +41,13 @@ def check_records(records, where):
         if c.get("status") == "bound" and not (c.get("tolerance") is None and str(c.get("note", "")).startswith(
                 ("at least ", "at most ")) and c.get("ours") is not None):
             problems.append(f"{label}: a bound must say its direction (at least / at most) and carry no tolerance")
-        if c.get("status") == "reproduced" and not abs(c["ours"] - c["paper"]) <= c["tolerance"]:
+        if c.get("status") == "not compared" and not (str(c.get("note", "")).strip() and c.get("ours") is None):
+            problems.append(f"{label}: not compared, but with a value of ours or without the note saying why")
+        if c.get("status") in ("reproduced", "reproduced with corrected input") and not (
+                abs(c["ours"] - c["paper"]) <= c["tolerance"]):
             problems.append(f"{label}: reproduced, but |ours - paper| > tolerance")
+        if c.get("status") in ("alternative reading", "reproduced with corrected input") and not c.get("cause"):
+            problems.append(f"{label}: {c['status']} without the reading or the correction it rests on")
         try:
             _no_nan(c, label)
         except AssertionError as err:
@@ -65,7 +70,9 @@ def test_the_check_catches_each_kind_of_bad_claim():  # negative controls: the c
             "tolerance_basis": "half a unit"}
     assert check_records([good], "t") == []
     bad = [dict(good, ours=2.0), dict(good, tolerance_basis=""), dict(good, status="rounding", band=None),
-           dict(good, note=float("nan")), dict(good, status="echoed")]
+           dict(good, note=float("nan")), dict(good, status="echoed"), dict(good, status="not compared", note=""),
+           dict(good, status="alternative reading", cause=""), dict(good, status="reproduced with corrected input"),
+           dict(good, status="reproduced with corrected input", cause="x", ours=2.0)]
     assert all(len(check_records([b], "t")) >= 1 for b in bad)
 
 
@@ -81,7 +88,10 @@ def test_compare_refuses_nan_negative_tolerance_unknown_status_and_a_missing_bas
         claims.compare("q", "w", 1.0, 1.0, unit="m", tolerance=0.1, tolerance_basis="")
     with pytest.raises(SpringlabError, match="band_basis"):
         claims.compare("q", "w", 1.0, 1.0, unit="m", tolerance=0.1, tolerance_basis="b", rounding=0.2)
+    with pytest.raises(SpringlabError, match="needs its note"):
+        claims.not_compared("q", "w", unit="J", note=" ")
     assert claims.records == []
+    assert claims.not_compared("q", "w", unit="J", note="why").status == "not compared"
 
 
 def test_statuses_and_the_written_file(tmp_path):
@@ -161,3 +171,56 @@ def test_the_html_table_shows_every_claim_with_its_details_under_it():
     # a notebook shows the claims, and a claim a cell ends with, as this table (not a repr)
     assert c._repr_html_() == html_table(records)
     assert c.records[0]._repr_html_().count('<tr class="claim ') == 1
+
+
+def test_every_status_has_a_meaning_and_an_undefined_one_stops_the_book():
+    from springlab.workbench import book
+    from springlab.workbench.claims import MEANINGS, REPORT_COLUMNS, legend_html, report_column
+
+    assert set(MEANINGS) == set(REPORT_COLUMNS)  # "bound" included: every column of the report defined
+    claims = Claims("test")
+    claims.compare("a length", "Table 1", 1.0, 1.0, unit="m", tolerance=1e-9, tolerance_basis="exact")
+    claims.input("a rate", "Table 2", 2.0, 2.0, unit="N/m", note="chosen")
+    records = claims.to_records()
+    legend = legend_html(records)
+    assert "<strong>reproduced</strong>" in legend and "<strong>input</strong>" in legend
+    assert "<strong>rounding</strong>" not in legend  # only the statuses the chapter uses
+    assert {report_column(r) for r in records} == {"reproduced", "input"}
+    odd = [dict(records[0], status="approximately")]  # the control: a status no one defined
+    with pytest.raises(SpringlabError, match="'approximately' has no meaning"):
+        legend_html(odd)
+    with pytest.raises(SpringlabError, match="'approximately' has no meaning"):
+        book.report_page(["test"], {"test": {"cells": []}}, {"test": odd})
+
+
+def test_the_legend_stands_above_the_chapters_first_claims_table_only():
+    from springlab.workbench import book
+
+    claims = Claims("test")
+    claims.compare("a length", "Table 1", 1.0, 1.0, unit="m", tolerance=1e-9, tolerance_basis="exact")
+    table = {"output_type": "display_data", "metadata": {}, "data": {"text/html": claims._repr_html_()}}
+    notebook = {"cells": [{"cell_type": "code", "source": "", "outputs": []},
+                          {"cell_type": "code", "source": "", "outputs": [dict(table)]},
+                          {"cell_type": "code", "source": "", "outputs": [dict(table)]}]}
+    shown = book.with_legend(notebook, claims.to_records())
+    first, second = (c["outputs"][0]["data"]["text/html"] for c in shown["cells"][1:])
+    assert first.index('class="claims-legend"') < first.index('<table class="claims">')
+    assert "claims-legend" not in second and "claims-legend" not in json.dumps(notebook)  # the input untouched
+    assert book.with_legend({"cells": []}, claims.to_records()) == {"cells": []}  # no table, no legend
+
+
+def test_a_literal_reading_and_a_corrected_input_are_filed_as_what_they_are():
+    claims = Claims("t")
+    off = claims.compare("index, read literally", "Eq. (30a)", 0.5389, 0.5351, unit="-", tolerance=5e-5,
+                         tolerance_basis="half a unit", expect="alternative reading", reading="sums of magnitudes")
+    assert off.status == "alternative reading" and "sums of magnitudes" in off.cause
+    near = claims.compare("index", "Eq. (30a)", 0.5389, 0.5389, unit="-", tolerance=5e-5, tolerance_basis="half a unit",
+                          reading="sums of magnitudes")  # within the tolerance: no other reading is needed
+    assert near.status == "reproduced" and near.cause == ""
+    fixed = claims.compare("C, example A", "Sec. V.A", 184.0, 183.99, unit="J", tolerance=0.05, tolerance_basis="half",
+                           expect="reproduced with corrected input", corrected="positions 30, 90, 150 for 30, 60, 120")
+    assert fixed.cause.startswith("input corrected: positions")
+    with pytest.raises(AssertionError):  # the control: a correction does not turn a miss into a reproduction
+        claims.compare("C, example A", "Sec. V.A", 184.0, 150.0, unit="J", tolerance=0.05, tolerance_basis="half",
+                       expect="reproduced with corrected input", corrected="positions")
+    assert check_records(claims.to_records()[:3], "t") == []

@@ -34,10 +34,17 @@ from pathlib import Path
 
 from docutils.nodes import make_id
 
-from springlab.errors import SolverError
+from springlab.errors import SolverError, SpringlabError
 from springlab.papers import PAPERS
 from springlab.workbench import prose
-from springlab.workbench.claims import REPORT_COLUMNS, html_table, report_column
+from springlab.workbench.claims import (
+    MEANINGS,
+    REPORT_COLUMNS,
+    html_table,
+    legend_html,
+    report_column,
+    undefined_statuses,
+)
 
 CONF_DIR = Path(__file__).resolve().parent / "bookconf"
 ROOT = Path(__file__).resolve().parents[2]
@@ -119,6 +126,21 @@ def readable(notebook: dict, stem: str, names: dict, labels: set) -> dict:
                 data["text/markdown"] = prose.link_markdown("".join(data["text/markdown"]), key, names, labels)
             if "text/html" in data:
                 data["text/html"] = prose.link_html("".join(data["text/html"]), key, names, labels, page=stem)
+    return notebook
+
+
+def with_legend(notebook: dict, records: list[dict]) -> dict:
+    """A copy of the notebook with a legend of the statuses its claims ``records`` use
+    (:func:`springlab.workbench.claims.legend_html`) above its first claims table: a reader meets each
+    verdict's meaning where the verdicts first stand."""
+    notebook = json.loads(json.dumps(notebook))
+    for cell in notebook["cells"]:
+        for output in cell.get("outputs", []):
+            data = output.get("data", {})
+            html = "".join(data.get("text/html", ""))
+            if '<table class="claims">' in html:
+                data["text/html"] = html.replace('<table class="claims">', legend_html(records) + '<table class="claims">', 1)
+                return notebook
     return notebook
 
 
@@ -207,15 +229,7 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
     lines += ["## How to read a claim", "",
               "Every number a notebook reproduces is a *claim*: the quantity, where the paper prints it, "
               "the paper's value, ours, the difference, the tolerance and why it is what it is, and a status:",
-              "",
-              "- **reproduced**: within the stated tolerance;",
-              "- **rounding**: within the band the paper's printed rounding explains;",
-              "- **discrepancy**: further off than rounding explains, with its cause when one was found, or "
-              "what was tried;",
-              "- **not reproducible**: the paper gives too little to recompute it;",
-              "- **input**: a value the notebook fed in, shown and never counted as reproduced;",
-              "- **consistent** / **inconsistent**: a number recomputed from the paper's own printed numbers "
-              "(a check of the paper against itself).", "",
+              "", *_statuses(), "",
               f"All claims: {_tally([r for records in claims.values() for r in records])}. "
               "{doc}`report` lists every one, linked to the notebook section that makes it.", "",
               "```{toctree}", ":hidden:", ":caption: The papers", "", *[s for s in stems if PAPERS.get(s, {}).get("key")],
@@ -224,6 +238,11 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
               "```{toctree}", ":hidden:", ":caption: Using springlab", "", *PAGES, "```", "",
               "```{toctree}", ":hidden:", ":caption: Reference", "", "report", *(["api/index"] if api else []), "```", ""]
     return "\n".join(lines)
+
+
+def _statuses() -> list[str]:
+    """Every status a claim may have, with its meaning (MyST list items)."""
+    return [f"- **{status}**: {_md(MEANINGS[status])};" for status in REPORT_COLUMNS]
 
 
 def _section_number(title: str, k: int) -> str:
@@ -238,10 +257,15 @@ def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, 
     with a link to the section of its notebook that makes it (and, where it cites one of the
     ``labels``' equations, to the equation)."""
     names = paper_names(stems)
+    missing = undefined_statuses([r for records in claims.values() for r in records])
+    if missing:
+        raise SpringlabError(f"status {missing[0]!r} has no meaning in springlab.workbench.claims.MEANINGS: define "
+                             "it there before a claim uses it")
     lines = ["# Reproduction report", "",
              "Every number the notebooks reproduce, beside the paper's, from `figures/<notebook>/claims.json` "
              "(the same claims as `figures/REPRODUCTION.md`). The last column links to the notebook section "
-             "whose cell records the claim.", "",
+             "whose cell records the claim.", "", "## Statuses", "", *_statuses(), "",
+             "## Claims by paper and status", "",
              "| status | " + " | ".join(f"{{doc}}`{short_name(stem)} <{stem}>`" for stem in stems) + " | all |",
              "|---|" + "---:|" * (len(stems) + 1)]
     counts = {stem: Counter(report_column(r) for r in claims.get(stem, [])) for stem in stems}
@@ -327,7 +351,7 @@ def stage(notebooks_dir, figures_dir, src, *, api: bool = True) -> list[str]:
     thumbs = set()
     names, labels = paper_names(stems), equation_labels(notebooks)
     for stem in stems:
-        shown = readable(labelled(notebooks[stem], stem), stem, names, labels)
+        shown = with_legend(readable(labelled(notebooks[stem], stem), stem, names, labels), claims.get(stem, []))
         _write_if_changed(src / f"{stem}.ipynb", json.dumps(shown, indent=1))
         figure = PAPERS.get(stem, {}).get("key_figure")
         if figure and (figures_dir / stem / figure).exists():

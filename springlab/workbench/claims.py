@@ -13,6 +13,13 @@ Statuses:
 * ``discrepancy``: further off than the printed rounding explains; ``cause`` names
   the cause when one was found, else the note says what was tried;
 * ``not reproducible``: the paper gives too little to recompute it;
+* ``not compared``: the paper has it (a curve in a figure, say), and the book does not compare it: its
+  note says why, and what is checked instead;
+* ``alternative reading``: the paper's text read literally gives a value further off than rounding
+  explains, while another reading the text allows agrees (recorded as a claim of its own, both shown);
+  ``cause`` names that reading;
+* ``reproduced with corrected input``: within the tolerance, but only once an input the paper prints was
+  changed; ``cause`` names the input, its printed and its changed value, and how the change was chosen;
 * ``input``: a value the notebook chose or fed in (a design's free choice, a value
   equal by construction): shown, never counted as reproduced;
 * ``consistent`` / ``inconsistent``: a number recomputed from the paper's own printed
@@ -50,11 +57,63 @@ from springlab import _checks, tables
 from springlab.errors import SpringlabError
 from springlab.rounding import half_unit, significant
 
-STATUSES = ("reproduced", "rounding", "discrepancy", "not reproducible", "input", "consistent", "inconsistent",
-            "bound")
-REPORT_COLUMNS = ("reproduced", "rounding", "discrepancy, cause found", "discrepancy, no cause found",
-                  "not reproducible", "input", "consistent", "inconsistent", "bound")
+STATUSES = ("reproduced", "reproduced with corrected input", "rounding", "alternative reading", "discrepancy",
+            "not reproducible", "not compared", "input", "consistent", "inconsistent", "bound")
+REPORT_COLUMNS = ("reproduced", "reproduced with corrected input", "rounding", "alternative reading",
+                  "discrepancy, cause found", "discrepancy, no cause found", "not reproducible", "not compared",
+                  "input", "consistent", "inconsistent", "bound")
 """The columns of the reproduction report: the statuses, discrepancies split by cause."""
+
+MEANINGS = {
+    "reproduced": "ours is within the stated tolerance of the paper's value (the claim records why the tolerance "
+                  "is what it is)",
+    "reproduced with corrected input": "within the tolerance, but only once an input the paper prints was changed; "
+                                       "the claim names the input, both values and how the change was chosen",
+    "rounding": "outside the tolerance, but within the band the paper's printed rounding explains",
+    "alternative reading": "the paper's text read literally gives a value further off than rounding explains, "
+                           "while another reading the text allows agrees; both are shown, and the claim names the "
+                           "other",
+    "discrepancy, cause found": "further off than the paper's rounding explains; the claim names the cause",
+    "discrepancy, no cause found": "further off than the paper's rounding explains, and no cause was found; the "
+                                   "claim says what was tried",
+    "not reproducible": "the paper gives too little to recompute it",
+    "not compared": "the paper has it, and the book does not compare it; the claim says why, and what is checked "
+                    "instead",
+    "input": "a value the notebook fed in or chose, shown beside the paper's and never counted as reproduced",
+    "consistent": "a number recomputed from the paper's own printed numbers agrees with the paper: the paper "
+                  "checked against itself, not a reproduction",
+    "inconsistent": "a number recomputed from the paper's own printed numbers disagrees with the paper",
+    "bound": "ours is only a bound (at least, or at most, the value shown), because the computation behind it "
+             "stopped short of the whole answer; the claim says what was left out and whether the paper's value "
+             "lies inside the bound",
+}
+"""What each report column (:data:`REPORT_COLUMNS`) means, in a reader's words: the book's legends and its
+report define every status from here."""
+
+
+def undefined_statuses(records) -> list[str]:
+    """The report columns of claim ``records`` that :data:`MEANINGS` does not define (none, for a book that
+    may be built)."""
+    return sorted({report_column(r) for r in records} - set(MEANINGS))
+
+
+def legend_html(records, report: str = "report.html#statuses") -> str:
+    """A short legend (HTML) of the statuses claim ``records`` use, in :data:`REPORT_COLUMNS`' order, each with
+    its meaning, linking to ``report`` where every status is defined.
+
+    :raises SpringlabError: naming a status that :data:`MEANINGS` does not define
+    """
+    from html import escape
+
+    missing = undefined_statuses(records)
+    if missing:
+        raise SpringlabError(f"status {missing[0]!r} has no meaning in springlab.workbench.claims.MEANINGS: "
+                             "define it there before a claim uses it")
+    used = {report_column(r) for r in records}
+    items = "".join(f"<li><strong>{escape(s)}</strong>: {escape(MEANINGS[s])};</li>" for s in REPORT_COLUMNS
+                    if s in used)
+    return (f'<div class="claims-legend"><p>How to read the claims below: each row gives the paper\'s value, ours, '
+            f'their difference and a status (<a href="{escape(report)}">every status</a>):</p><ul>{items}</ul></div>')
 
 
 @dataclass(frozen=True)
@@ -285,7 +344,8 @@ class Claims:
     def compare(self, quantity: str, where: str, paper: float, ours: float, *, unit: str,
                 tolerance: float, tolerance_basis: str, decimals: int | None = None,
                 rounding: float | None = None, band_basis: str | None = None,
-                expect: str = "reproduced", note: str = "", cause: str = "") -> Claim:
+                expect: str = "reproduced", note: str = "", cause: str = "", reading: str = "",
+                corrected: str = "") -> Claim:
         """Record ours against the paper's printed value and assert the status.
 
         :param tolerance: absolute tolerance for 'reproduced', in ``unit``
@@ -298,6 +358,10 @@ class Claims:
             with ``band_basis`` saying how it was propagated
         :param expect: the status this claim must have; anything else raises AssertionError
         :param cause: for a discrepancy, its cause when one was found
+        :param reading: for a literal reading of the text: the other reading the text allows, which agrees
+            (its own claim); a discrepancy is then an 'alternative reading'
+        :param corrected: the input changed from the paper's printed one (both values) and how the change
+            was chosen; a claim reproduced only with it is 'reproduced with corrected input'
         :raises SpringlabError: for NaN or infinite numbers, a negative tolerance, an
             unknown status, or a claim without ``tolerance_basis``
         """
@@ -306,8 +370,13 @@ class Claims:
             raise SpringlabError(f"claim {quantity!r}: tolerance_basis must say why the tolerance is {tolerance}")
         paper, ours, tolerance, band, status, diff = self._classify(
             quantity, paper, ours, tolerance, decimals, rounding, band_basis)
+        if status == "discrepancy" and str(reading).strip():
+            status, cause = "alternative reading", f"another reading the text allows agrees: {reading}"
+        elif status == "reproduced" and str(corrected).strip():
+            status, cause = "reproduced with corrected input", f"input corrected: {corrected}"
+        kept = status in ("discrepancy", "alternative reading", "reproduced with corrected input")
         claim = Claim(quantity, where, paper, ours, unit, tolerance, status, note, tolerance_basis,
-                      band, cause if status == "discrepancy" else "", resolution=resolution(tolerance))
+                      band, cause if kept else "", resolution=resolution(tolerance))
         self.records.append(claim := replace(claim, cell=_current_cell()))
         assert status == expect, (
             f"{quantity} ({where}): paper {paper}, ours {ours:.10g}, |difference| {diff:.3g} {unit}: "
@@ -353,6 +422,17 @@ class Claims:
         paper = None if paper is None else _finite("paper", paper, quantity)
         claim = Claim(quantity, where, paper, None, unit, None, "not reproducible", note,
                       "none: no value could be computed")
+        self.records.append(claim := replace(claim, cell=_current_cell()))
+        return claim
+
+    def not_compared(self, quantity: str, where: str, *, unit: str, note: str) -> Claim:
+        """Record an item the paper has (a curve of a figure, a value it prints) that the book does not
+        compare; ``note`` says why, and what is checked instead. Never counted as reproduced."""
+        if not str(note).strip():
+            raise SpringlabError(f"claim {quantity!r}: a claim not compared needs its note: why not, and what is "
+                                 "checked instead")
+        claim = Claim(quantity, where, None, None, unit, None, "not compared", note,
+                      "none: not compared")
         self.records.append(claim := replace(claim, cell=_current_cell()))
         return claim
 

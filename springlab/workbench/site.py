@@ -27,7 +27,7 @@ from springlab.errors import SolverError
 from springlab.papers import PAPERS
 from springlab.workbench.book import load_claims
 from springlab.workbench.cache import PACKAGE, Cache, digest
-from springlab.workbench.claims import REPORT_COLUMNS, markdown_table, report_column
+from springlab.workbench.claims import MEANINGS, REPORT_COLUMNS, markdown_table, report_column
 
 
 def write_report(figures_dir) -> Path:
@@ -37,12 +37,7 @@ def write_report(figures_dir) -> Path:
     lines = ["# Reproduction report", "",
              "Every number the notebooks reproduce, beside the paper's (written by `make figures` "
              "from `figures/<notebook>/claims.json`).", "",
-             "Statuses: **reproduced** within a stated tolerance; **rounding** within the band the paper's "
-             "printed rounding explains; **discrepancy**, its cause found or not; **not reproducible** from "
-             "what the paper gives; **input**, a value the notebook fed in (shown, not counted as "
-             "reproduced); **consistent** / **inconsistent**, a number recomputed from the paper's own "
-             "printed numbers (a check of the paper against itself); **bound**, ours only a bound (at least or "
-             "at most), the computation behind it having stopped short of the whole answer.", ""]
+             "Statuses: " + "; ".join(f"**{s}**: {MEANINGS[s]}" for s in REPORT_COLUMNS) + ".", ""]
     counts = []
     for stem, records in claims.items():
         count = Counter(report_column(r) for r in records)
