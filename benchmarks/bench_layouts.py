@@ -50,8 +50,9 @@ def _row(label: str):
     gaps = [row[4] for row in design.clearance.rows] if design.clearance else []
     mass = sum(fit.coil.mass for fit in design.coils)
     hardware = float(np.sum(design.massed.mass) - np.sum(design.model.mass))
-    worst = max(fit.coil.max_length / coil_bound(design.model, s, fit)
-                for s, fit in zip(design.realised, design.coils, strict=True))
+    bounds = [coil_bound(design.model, s, fit) for s, fit in zip(design.realised, design.coils, strict=True)]
+    worst = max(fit.coil.max_length / bound if bound > 0 else np.inf  # a link of no length: no room at all
+                for fit, bound in zip(design.coils, bounds, strict=True))
     status = "passed" if not design.flags() else f"flagged ({len(design.flags())})"
     return (label, design.method.split(":")[0], len(design.realised), shares,
             f"{1e3 * min(gaps):.0f}" if gaps else "-", f"{worst:.2f}",

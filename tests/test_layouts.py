@@ -324,3 +324,21 @@ def test_a_bracket_too_short_for_its_coil_is_flagged(pendulum):
 
 def test_a_coil_that_fits_its_link_stays_on_it(ur5):
     assert not any("bracket" in kind for kind in ur5.kinds)  # the UR5's coils fit their links, clear of the table
+
+
+def test_a_fit_through_a_pulley_on_its_cables_end_is_quiet_and_finite():
+    # a post as far from the joint as the point: at one angle the cable's end sits on the pulley's centre,
+    # where the closed form overflows; the fit must step away from it without a warning to the user
+    import types
+    import warnings
+
+    from springlab.design.layouts import _cable_terms, compensate_pulley
+
+    plane = types.SimpleNamespace(gG=complex(0.0, 5.0))
+    theta = np.linspace(0.0, 2 * np.pi, 360, endpoint=False)
+    with np.errstate(all="ignore"):  # the control: at the start, the closed form is not finite
+        assert not np.all(np.isfinite(_cable_terms(np.array([50.0, 0.1, 0.0, 0.1, 0.0]), 0.01, theta, plane.gG)[1]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        c, p, k = compensate_pulley(plane, 0.1 + 0j, 0.1 + 0j, 50.0, 0.01, theta)
+    assert all(np.isfinite(v) for v in (c.real, c.imag, p.real, p.imag, k))

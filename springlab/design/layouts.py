@@ -464,7 +464,9 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
 
     def value(trials):  # the compass search maximises: minus the torques' mean square, and a pull to the start
         trials = np.atleast_2d(trials)
-        return -(np.mean(torque(trials) ** 2, axis=1) + FIT_PULL**2 * np.sum((trials - start) ** 2, axis=1))
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # a cable's end on its pulley: no fit
+            out = -(np.mean(torque(trials) ** 2, axis=1) + FIT_PULL**2 * np.sum((trials - start) ** 2, axis=1))
+        return np.where(np.isfinite(out), out, -np.inf)
 
     v, _ = compass_search(value, start, lo, hi, max_steps=FIT_STEPS)
     x = cartesian(v)
