@@ -353,9 +353,10 @@ def turned_clear_of_table(plane: SpringPlane, R, o, floor: float, c: complex, p:
     """The turn (a unit complex number) of a spring's point c and post p (complex, m, from the joint in the
     plane) about the joint that keeps the point ``room`` (m) and the post ``post_room`` (default ``room``)
     above the mounting plane at every pose of ``R``, ``o``: none where they already are, else the least turn
-    that does, else the one that keeps them highest (on a half-degree grid). Turning both together changes no length at any pose, so neither the balance nor the
-    pulley's compensation: only conj(p) c is fixed (001 Eq. (16)). Where a link reaches down to the table,
-    a pulley at its far end would otherwise run into the table beside it."""
+    that does, else the one that keeps them highest (on a half-degree grid). Turning both together changes
+    no length at any pose, so neither the balance nor the pulley's compensation: only conj(p) c is fixed
+    (001 Eq. (16)). Where a link reaches down to the table, a pulley at its far end would otherwise run
+    into the table beside it."""
     zero, z_h, z_u = _heights(plane, R, o, floor)
     turns = np.exp(1j * np.radians(np.concatenate([np.arange(0, 180.5, 0.5), -np.arange(0.5, 180, 0.5)])))
     point = c * turns  # (angles,)
