@@ -242,7 +242,8 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
 
 def _statuses() -> list[str]:
     """Every status a claim may have, with its meaning (MyST list items)."""
-    return [f"- **{status}**: {_md(MEANINGS[status])};" for status in REPORT_COLUMNS]
+    last = len(REPORT_COLUMNS) - 1
+    return [f"- **{status}**: {_md(MEANINGS[status])}{'.' if k == last else ';'}" for k, status in enumerate(REPORT_COLUMNS)]
 
 
 def _section_number(title: str, k: int) -> str:

@@ -110,8 +110,9 @@ def legend_html(records, report: str = "report.html#statuses") -> str:
         raise SpringlabError(f"status {missing[0]!r} has no meaning in springlab.workbench.claims.MEANINGS: "
                              "define it there before a claim uses it")
     used = {report_column(r) for r in records}
-    items = "".join(f"<li><strong>{escape(s)}</strong>: {escape(MEANINGS[s])};</li>" for s in REPORT_COLUMNS
-                    if s in used)
+    shown = [s for s in REPORT_COLUMNS if s in used]
+    items = "".join(f"<li><strong>{escape(s)}</strong>: {escape(MEANINGS[s])}{'.' if k == len(shown) - 1 else ';'}</li>"
+                    for k, s in enumerate(shown))
     return (f'<div class="claims-legend"><p>How to read the claims below: each row gives the paper\'s value, ours, '
             f'their difference and a status (<a href="{escape(report)}">every status</a>):</p><ul>{items}</ul></div>')
 
