@@ -256,3 +256,9 @@ def test_each_chapter_defines_its_statuses_above_its_first_claims_table(built):
         assert used and all(f"<strong>{s}</strong>" in legend for s in used), (stem, used)
         assert 'href="report.html#statuses"' in legend
     assert shown_any >= 5  # every paper chapter shows claims
+
+
+def test_the_glossary_defines_the_routes_and_links_the_statuses(built):
+    page = (built / "glossary.html").read_text()
+    assert all(f"Route {k}." in page for k in (1, 2, 3)) and 'href="report.html"' in page
+    assert 'href="glossary.html"' in (built / "index.html").read_text()  # in the book's table of contents

@@ -121,3 +121,20 @@ def test_notebooks_validate_without_the_iri_format_checker():
             "print('rfc3987_syntax' in sys.modules and sys.modules['rfc3987_syntax'] is not None)\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
     assert out == ["refused", "False"]
+
+
+def test_the_sites_key_follows_the_pages_written_beside_the_notebooks(tmp_path, monkeypatch):
+    # the guide, the glossary and the benchmarks' page are the site's inputs too: an edit to one rebuilds it
+    import argparse
+
+    from springlab.workbench import book, site
+
+    page = tmp_path / "glossary.md"
+    page.write_text("# Glossary\n\none\n")
+    monkeypatch.setitem(book.PAGES, "glossary", page)
+    args = argparse.Namespace(notebooks=tmp_path / "nb", figures=tmp_path / "fig", site=tmp_path / "site",
+                              work=tmp_path / "work")
+    before = site._site_key(args)
+    assert site._site_key(args) == before  # the control: nothing changed, the same key
+    page.write_text("# Glossary\n\ntwo\n")
+    assert site._site_key(args) != before

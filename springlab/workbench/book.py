@@ -11,8 +11,8 @@ text changed, so Sphinx re-reads only those) and runs Sphinx with warnings as er
   a label ``<stem>-s<k>`` so the report can point at it;
 * ``report.md``: every claim beside the paper's value, each linked to the notebook section
   that makes it (the claim's cell, recorded by :class:`~springlab.workbench.claims.Claims`);
-* ``using.md`` and ``performance.md`` (:data:`PAGES`): the user's guide, written by hand beside
-  the notebooks, and what ``make bench`` last measured, written by it;
+* ``using.md``, ``glossary.md`` and ``performance.md`` (:data:`PAGES`): the user's guide and the
+  glossary, written by hand beside the notebooks, and what ``make bench`` last measured, written by it;
 * ``api/``: the library's docstrings (autodoc), each citation (a paper's key before an
   equation, table or figure) linked to the paper's chapter, and the source of every module
   (viewcode) with the citations in its comments linked too.
@@ -48,9 +48,11 @@ from springlab.workbench.claims import (
 
 CONF_DIR = Path(__file__).resolve().parent / "bookconf"
 ROOT = Path(__file__).resolve().parents[2]
-PAGES = {"using": ROOT / "notebooks" / "using_springlab.md", "performance": ROOT / "benchmarks" / "RESULTS.md"}
+PAGES = {"using": ROOT / "notebooks" / "using_springlab.md", "glossary": ROOT / "notebooks" / "glossary.md",
+         "performance": ROOT / "benchmarks" / "RESULTS.md"}
 """The book's pages that are not notebooks: the user's guide (the command line, arm files, the springs made
-real, what to do when something goes wrong, the package's layout) and the benchmarks' results."""
+real, what to do when something goes wrong, the package's layout), the glossary of the words the chapters
+use, and the benchmarks' results."""
 MATHJAX_SCRIPT = "tex-svg-full.js"
 """MathJax 3's component the book loads from ``_static/mathjax``: TeX in (every extension
 preloaded, so nothing is fetched on demand), SVG out."""

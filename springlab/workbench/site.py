@@ -25,7 +25,7 @@ from pathlib import Path
 from springlab import tables
 from springlab.errors import SolverError
 from springlab.papers import PAPERS
-from springlab.workbench.book import load_claims
+from springlab.workbench.book import PAGES, load_claims
 from springlab.workbench.cache import PACKAGE, Cache, digest
 from springlab.workbench.claims import MEANINGS, REPORT_COLUMNS, markdown_table, report_column
 
@@ -145,8 +145,10 @@ def main(argv=None) -> int:
 
 def _site_key(args) -> str:
     """The site's inputs: the executed notebooks, the figures and claims (not the report it
-    writes), every file of the package (the book documents all of it) and where it goes."""
+    writes), the pages written beside them (the guide, the glossary, the benchmarks' results), every
+    file of the package (the book documents all of it) and where it goes."""
     inputs = [p for p in Path(args.notebooks).glob("*.ipynb")]
+    inputs += [p for p in PAGES.values() if p.exists()]
     inputs += [p for p in Path(args.figures).rglob("*") if p.is_file() and p.name != "REPRODUCTION.md"]
     inputs += sorted(p for p in PACKAGE.rglob("*") if p.is_file() and "__pycache__" not in p.parts)
     return digest(inputs, {"site": str(Path(args.site).resolve()), "figures": str(Path(args.figures).resolve()),
