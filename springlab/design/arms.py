@@ -45,6 +45,7 @@ from springlab.design.collision import MARGIN, Sampler, has_geometry
 from springlab.design.hardware import (
     HOOK_GAP,
     balanced_body,
+    block_room,
     coil_ends,
     parts,
     spring_clearance,
@@ -452,10 +453,10 @@ class ArmDesign:
                            f"smaller than its cable ({fit.cable.name}) asks for, {1e3 * fit.cable.pulley_radius:g} mm "
                            f"(D/d {fit.cable.ratio:g}): give a larger --pulley-radius, or leave it to be sized")
             body, at = self.model.locate(r.link_a, r.point_a)
-            behind = r.pulley_radius + HOOK_GAP + (2 * (r.pulley_radius + fit.cable.diameter) if fit.ratio > 1 else 0.0)
+            behind = r.pulley_radius + HOOK_GAP + block_room(fit, r.pulley_radius)
             bracket = getattr(fit, "bracket", None)
             if bracket is not None:  # on a bracket of the level frame: the room its layout gave it
-                room = bracket - (2 * (r.pulley_radius + fit.cable.diameter) if fit.ratio > 1 else 0.0)
+                room = bracket - block_room(fit, r.pulley_radius)
                 if fit.coil.max_length > room * (1 + 1e-9):
                     out.append(f"the realised spring {name}'s coil is {1e3 * fit.coil.max_length:.0f} mm long in "
                                f"service, longer than the {1e3 * room:.0f} mm its bracket has beyond its post within "

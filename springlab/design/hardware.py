@@ -93,7 +93,7 @@ def _cable_diameter(fit) -> float:
     return fit.cable.diameter if getattr(fit, "cable", None) is not None else CABLE_DIAMETER
 
 
-def _block(fit, rho: float) -> float:
+def block_room(fit, rho: float) -> float:
     """m: what a pulley block's travelling sheave adds between the coil's moving hook and the pulley."""
     return 2 * (rho + _cable_diameter(fit)) if fit.ratio > 1 else 0.0
 
@@ -107,7 +107,7 @@ def _coil_ends(model: RevoluteChain, s, fit, R, o):
     u = _lead(model, s, R, o, ia, A, B)
     path, T = cable_geometry(A, B, R[:, ia] @ u, rho) if rho > 0 else (np.linalg.norm(B - A, axis=1), A)
     length = fit.coil_length(path)
-    fixed = pa - u * (rho + HOOK_GAP + _block(fit, rho) + fit.coil.max_length)
+    fixed = pa - u * (rho + HOOK_GAP + block_room(fit, rho) + fit.coil.max_length)
     return u, fixed, fixed + length[:, None] * u, T, B, ia, ib
 
 

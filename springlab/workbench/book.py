@@ -34,16 +34,16 @@ from pathlib import Path
 
 from docutils.nodes import make_id
 
-from springlab.errors import SolverError, SpringlabError
+from springlab.errors import SolverError
 from springlab.papers import PAPERS
 from springlab.workbench import prose
 from springlab.workbench.claims import (
     MEANINGS,
     REPORT_COLUMNS,
+    check_statuses,
     html_table,
     legend_html,
     report_column,
-    undefined_statuses,
 )
 
 CONF_DIR = Path(__file__).resolve().parent / "bookconf"
@@ -260,10 +260,7 @@ def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, 
     with a link to the section of its notebook that makes it (and, where it cites one of the
     ``labels``' equations, to the equation)."""
     names = paper_names(stems)
-    missing = undefined_statuses([r for records in claims.values() for r in records])
-    if missing:
-        raise SpringlabError(f"status {missing[0]!r} has no meaning in springlab.workbench.claims.MEANINGS: define "
-                             "it there before a claim uses it")
+    check_statuses([r for records in claims.values() for r in records])
     lines = ["# Reproduction report", "",
              "Every number the notebooks reproduce, beside the paper's, from `figures/<notebook>/claims.json` "
              "(the same claims as `figures/REPRODUCTION.md`). The last column links to the notebook section "

@@ -97,6 +97,18 @@ def undefined_statuses(records) -> list[str]:
     return sorted({report_column(r) for r in records} - set(MEANINGS))
 
 
+def check_statuses(records) -> None:
+    """Refuse claim ``records`` whose status :data:`MEANINGS` does not define: a book cannot tell its reader
+    what it means.
+
+    :raises SpringlabError: naming the first such status
+    """
+    missing = undefined_statuses(records)
+    if missing:
+        raise SpringlabError(f"status {missing[0]!r} has no meaning in springlab.workbench.claims.MEANINGS: "
+                             "define it there before a claim uses it")
+
+
 def legend_html(records, report: str = "report.html#statuses") -> str:
     """A short legend (HTML) of the statuses claim ``records`` use, in :data:`REPORT_COLUMNS`' order, each with
     its meaning, linking to ``report`` where every status is defined.
@@ -105,10 +117,7 @@ def legend_html(records, report: str = "report.html#statuses") -> str:
     """
     from html import escape
 
-    missing = undefined_statuses(records)
-    if missing:
-        raise SpringlabError(f"status {missing[0]!r} has no meaning in springlab.workbench.claims.MEANINGS: "
-                             "define it there before a claim uses it")
+    check_statuses(records)
     used = {report_column(r) for r in records}
     shown = [s for s in REPORT_COLUMNS if s in used]
     items = "".join(f"<li><strong>{escape(s)}</strong>: {escape(MEANINGS[s])}{'.' if k == len(shown) - 1 else ';'}</li>"
