@@ -53,6 +53,21 @@ def test_a_coil_too_long_for_its_link_takes_a_block_and_where_none_fits_stays_si
     assert parallel == 1 and coil.max_length > 1e-3  # the fewest side by side: the flags say it is too long
 
 
+def test_chrome_silicon_saves_a_coil_where_music_wire_needs_two_and_never_costs_one():
+    # the UR5 shoulder's spring: 1,215 N/m over a 0.49-0.58 m path, 0.55 m of room; music wire (to 6.5 mm) needs
+    # coils side by side at every block, chrome silicon (to 9.5 mm, ASTM A401) winds one
+    k, paths, room = 1215.0, (0.49, 0.578), 0.545
+    music = coil_for(k, paths, room, "music wire", block=0.06)
+    auto = coil_for(k, paths, room, "auto", block=0.06)
+    assert music[2] >= 2 and auto[2] == 1 and auto[0].material == "chrome silicon"
+    assert auto[0].max_length <= room - 0.06
+    for k, paths in ((50.0, (0.1, 0.3)), (800.0, (0.12, 0.40)), (3000.0, (0.2, 0.3))):  # auto is never worse
+        music, auto = coil_for(k, paths, 0.3, "music wire"), coil_for(k, paths, 0.3, "auto")
+        assert (auto[2], auto[1]) <= (music[2], music[1])  # (coils side by side, block)
+    with pytest.raises(SpringlabError, match="material = 'brass'"):
+        coil_for(k, paths, room, "brass")
+
+
 def test_a_pulley_is_lighter_than_its_cable_is_strong():
     masses = [pulley_mass(c, c.pulley_radius) for c in CABLES]
     assert all(0 < m < 1.0 for m in masses) and masses[0] < masses[-1]

@@ -25,8 +25,8 @@ def ur5():
 
 
 def test_the_ur5s_belt_springs_clear_its_links_and_hold_it_with_their_own_weight(ur5):
-    assert len(ur5.ideal) == 2 and ur5.flags() == ()  # (each wound as coils side by side, each between its
-    assert all(fit.coil.max_length < 0.45 for fit in ur5.coils)  # pulley and its joint, on the 425 mm upper arm)
+    assert len(ur5.ideal) == 2 and len(ur5.realised) == 2 and ur5.flags() == ()  # one coil each, none side by
+    assert all(fit.coil.max_length < 0.425 for fit in ur5.coils)  # side, each shorter than the 425 mm upper arm
     assert all(gap >= 0.005 for *_, gap in ur5.clearance.rows)  # m: the margin, on the URDF's own meshes
     q = ur5.q
     gravity = np.abs(gravity_torques(ur5.massed, q)).max(axis=0)
@@ -323,7 +323,26 @@ def test_a_bracket_too_short_for_its_coil_is_flagged(pendulum):
 
 
 def test_a_coil_that_fits_its_link_stays_on_it(ur5):
-    assert not any("bracket" in kind for kind in ur5.kinds)  # the UR5's coils fit their links, clear of the table
+    elbow = [kind for s, kind in zip(ur5.realised, ur5.kinds, strict=True) if "elbow_joint" in s.label]
+    assert len(elbow) == 1 and "bracket" not in elbow[0]  # one coil fits the forearm, clear of the table
+
+
+def test_coils_side_by_side_give_way_to_one_where_the_point_and_post_can_move(ur5, monkeypatch):
+    # on its link the UR5's shoulder spring needs two coils side by side; with its point nearer the joint and
+    # its post higher (001 Eq. (16) fixes their product alone) one coil does, on a bracket of the level frame
+    shoulder = [(kind, fit) for s, kind, fit in zip(ur5.realised, ur5.kinds, ur5.coils, strict=True)
+                if "shoulder_link" in s.label]
+    assert len(shoulder) == 1 and "side by side" not in shoulder[0][0]
+    from springlab.design import layouts
+
+    monkeypatch.setattr(layouts, "SCALES", ())  # the control: the lengths as laid out
+    monkeypatch.setattr(layouts.SpringPlane, "bracket", False)
+    from springlab.design.structure import structure
+
+    arm = load_robot("UR5")
+    lay = layouts.belt_layout(arm, structure(arm, ur5.q), q=ur5.q)
+    _, kinds, _, origins = layouts.realise_layout(lay, ur5.q, pulley_radius=None)
+    assert sum("side by side" in kind for kind in kinds) >= 2
 
 
 def test_a_fit_through_a_pulley_on_its_cables_end_is_quiet_and_finite():

@@ -40,7 +40,7 @@ import numpy as np
 
 from springlab import _checks
 from springlab.design.audit import Audit
-from springlab.design.buildable import COIL_COLUMNS, check_tolerances, coil_cells, maker_note
+from springlab.design.buildable import COIL_COLUMNS, check_tolerances, coil_cells, maker_note, wires
 from springlab.design.collision import MARGIN, Sampler, has_geometry
 from springlab.design.hardware import (
     HOOK_GAP,
@@ -701,7 +701,7 @@ def _reach_note(model: RevoluteChain, reach) -> str:
 
 def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, fit_poses: int = 300, seed: int = 1,
                  target: float = 0.1, reach: float | None = None, max_springs: int = 8,
-                 max_stiffness: float = MAX_STIFFNESS, material: str = "music wire",
+                 max_stiffness: float = MAX_STIFFNESS, material: str = "auto",
                  pulley_radius: float | None = 0.0, tag: str = "S", margin: float | None = None,
                  collisions: bool = True, layout: str = "two-point", share: float | None = None,
                  cable=None) -> ArmDesign:
@@ -728,7 +728,11 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     its pull (:mod:`springlab.design.cables`, or ``cable``), over a pulley sized to it
     (``pulley_radius=None``) or of ``pulley_radius`` (m). ``'two-point'`` (default): springs between two
     links' points, exact for a planar chain, else the best springs, their cables over pulleys of
-    ``pulley_radius`` (None: sized to the cable of the largest pull)."""
+    ``pulley_radius`` (None: sized to the cable of the largest pull).
+
+    Each coil is wound from ``material``'s wire (:data:`springlab.design.buildable.MATERIALS`); ``'auto'``
+    (default) from music wire, or chrome silicon where that saves a side-by-side coil or a pulley block
+    (:func:`springlab.design.realise.coil_for`)."""
     if layout not in ("two-point", "belts", "pseudobases", "auto"):
         raise SpringlabError(f"layout = {layout!r}: give 'two-point' (springs between two links), 'belts' (a level "
                              "reference carried by belts to each joint of a planar chain), 'pseudobases' (carried "
@@ -736,6 +740,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                              "arm has link shapes to clear)")
 
     margin = MARGIN if margin is None else _checks.positive("margin", margin, allow_zero=True, unit="m")
+    wires(material)  # a wire springlab stocks, or 'auto'
     _checks.instance("model", model, RevoluteChain, "springlab RevoluteChain")
     if not (isinstance(tag, str) and tag.isalpha() and tag.isupper()):
         raise SpringlabError(f"tag = {tag!r}: give capital letters, e.g. 'S' (springs S1, S2, ...) or 'P'")
@@ -781,6 +786,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         for _ in range(CARRY_ROUNDS):  # the springs' own steel rides on the links: designed for too
             arm = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2])  # the arm alone, with the belts
             built = [m for m, r in enumerate(realised) if r is not None]
+            prefer = {origins[m]: (coils[m].choice, sum(o == origins[m] for o in origins)) for m in built}
             realised, kinds, coils = ([v[m] for m in built] for v in (realised, kinds, coils))
             carried = replace(with_spring_mass(arm, realised, kinds, coils, check), belts=())
             widths = {}  # a pseudobase's C moves beside the links by half its coils' width too
@@ -791,7 +797,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                           **({"widths": widths} if spatial else {}))
             realised, kinds, coils, origins = realise_layout(lay, check, material=material, cable=cable,
                                                              pulley_radius=None if sized else pulley_radius,
-                                                             margin=margin)
+                                                             margin=margin, prefer=prefer)
         model, ideal = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2]), lay.springs
         if spatial:
             method = "pseudobases: a vertical line carried to each loaded joint by paper 001's RSSR modules"

@@ -24,7 +24,7 @@ No stock spring does that. Two realisations, both from standard wire sizes:
 Either way the spring must carry the largest force over the workspace, k times the longest
 length, with its body's torsional stress, corrected by the Wahl factor
 K_W = (4C - 1)/(4C - 4) + 0.615/C, at most the allowable share of the wire's tensile
-strength S_ut = A / d^m (music wire 45 %, stainless 35 %, static service). The rate is
+strength S_ut = A / d^m (music wire and chrome silicon 45 %, stainless 35 %, static service). The rate is
 k = d^4 G / (8 D^3 N_a), with N_a = N_b + G / E active coils for N_b body coils and two
 machine hooks, and the free length inside the hooks L_0 = (2 C - 1 + N_b) d.
 
@@ -134,8 +134,28 @@ MATERIALS = {
                                                               (5.0, 10.0, 2911.0, 0.478)),
                               ((1e9, 69.0e9, 193.0e9),), 0.35,
                               tuple(d for d in _PREFERRED_MM if 0.3 <= d <= 10.0)),
+    "chrome silicon": Material("chrome silicon", "ASTM A401", ((1.6, 9.5, 1974.0, 0.108),),
+                               ((1e9, 77.2e9, 203.4e9),), 0.45,
+                               tuple(d for d in _PREFERRED_MM if 1.6 <= d <= 9.5)),
 }
-"""The wires offered: music wire (the strongest common spring wire) and one stainless grade."""
+"""The wires offered: music wire (the strongest common spring wire, stocked to 6.5 mm), one stainless grade,
+and chrome-silicon wire, the valve-spring steel stocked to 9.5 mm for springs too strong for music wire (its
+body allowed 45 % of S_ut, the low end of Table 10-7's 45-50 % for hardened and tempered low-alloy steel)."""
+
+AUTO = "auto"
+"""A material choice: music wire, and chrome silicon where that saves a side-by-side spring or a pulley
+block (:func:`~springlab.design.realise.coil_for`)."""
+
+
+def wires(material: str) -> tuple[str, ...]:
+    """The wires a material choice tries, in order: ``'auto'`` music wire then chrome silicon; else the one
+    named (a :data:`MATERIALS` key)."""
+    if material == AUTO:
+        return ("music wire", "chrome silicon")
+    if not isinstance(material, str) or material not in MATERIALS:
+        raise SpringlabError(f"material = {material!r}: give one of {', '.join(map(repr, MATERIALS))} or 'auto' "
+                             "(music wire, chrome silicon where that saves a coil or a pulley block)")
+    return (material,)
 
 
 def _index(name: str, C) -> np.ndarray:
@@ -294,6 +314,9 @@ class Fitted(NamedTuple):
     :ivar bracket: for a coil on a bracket of the level frame beyond its pulley at the post (a layout's, where its
         link has no room for it), the room (m) the bracket gives it: its link's length less the post's and the
         pulley's; None for a coil on its link
+    :ivar choice: a layout's spring: how its realisation placed it, (pulley at the post, the lengths' change:
+        False as laid out, True the point's and the post's swapped, a number the point's scaled by it)
+        (:func:`springlab.design.layouts.realise_layout`)
     """
 
     coil: ExtensionSpring
@@ -301,6 +324,7 @@ class Fitted(NamedTuple):
     ratio: int = 1
     cable: object = None
     bracket: float | None = None
+    choice: tuple = (False, False)
 
     def coil_length(self, path):
         """The coil's length (m, inside the hooks) at the cable's paths ``path`` (m): path / ratio plus the

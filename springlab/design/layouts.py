@@ -49,7 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.design.buildable import Fitted
+from springlab.design.buildable import Fitted, wires
 from springlab.design.collision import MARGIN, mounting_plane
 from springlab.design.hardware import HOOK_GAP, link_length
 from springlab.design.realise import cable_for, coil_for, length_range
@@ -482,8 +482,24 @@ def _link_angles(plane: SpringPlane, R) -> np.ndarray:
     return np.radians(np.unique(np.round(theta)))
 
 
-def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_radius: float | None = 0.0,
-                   cable=None, margin: float = MARGIN) -> tuple:
+SCALES = (0.9, 0.8, 0.7, 0.6, 0.5)
+"""Where a spring on a level frame (a belt layout's, or a pseudobase layout's first) needs coils side by
+side, or its coil does not fit or its pulley meets the table, the realisation tries its point's length
+scaled by each of these and its post's by the inverse, the pulley on its link and on the bracket
+(001 Eq. (16) fixes their product alone): a pulley nearer its joint stays higher above the table, and the
+cable's stroke changes with the lengths."""
+
+
+def _better(one: dict, other: dict) -> bool:
+    """Whether realisation ``one`` beats ``other``: it fits and clears where the other does not, or meets more
+    of the two, or as many with fewer coils side by side."""
+    def key(got):
+        return got["fits"] and got["clear"], got["fits"] + got["clear"], -got["parallel"]
+    return key(one) > key(other)
+
+
+def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: float | None = 0.0,
+                   cable=None, margin: float = MARGIN, prefer=None) -> tuple:
     """Each spring of a layout as a coil on its link behind a pulley at its point, the cable running to the
     post (:func:`springlab.design.buildable.cable_spring`; up to
     :data:`~springlab.design.realise.MAX_PARALLEL` side by side where one wire is too weak, and over a pulley
@@ -500,6 +516,14 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
     pull. Each spring's pulley and post are turned about their joint where that keeps the pulley ``margin`` (m)
     clear of the mounting plane (:func:`turned_clear_of_table`).
 
+    Where the coil has no room on its link, or the pulley meets the table, the pulley moves to the post, on a
+    bracket of the level frame (the module's docstring); where a spring still needs coils side by side, or
+    fits nowhere, its point's and post's lengths are scaled in inverse proportion (:data:`SCALES`), on the
+    link and on the bracket, and the first placing that fits and clears with the fewest coils is kept. Each
+    coil records its placing (:attr:`~springlab.design.buildable.Fitted.choice`); ``prefer`` maps a layout
+    spring's index to an earlier round's (placing, coils side by side), tried first and kept where it still
+    fits and clears with no more coils (the design's rounds for the springs' own mass).
+
     :raises SpringlabError: naming a spring no stocked wire realises or no stocked cable carries, or a given
         cable that a given pulley is too small for
     """
@@ -513,16 +537,18 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
         raise SpringlabError(f"cable {cable.name}: a pulley of {1e3 * given:g} mm is too small for it (the rope maker's "
                              f"D/d of {cable.ratio:g} asks for {1e3 * cable.pulley_radius:g} mm); give a larger "
                              "--pulley-radius or a finer --cable")
+    prefer = {} if prefer is None else dict(prefer)
     R, o = body_frames(model, q)
     floor = mounting_plane(model)
     realised, kinds, coils, origins = [], [], [], []
     rooms = layout.rooms or (np.inf,) * len(layout.springs)
     rows = zip(layout.springs, layout.leads, layout.outward, layout.planes, rooms, strict=True)
     for index, (ideal, ideal_towards, (out_a, out_b), plane, room) in enumerate(rows):
-        def attempt(at_post: bool, swap: bool = False, ideal=ideal, ideal_towards=ideal_towards, out_a=out_a,
+        def attempt(at_post: bool, swap: bool | float = False, ideal=ideal, ideal_towards=ideal_towards, out_a=out_a,
                     out_b=out_b, plane=plane, room=room, index=index) -> dict:
             """The spring realised with its pulley on its link (or ``at_post``: on the level frame's bracket;
-            ``swap``: with the point's and the post's lengths swapped, the cable's clamp near the joint)."""
+            ``swap``: with the point's and the post's lengths swapped, the cable's clamp near the joint; a number:
+            the point's length scaled by it and the post's by its inverse)."""
             pull = ideal.k * length_range(model, ideal, R, o)[1]
             chosen = cable
             for _ in range(4):  # the cable for the pull, its pulley, the spring re-fitted for it, and again
@@ -531,8 +557,10 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
                 rho = chosen.pulley_radius if given is None else given
                 s, towards = ideal, ideal_towards
                 c0, p0 = plane.offsets(ideal)
-                if swap:  # conj(p) c is what 001 Eq. (16) fixes: |c| and |p| trade places
+                if swap is True:  # conj(p) c is what 001 Eq. (16) fixes: |c| and |p| trade places
                     c0, p0 = c0 * abs(p0) / abs(c0), p0 * abs(c0) / abs(p0)
+                elif swap:  # or their lengths move in inverse proportion
+                    c0, p0 = c0 * swap, p0 / swap
                 c, p = c0, p0
                 d = chosen.diameter if rho > 0 else 0.0
                 need = rho + d + margin + TABLE_SLACK  # a pulley's (and its rope's) room above the table
@@ -562,7 +590,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
                 fits_in = plane.mast - behind if at_post else plane.coil_room(c0 if rho == 0 else c, room, behind)
                 found = coil_for(s.k, lengths, fits_in, material, block=2 * (rho + d))
                 if found[0] is None:
-                    raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {material} wire realises it, "
+                    raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {' or '.join(wires(material))} wire realises it, "
                                          f"even side by side or over a pulley block ({found[1]})")
                 coil, ratio, parallel = found
                 pull = s.k / parallel * lengths[1]  # each side-by-side spring has its own cable
@@ -574,16 +602,40 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
                 clear = sig(min(post - need, point - clamp) if at_post else min(point, post) - need)
             return {"s": s, "lead": lead, "rho": rho, "chosen": chosen, "lengths": lengths, "coil": coil,
                     "ratio": ratio, "parallel": parallel, "room": fits_in if at_post else None,
-                    "fits": coil.max_length <= fits_in - (2 * (rho + d) if ratio > 1 else 0.0), "clear": clear >= 0}
+                    "fits": coil.max_length <= fits_in - (2 * (rho + d) if ratio > 1 else 0.0), "clear": clear >= 0,
+                    "choice": (at_post, swap)}
 
-        got = attempt(False)
-        if "left" not in got and given != 0 and plane.bracket and not (got["fits"] and got["clear"]):
-            for swap in (False, True):  # its link has no room for the coil, or the pulley meets the table
-                other = attempt(True, swap)
-                if other["fits"] + other["clear"] > got["fits"] + got["clear"]:
-                    got = other
-                if got["fits"] and got["clear"]:
-                    break
+        got = None
+        if index in prefer:  # the placing the previous round searched for, where it still fits and clears with
+            choice, parallel = prefer[index]  # no more coils: the arm carries the hardware it was designed for
+            try:
+                got = attempt(*choice)
+            except SpringlabError:
+                got = None
+            if got is not None and not ("left" not in got and got["fits"] and got["clear"]
+                                        and got["parallel"] <= parallel):
+                got = None
+        if got is None:
+            got = attempt(False)
+            if "left" not in got and given != 0 and plane.bracket and not (got["fits"] and got["clear"]):
+                for swap in (False, True):  # its link has no room for the coil, or the pulley meets the table
+                    other = attempt(True, swap)
+                    if other["fits"] + other["clear"] > got["fits"] + got["clear"]:
+                        got = other
+                    if got["fits"] and got["clear"]:
+                        break
+            if "left" not in got and given != 0 and plane.bracket:
+                # fewer coils side by side, or any that fit and clear: the point nearer its joint, or farther
+                tries = [(at_post, scale) for scale in SCALES for at_post in (False, True)]
+                for at_post, scale in tries:
+                    if got["fits"] and got["clear"] and got["parallel"] == 1:  # none can do better than one coil
+                        break
+                    try:
+                        other = attempt(at_post, scale)
+                    except SpringlabError:  # its cable's end meets the pulley, or no wire: not this one
+                        continue
+                    if "left" not in other and _better(other, got):
+                        got = other
         left = got.get("left")
         if left is not None:  # no room for its pulley: the design leaves it out and says so
             realised.append(None)
@@ -592,7 +644,7 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
             origins.append(index)
             continue
         s, lead, rho, chosen, lengths = (got[key] for key in ("s", "lead", "rho", "chosen", "lengths"))
-        coil, ratio, parallel, bracket = got["coil"], got["ratio"], got["parallel"], got["room"]
+        coil, ratio, parallel, bracket, choice = got["coil"], got["ratio"], got["parallel"], got["room"], got["choice"]
         shift = parallel * coil.outer_diameter if plane.beside else 0.0  # beside the links by the coils' width
         out_a, out_b = layout.outward[index] if bracket is None else layout.outward[index][::-1]
         s = PointSpring(s.link_a, on_grid(np.asarray(s.point_a) + shift * out_a), s.link_b,
@@ -609,6 +661,6 @@ def realise_layout(layout: Layout, q, *, material: str = "music wire", pulley_ra
             kinds.append("cable over a pulley" + block + (f" ({m + 1} of {parallel} side by side"
                                                           + (", so that each coil fit its link)" if single else ")")
                                                           if parallel > 1 else ""))
-            coils.append(Fitted(coil, lengths, ratio, chosen if rho > 0 else None, bracket))
+            coils.append(Fitted(coil, lengths, ratio, chosen if rho > 0 else None, bracket, choice))
             origins.append(index)
     return tuple(realised), tuple(kinds), tuple(coils), tuple(origins)

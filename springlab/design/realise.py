@@ -15,7 +15,7 @@ import re
 import numpy as np
 
 from springlab import _checks
-from springlab.design.buildable import Fitted, cable_spring, zero_length_spring
+from springlab.design.buildable import Fitted, cable_spring, wires, zero_length_spring
 from springlab.design.cables import CABLES, choose_cable
 from springlab.design.hardware import HOOK_GAP
 from springlab.design.search import (
@@ -72,7 +72,7 @@ def realise_with_origins(model: RevoluteChain, springs, q, *, material, pulley_r
     kinds = []
     for s in springs:
         lengths = length_range(model, s, R, o)
-        coil, why = zero_length_spring(s.k, lengths, material)
+        coil, why = zero_length_spring(s.k, lengths, wires(material)[0])
         kinds.append(("zero-length spring", coil, lengths) if coil is not None else ("cable", None, why))
     cable = [i for i, (kind, _, _) in enumerate(kinds) if kind == "cable"]
     built = list(springs)
@@ -94,7 +94,7 @@ def realise_with_origins(model: RevoluteChain, springs, q, *, material, pulley_r
         def windable(spring):  # None: its cable comes within the pulley's radius of A at a pose of ``q``
             try:  # a stocked wire carries it alone or up to MAX_PARALLEL side by side, as the realisation winds it
                 span = length_range(model, spring, R, o)
-                return any(cable_spring(spring.k / m, span, material)[0] is not None for m in range(1, MAX_PARALLEL + 1))
+                return any(cable_spring(spring.k / m, span, wires(material)[0])[0] is not None for m in range(1, MAX_PARALLEL + 1))
             except GeometryError:
                 return None
 
@@ -497,22 +497,25 @@ path at n times its pull."""
 def coil_for(k: float, lengths, room: float, material: str, *, block: float = 0.0):
     """The coil, pulley block and side-by-side count for a cable spring of rate ``k`` (N/m) over cable paths
     ``lengths`` (m): the fewest side by side (up to :data:`~springlab.design.realise.MAX_PARALLEL`), then the
-    least block (:data:`BLOCKS`) whose coil is no longer than ``room`` (m) in service (less ``block``, m,
-    what a block's travelling sheave takes, for a block); where none fits, the
-    shortest coil of the fewest side by side (the design's flags then say so). Returns (coil, ratio, parallel) or (None, why)."""
+    least block (:data:`BLOCKS`), then the first of the material's wires
+    (:func:`~springlab.design.buildable.wires`: ``'auto'`` tries music wire, then chrome silicon), whose coil is
+    no longer than ``room`` (m) in service (less ``block``, m, what a block's travelling sheave takes, for a
+    block); where none fits, the shortest coil of the fewest side by side (the design's flags then say so).
+    Returns (coil, ratio, parallel) or (None, why)."""
 
     lengths = np.asarray(lengths, dtype=float)
     best, why = None, ""
     for parallel in range(1, MAX_PARALLEL + 1):
         for n in BLOCKS:
-            coil, reason = cable_spring(k * n * n / parallel, lengths / n, material)
-            why = why or reason
-            if coil is None:
-                continue
-            if coil.max_length <= room - (block if n > 1 else 0.0):
-                return coil, n, parallel
-            if best is None or (parallel, coil.max_length) < (best[2], best[0].max_length):
-                best = (coil, n, parallel)  # none fits: the fewest side by side, the shortest of those
+            for wire in wires(material):
+                coil, reason = cable_spring(k * n * n / parallel, lengths / n, wire)
+                why = why or reason
+                if coil is None:
+                    continue
+                if coil.max_length <= room - (block if n > 1 else 0.0):
+                    return coil, n, parallel
+                if best is None or (parallel, coil.max_length) < (best[2], best[0].max_length):
+                    best = (coil, n, parallel)  # none fits: the fewest side by side, the shortest of those
     return best if best is not None else (None, why)
 
 

@@ -579,7 +579,7 @@ def _write_sheet(args, spec, chosen, out: Path) -> None:
 
     chain = spec.chain()
     X = workspace_poses(spec, chain)
-    built = buildable.realise(chain, chosen.springs, X, material=args.material,
+    built = buildable.realise(chain, chosen.springs, X, material=buildable.wires(args.material)[0],
                               pulley_radius=buildable.PULLEY_RADIUS if args.pulley_radius is None else args.pulley_radius)
     loss = buildable.balance_loss(chain, built, X)
     from springlab.design.clearance import clearance
@@ -660,8 +660,9 @@ def main(argv=None) -> int:
     p.add_argument("--csv", help="also write every ranked design to this CSV file (one row a design)")
     p.add_argument("--sheet", action="store_true",
                    help="also write the built springs' spec sheet beside the JSON (.sheet.csv, .sheet.md)")
-    p.add_argument("--material", default="music wire", choices=("music wire", "stainless 302"),
-                   help="spring wire for --sheet (default music wire)")
+    p.add_argument("--material", default="auto", choices=("auto", "music wire", "chrome silicon", "stainless 302"),
+                   help="spring wire (default auto: music wire, and for a URDF arm's coils chrome silicon where that "
+                        "saves a side-by-side coil or a pulley block; an arm file's --sheet: music wire)")
     p.add_argument("--layout", default="auto", choices=("auto", "two-point", "belts", "pseudobases"),
                    help="a URDF arm's springs: 'belts' (a planar chain: one spring per loaded link, from a post on a "
                         "level frame a 1:1 belt carries to its joint, its coil along the link), 'pseudobases' (any "
