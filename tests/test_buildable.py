@@ -290,3 +290,39 @@ def test_a_cable_springs_initial_tension_is_windable_or_flagged():
     slack, _ = bd.cable_spring(200.8, (0.032, 0.675))  # 6.4 N at the shortest path, 136 N at the longest
     assert slack.initial_tension < slack.initial_tension_range[0]
     assert any("stress-relieved" in p for p in slack.problems())
+
+
+KPSI, INCH, LBF = 6.894757e6, 0.0254, 4.4482216
+
+
+def test_hook_and_fatigue_formulas_reproduce_shigleys_worked_extension_spring(monkeypatch):
+    # Shigley (10th ed.), Examples 10-7 and 10-8: hard-drawn wire (ASTM A227, S_ut = 140 kpsi / d^0.190), d 0.035 in,
+    # OD 0.248 in, hook radii r1 0.106 in and r2 0.089 in. At 5.25 lbf the book's hook stresses are 156.9 kpsi
+    # bending at A and 78.4 kpsi torsion at B (with (K)_B rounded to 1.18; unrounded 1.184 gives 78.7); cycled
+    # from 1.5 to 5 lbf, its Gerber factors against Zimmerli's endurance are 1.08 (hook bending) and 1.30
+    # (hook torsion), and 1.24 for the body with Bergstrasser's factor, where springlab takes Wahl's (1.1 %
+    # higher at C = 6.09: 1.22)
+    wire = bd.Material("hard-drawn", "ASTM A227", ((0.7, 12.7, 1783.0, 0.190),), ((1e9, 79.3e9, 196.5e9),), 0.45, (0.9,))
+    monkeypatch.setitem(bd.MATERIALS, "hard-drawn", wire)
+    d, od = 0.035 * INCH, 0.248 * INCH
+    spring = bd.ExtensionSpring("hard-drawn", d, od - d, 12.17, 1.19 * LBF, 0.03)
+    hooks = dict(r1=0.106 * INCH, r2=0.089 * INCH)
+    bending, torsion = spring.hook_stresses(5.25 * LBF, **hooks)
+    assert bending / KPSI == pytest.approx(156.9, rel=2e-3)  # the book's three figures; S_ut from metric A, m
+    assert torsion / KPSI == pytest.approx(78.4, rel=5e-3)  # the book's rounded (K)_B
+    factors = spring.fatigue(1.5 * LBF, 5.0 * LBF, **hooks)
+    assert factors["hook bending"] == pytest.approx(1.08, abs=0.01)
+    assert factors["hook torsion"] == pytest.approx(1.30, abs=0.015)
+    assert factors["body"] == pytest.approx(1.24, rel=0.02)  # Wahl for Bergstrasser
+    assert spring.fatigue(5.0 * LBF, 5.0 * LBF, **hooks)["body"] == np.inf  # no cycle, no fatigue
+    with pytest.raises(SpringlabError, match="high = 1 N is below low"):
+        spring.fatigue(5.0, 1.0)
+
+
+def test_a_hook_stressed_past_its_allowable_is_named():
+    spring = bd.ExtensionSpring("music wire", 1e-3, 10e-3, 20.0, 2.0, 0.2)  # C = 10, machine hooks, 80 N
+    bending, torsion = spring.hook_stresses(spring.max_force)
+    assert bending > spring.hook_allowables[0] and torsion > spring.hook_allowables[1]
+    assert sum("hook's" in p for p in spring.problems()) == 2
+    easy = bd.ExtensionSpring("music wire", 1e-3, 10e-3, 20.0, 2.0, spring.free_length * 1.05)  # the control
+    assert not any("hook's" in p for p in easy.problems())

@@ -361,3 +361,22 @@ def test_a_fit_through_a_pulley_on_its_cables_end_is_quiet_and_finite():
         warnings.simplefilter("error")
         c, p, k = compensate_pulley(plane, 0.1 + 0j, 0.1 + 0j, 50.0, 0.01, theta)
     assert all(np.isfinite(v) for v in (c.real, c.imag, p.real, p.imag, k))
+
+
+def test_the_ur5s_coils_keep_their_hooks_and_outlast_their_cycles_and_an_overloaded_coil_is_flagged(ur5):
+    # every coil's machine hooks within their allowables at its largest pull, and its pull's range over the
+    # workspace within Zimmerli's endurance (Gerber): rated for 1e7 cycles and more, so for a million
+    sheet = ur5.sheet()
+    assert "fatigue factor: body, hook A, hook B" in sheet.headers and "rated cycles" in sheet.headers
+    for fit in ur5.coils:
+        bending, torsion = fit.coil.hook_stresses(fit.coil.max_force)
+        assert bending <= fit.coil.hook_allowables[0] and torsion <= fit.coil.hook_allowables[1]
+        assert min(fit.coil.fatigue(*fit.forces()).values()) >= 1
+    assert not ur5.hardware_flags()
+    # the controls: each coil wound with three times its initial tension pulls harder than its hooks allow; each
+    # cycled from slack to its largest pull (its cable's path from none) outlives no endurance
+    hard = [fit._replace(coil=dataclasses.replace(fit.coil, initial_tension=3 * fit.coil.initial_tension))
+            for fit in ur5.coils]
+    assert any("hook bends" in f for f in dataclasses.replace(ur5, coils=tuple(hard)).hardware_flags())
+    slack = [fit._replace(span=(0.0, fit.span[1])) for fit in ur5.coils]
+    assert any("fail in fatigue" in f for f in dataclasses.replace(ur5, coils=tuple(slack)).hardware_flags())

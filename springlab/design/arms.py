@@ -40,7 +40,16 @@ import numpy as np
 
 from springlab import _checks
 from springlab.design.audit import Audit
-from springlab.design.buildable import COIL_COLUMNS, check_tolerances, coil_cells, maker_note, wires
+from springlab.design.buildable import (
+    COIL_COLUMNS,
+    ENDURANCE_CYCLES,
+    SERVICE_COLUMNS,
+    check_tolerances,
+    coil_cells,
+    maker_note,
+    service_cells,
+    wires,
+)
 from springlab.design.collision import MARGIN, Sampler, has_geometry
 from springlab.design.hardware import (
     HOOK_GAP,
@@ -305,20 +314,22 @@ class ArmDesign:
     def sheet(self) -> Table:
         """The spec sheet a spring maker works from, one row per realised spring: where it goes (its ends,
         mm in their links' URDF frames), how it is realised, the coil
-        (:data:`~springlab.design.buildable.COIL_COLUMNS`), the cable's offset L_0 - F_i / k, the pulley's
+        (:data:`~springlab.design.buildable.COIL_COLUMNS`), its hooks and fatigue in service
+        (:data:`~springlab.design.buildable.SERVICE_COLUMNS`), the cable's offset L_0 - F_i / k, the pulley's
         radius and lead, and the maker's note (:func:`~springlab.design.buildable.maker_note`);
         :data:`~springlab.design.buildable.SHEET_NOTE` says what it is designed to."""
 
         mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
         rows = []
-        for n, r, kind, (coil, *_) in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
-            cable = kind.startswith("cable")
+        for n, r, kind, fit in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
+            cable, coil = kind.startswith("cable"), fit.coil
             rows.append((n, f"{r.link_a} {mm(r.point_a)}", f"{r.link_b} {mm(r.point_b)}", kind, *coil_cells(coil),
+                         *service_cells(coil, *fit.forces()),
                          f"{1e3 * (coil.free_length - r.free_length):.1f}" if cable else "",
                          f"{1e3 * r.pulley_radius:g}" if r.pulley_radius > 0 else "",
                          "(" + ", ".join(f"{v + 0.0:.2f}" for v in r.lead) + ")" if r.pulley_radius > 0 else "",
                          maker_note(coil)))
-        return Table(["spring", "end A: link (mm)", "end B: link (mm)", "realisation", *COIL_COLUMNS,
+        return Table(["spring", "end A: link (mm)", "end B: link (mm)", "realisation", *COIL_COLUMNS, *SERVICE_COLUMNS,
                       "cable offset L0 - Fi/k (mm)", "pulley radius (mm)", "lead (link_a frame)", "maker's note"], rows)
 
     def built(self, *, tension: float = 1.0, free_length: float = 1.0, stiffness: float = 1.0) -> tuple:
@@ -422,7 +433,10 @@ class ArmDesign:
 
     def hardware_flags(self) -> tuple:
         """What its hardware cannot do: a coil stretched at a pose of :attr:`q` (the audit's worst poses
-        included) past what it was wound for and past its wire's allowable stress; a cable spring with no stocked cable for its pull, a
+        included) past what it was wound for and past its wire's allowable stress; a machine hook stressed past
+        its allowable at the coil's largest force, or a coil, or a hook, that its pull's range over the workspace
+        would break in fatigue (:meth:`~springlab.design.buildable.ExtensionSpring.fatigue`); a cable spring with
+        no stocked cable for its pull, a
         cable pulled past its working load, a pulley smaller than its cable's D/d asks for, a coil longer
         in service than its link has between its pulley and its joint (it would reach past the joint)."""
 
@@ -439,6 +453,18 @@ class ArmDesign:
                 out.append(f"the realised spring {name}'s coil is stretched to {1e3 * stretched:.1f} mm at a pose of the "
                            f"check, beyond the {1e3 * fit.coil.max_length:.1f} mm it was wound for: {stress / 1e6:.0f} MPa, "
                            f"above its wire's allowable {fit.coil.allowable_stress / 1e6:.0f} MPa")
+            for what, value, allowed in zip(("bends", "twists"), fit.coil.hook_stresses(fit.coil.max_force),
+                                            fit.coil.hook_allowables, strict=True):
+                if value > allowed * (1 + 1e-9):
+                    out.append(f"the realised spring {name}'s hook {what} at {value / 1e6:.0f} MPa under its largest "
+                               f"force {fit.coil.max_force:.4g} N, above its allowable {allowed / 1e6:.0f} MPa: it "
+                               "would yield where it leaves the coil")
+            low, high = fit.forces()
+            for place, factor in fit.coil.fatigue(low, high).items():
+                if factor < 1:
+                    out.append(f"the realised spring {name}'s {place} would fail in fatigue over its pull in the "
+                               f"workspace, {low:.4g} to {high:.4g} N: Gerber's factor {factor:.2f} against Zimmerli's "
+                               f"endurance, below 1 (not rated for {ENDURANCE_CYCLES:.0e} cycles)")
             if not kind.startswith("cable"):
                 continue
             pull = r.k * max(float(fit.span[1]), longest)

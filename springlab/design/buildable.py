@@ -85,6 +85,20 @@ STRESS_SHARE = 0.85
 sheet designs to a margin of 1 / 0.85 = 1.18 on the allowable stress, room for the maker's
 tolerances on the wire and coil diameters (the stress goes as D / d^3) and on the rate."""
 
+HOOK_BEND = 2.5
+"""A machine hook's bend where it leaves the body: its mean radius r_2, in wire diameters (C_2 = 2 r_2 / d
+= 5; Shigley, Section 10-11, asks C_2 > 4). The hook itself (A) is a full loop of the coil's mean radius
+(r_1 = D / 2, C_1 = C)."""
+
+ZIMMERLI = (241e6, 379e6)
+"""Pa: Zimmerli's endurance of unpeened spring wire under 10 mm, whatever the steel: an alternating shear
+stress S_sa = 241 MPa (35 kpsi) about a mean S_sm = 379 MPa (55 kpsi), for unlimited life (Shigley,
+Section 10-9)."""
+
+ENDURANCE_CYCLES = 1e7
+"""The cycles Zimmerli's endurance is read as lasting (Shigley's fatigue tables end at 10^7): a spring whose
+every fatigue factor is at least 1 is rated for them, and for any fewer."""
+
 
 @dataclass(frozen=True)
 class Material:
@@ -98,6 +112,8 @@ class Material:
     moduli: tuple  # (d_max_mm, G_Pa, E_Pa): the first band with d <= d_max
     body_allowable: float
     diameters_mm: tuple
+    end_torsion: float = 0.40  # the hook's allowable torsion (at B) and bending (at A), shares of S_ut in static
+    end_bending: float = 0.75  # service (Shigley, Table 10-7: carbon and low-alloy steels 40 and 75 %)
 
     def _band(self, d: float):
         mm = d * 1e3
@@ -133,7 +149,7 @@ MATERIALS = {
     "stainless 302": Material("stainless 302", "ASTM A313", ((0.3, 2.5, 1867.0, 0.146), (2.5, 5.0, 2065.0, 0.263),
                                                               (5.0, 10.0, 2911.0, 0.478)),
                               ((1e9, 69.0e9, 193.0e9),), 0.35,
-                              tuple(d for d in _PREFERRED_MM if 0.3 <= d <= 10.0)),
+                              tuple(d for d in _PREFERRED_MM if 0.3 <= d <= 10.0), 0.30, 0.55),
     "chrome silicon": Material("chrome silicon", "ASTM A401", ((1.6, 9.5, 1974.0, 0.108),),
                                ((1e9, 77.2e9, 203.4e9),), 0.45,
                                tuple(d for d in _PREFERRED_MM if 1.6 <= d <= 9.5)),
@@ -163,6 +179,29 @@ def _index(name: str, C) -> np.ndarray:
     if np.any(C <= 1):
         raise SpringlabError(f"{name} (a spring index D / d) must be above 1, got {np.min(C):g}")
     return C
+
+
+def _strong(mat: Material, d: float, C, K, force: float):
+    """Whether springs of wire ``d`` (m) at indices ``C`` (Wahl factors ``K``) carry ``force`` (N) within
+    :data:`STRESS_SHARE` of each allowable: the body's, and a machine hook's bending and torsion
+    (:meth:`ExtensionSpring.hook_stresses`, the same formulas on arrays)."""
+    C = np.asarray(C, dtype=float)
+    Sut = mat.tensile_strength(d)
+    C2 = 2 * HOOK_BEND
+    KA, KB = (4 * C**2 - C - 1) / (4 * C * (C - 1)), (4 * C2 - 1) / (4 * C2 - 4)
+    body = K * 8 * force * C / (np.pi * d**2)
+    bending = force / (np.pi * d**2) * (16 * KA * C + 4)
+    torsion = KB * 8 * force * C / (np.pi * d**2)
+    return ((body <= STRESS_SHARE * mat.body_allowable * Sut) & (bending <= STRESS_SHARE * mat.end_bending * Sut)
+            & (torsion <= STRESS_SHARE * mat.end_torsion * Sut))
+
+
+def _gerber(a: float, m: float, Se: float, Su: float) -> float:
+    """Gerber's factor of safety for an alternating stress ``a`` about a mean ``m`` (Pa), endurance ``Se`` and
+    ultimate strength ``Su`` (Pa) (Shigley, Section 10-9); inf for no alternation."""
+    if a <= 0:
+        return float("inf")
+    return float(0.5 * (Su / m) ** 2 * (a / Se) * (-1 + np.sqrt(1 + (2 * m * Se / (Su * a)) ** 2))) if m > 0 else Se / a
 
 
 def wahl_factor(C):
@@ -278,6 +317,57 @@ class ExtensionSpring:
         per = np.pi * self.wire**3 / (8 * self.mean_diameter)
         return float(max(lo, 0.0) * per), float(hi * per)
 
+    def hook_stresses(self, force, *, r1: float | None = None, r2: float | None = None) -> tuple:
+        """(sigma_A, tau_B) Pa under ``force`` (N): the hook's bending stress where it turns,
+        F ((K)_A 16 D / (pi d^3) + 4 / (pi d^2)) with (K)_A = (4 C_1^2 - C_1 - 1) / (4 C_1 (C_1 - 1)), and its
+        torsion where it leaves the body, (K)_B 8 F D / (pi d^3) with (K)_B = (4 C_2 - 1) / (4 C_2 - 4),
+        C_1 = 2 r_1 / d and C_2 = 2 r_2 / d (Shigley, Section 10-11). Where extension springs break. A
+        machine hook by default: r_1 = D / 2 (m), r_2 = :data:`HOOK_BEND` d."""
+        F = np.asarray(force, dtype=float)
+        d, D = self.wire, self.mean_diameter
+        r1 = D / 2 if r1 is None else _checks.positive("r1", r1, unit="m")
+        r2 = HOOK_BEND * d if r2 is None else _checks.positive("r2", r2, unit="m")
+        C1, C2 = 2 * r1 / d, 2 * r2 / d
+        if min(C1, C2) <= 1:
+            raise SpringlabError(f"a hook's bend radius of {1e3 * min(r1, r2):g} mm is no more than half the "
+                                 f"{1e3 * d:g} mm wire: give r1, r2 above d / 2")
+        KA = (4 * C1**2 - C1 - 1) / (4 * C1 * (C1 - 1))
+        KB = (4 * C2 - 1) / (4 * C2 - 4)
+        return F * (KA * 16 * D / (np.pi * d**3) + 4 / (np.pi * d**2)), KB * 8 * F * D / (np.pi * d**3)
+
+    @property
+    def hook_allowables(self) -> tuple[float, float]:
+        """(bending at A, torsion at B) Pa: the hook's allowable stresses in static service, the wire's shares
+        of S_ut (:class:`Material`'s ``end_bending``, ``end_torsion``)."""
+        Sut = self.wire_material.tensile_strength(self.wire)
+        return self.wire_material.end_bending * Sut, self.wire_material.end_torsion * Sut
+
+    def fatigue(self, low: float, high: float, *, r1: float | None = None, r2: float | None = None) -> dict:
+        """Gerber's factors of safety in fatigue of a spring cycled between forces ``low`` and ``high`` (N),
+        against Zimmerli's endurance (:data:`ZIMMERLI`), as Shigley's Section 10-9 and its extension-spring
+        example do: S_su = 0.67 S_ut, S_se = S_sa / (1 - (S_sm / S_su)^2), and per place n = (1/2) (S_u / m)^2
+        (a / S_e) (-1 + sqrt(1 + (2 m S_e / (S_u a))^2)) for an alternating stress a about a mean m: the body
+        (torsion, Wahl-corrected), the hook's bend at A (bending: S_e = S_se / 0.577, S_u = S_ut) and its root
+        at B (torsion); ``r1``, ``r2`` (m) as :meth:`hook_stresses`. A spring that does not cycle has no fatigue (inf).
+
+        :returns: {"body", "hook bending", "hook torsion"}: each factor (>= 1: rated for
+            :data:`ENDURANCE_CYCLES` cycles and more)
+        """
+        low = _checks.positive("low", low, allow_zero=True, unit="N")
+        high = _checks.positive("high", high, allow_zero=True, unit="N")
+        if high < low:
+            raise SpringlabError(f"high = {high:g} N is below low = {low:g} N: give the force range low to high")
+        Sut = self.wire_material.tensile_strength(self.wire)
+        Ssu = 0.67 * Sut
+        Ssa, Ssm = ZIMMERLI
+        Sse = Ssa / (1 - (Ssm / Ssu) ** 2)
+        Fa, Fm = (high - low) / 2, (high + low) / 2
+        (sA_a, tB_a), (sA_m, tB_m) = self.hook_stresses(Fa, r1=r1, r2=r2), self.hook_stresses(Fm, r1=r1, r2=r2)
+        places = {"body": (float(self.stress(Fa)), float(self.stress(Fm)), Sse, Ssu),
+                  "hook bending": (float(sA_a), float(sA_m), Sse / 0.577, Sut),
+                  "hook torsion": (float(tB_a), float(tB_m), Sse, Ssu)}
+        return {name: _gerber(a, m, Se, Su) for name, (a, m, Se, Su) in places.items()}
+
     def problems(self) -> list[str]:
         """Why a maker could not wind this spring or it would not survive its service (empty: fine)."""
         out = []
@@ -297,6 +387,11 @@ class ExtensionSpring:
         if stress > STRESS_SHARE * self.allowable_stress * (1 + 1e-9):
             out.append(f"stress {stress / 1e6:.0f} MPa at the largest force {self.max_force:.1f} N above "
                        f"{100 * STRESS_SHARE:.0f} % of the allowable {self.allowable_stress / 1e6:.0f} MPa")
+        for what, value, allowed in zip(("hook's bending", "hook's torsion"), self.hook_stresses(self.max_force),
+                                        self.hook_allowables, strict=True):
+            if value > allowed * (1 + 1e-9):
+                out.append(f"the {what} {value / 1e6:.0f} MPa at the largest force {self.max_force:.1f} N above its "
+                           f"allowable {allowed / 1e6:.0f} MPa (Shigley, Table 10-7)")
         return out
 
 
@@ -330,6 +425,12 @@ class Fitted(NamedTuple):
         """The coil's length (m, inside the hooks) at the cable's paths ``path`` (m): path / ratio plus the
         cable's offset, never shorter than its free length."""
         return np.maximum(np.asarray(path, dtype=float) / self.ratio + self.coil.cable_offset, self.coil.free_length)
+
+    def forces(self) -> tuple[float, float]:
+        """(least, largest) N: the coil's pull over its span in the workspace, the range it cycles through
+        (:meth:`ExtensionSpring.fatigue`)."""
+        low, high = self.coil.force(self.coil_length(np.asarray(self.span, dtype=float)))
+        return float(low), float(high)
 
 
 def _coils_for(material: Material, d, C, k):
@@ -370,9 +471,9 @@ def zero_length_spring(k: float, lengths, material: str = "music wire", *, tensi
         ok = windable & (Nb >= MIN_BODY_COILS) & (L0 <= short)
         for c, nb, l0 in zip(C[ok], Nb[ok], L0[ok], strict=True):
             spring = ExtensionSpring(material, d, float(c * d), float(nb), float(k * l0), long)
-            if spring.stress(spring.max_force) > STRESS_SHARE * spring.allowable_stress:
-                other.setdefault("stress", f"a stress above {100 * STRESS_SHARE:.0f} % of the allowable at "
-                                           f"{k * long:.1f} N")
+            if not _strong(mat, d, c, wahl_factor(c), spring.max_force):
+                other.setdefault("stress", f"a body or hook stress above {100 * STRESS_SHARE:.0f} % of its allowable "
+                                           f"at {k * long:.1f} N")
             elif best is None or _volume(spring) < _volume(best):
                 best = spring
     if best is not None:
@@ -428,15 +529,14 @@ def _cable_spring(k, short, long, mat, material, room, *, in_range: bool):
         windable = Fi >= lo * per * (1 - 1e-9) if in_range else np.ones_like(C, dtype=bool)
         L0 = (2 * C - 1 + Nb) * d
         longest = L0 + long - Fi / k
-        stress = K * 8 * (k * long) * C * d / (np.pi * d**3)  # at the largest force, k times the longest path
         coils = Nb >= MIN_BODY_COILS
-        strong = stress <= STRESS_SHARE * mat.body_allowable * mat.tensile_strength(d)
+        strong = _strong(mat, d, C, K, k * long)  # at the largest force, k times the longest path
         fits = np.ones_like(C, dtype=bool) if room is None else longest <= room
         if not coils.all():
             reasons.setdefault("coils", f"fewer than {MIN_BODY_COILS:g} body coils for k = {k:.4g} N/m")
         if np.any(coils & ~strong):
-            reasons.setdefault("stress", f"the stress at {k * long:.1f} N exceeds {100 * STRESS_SHARE:.0f} % of the "
-                                         "allowable for every wire")
+            reasons.setdefault("stress", f"the body's or a hook's stress at {k * long:.1f} N exceeds "
+                                         f"{100 * STRESS_SHARE:.0f} % of its allowable for every wire")
         if np.any(coils & strong & ~windable):
             reasons.setdefault("tension", f"the windable initial tension exceeds {STRETCH_MARGIN:g} of the force at the "
                                           f"shortest path, {k * short:.3g} N (the coil would go slack)")
@@ -652,12 +752,30 @@ COIL_COLUMNS = ("material", "wire d (mm)", "mean coil D (mm)", "outer diameter (
                 "allowable stress (MPa)", "stress / allowable (%)")
 """The spec sheet's columns that describe the coil itself (:func:`coil_cells`)."""
 
+SERVICE_COLUMNS = ("hook bending at A / allowable (MPa)", "hook torsion at B / allowable (MPa)",
+                   "pull in service (N)", "fatigue factor: body, hook A, hook B", "rated cycles")
+"""The spec sheet's columns on what the coil goes through in service (:func:`service_cells`): its machine hooks'
+stresses at the largest force beside their allowables (Shigley, Table 10-7), the range of its pull over the
+workspace, Gerber's factors of safety for that cycle against Zimmerli's endurance
+(:meth:`ExtensionSpring.fatigue`) and the cycles it is rated for."""
+
+
+def service_cells(coil: ExtensionSpring, low: float, high: float) -> tuple:
+    """A coil's cells of the spec sheet in service, as :data:`SERVICE_COLUMNS` names them, cycled between the
+    pulls ``low`` and ``high`` (N)."""
+    (bending, torsion), (b_ok, t_ok) = coil.hook_stresses(coil.max_force), coil.hook_allowables
+    factors = coil.fatigue(low, high)
+    rated = f"{ENDURANCE_CYCLES:.0e} and more" if min(factors.values()) >= 1 else "not rated: below the endurance"
+    return (f"{bending / 1e6:.0f} / {b_ok / 1e6:.0f}", f"{torsion / 1e6:.0f} / {t_ok / 1e6:.0f}", f"{low:.1f}-{high:.1f}",
+            ", ".join("inf" if not np.isfinite(v) else f"{v:.2f}" for v in factors.values()), rated)
+
+
 SHEET_COLUMNS = ("spring", "realisation", *COIL_COLUMNS, "a (mm)", "b (mm)", "cable offset L0 - Fi/k (mm)",
                  "pulley radius (mm)", "room along link i (mm)", "maker's note")
 
 
-SHEET_NOTE = (f"Designed to: body stress at the largest force at most {100 * STRESS_SHARE:.0f} % of the allowable "
-              f"(a margin of {1 / STRESS_SHARE:.2f} on it); initial tension inside the windable range where a stocked "
+SHEET_NOTE = (f"Designed to: body and machine-hook stresses at the largest force at most {100 * STRESS_SHARE:.0f} % of "
+              f"their allowables (a margin of {1 / STRESS_SHARE:.2f} on each); initial tension inside the windable range where a stocked "
               "wire allows it (the cable offset takes up the rest of the force law), else below it and flagged: wound "
               "at the range and stress-relieved down to it; at least 3 body coils; index C 4-12.")
 """The sheet's statement of what it designs to, printed with it."""
