@@ -142,7 +142,8 @@ def test_the_book_reads_in_chromium_offline(built):
         screenshots={built / "index.html": shots / "front-page.png", built / "report.html": shots / "report.png",
                      **{page: shots / f"{page.stem}.png" for page in chapters}},
         chapters=[p.name for p in chapters] + ["report.html", "index.html"], search=(term, "zhang2023_dyad.html"),
-        numbered=[f"{stem}.html" for stem in ALL_STEMS if PAPERS.get(stem, {}).get("key")])
+        numbered=[f"{stem}.html" for stem in ALL_STEMS if PAPERS.get(stem, {}).get("key")],
+        captioned=[f"{stem}.html" for stem in ALL_STEMS])
     assert result == {**{str(p.relative_to(built)): [] for p in pages}, "search": []}, term
     log = (OUT / "network.log").read_text().splitlines()
     assert any(f"_static/mathjax/{book.MATHJAX_SCRIPT}" in line for line in log)  # the log holds every request
@@ -188,15 +189,22 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                   '<p><span class="math">\\(\\\\tfrac12 k\\)</span></p>'  # a doubled backslash
                   '<p><span class="math">\\(\\frac{a}\\)</span></p>'  # TeX MathJax cannot parse
                   '<div class="cell_output"><pre style="white-space: pre">' + "Claim(quantity=...) " * 120 + "</pre></div>"
-                  '<a href="_sources/">.ipynb</a>')  # a download of a folder
+                  '<a href="_sources/">.ipynb</a>'  # a download of a folder
+                  '<img src="ok.png" alt="a figure with no caption">'
+                  '<figure><img src="ok.png" alt="a caption with no number"><figcaption>The arm</figcaption></figure>')
     good = page("good.html", "<p>A table:</p><table><tr><td>k</td><td>718.67</td></tr></table>"
                              '<p><span class="math">\\(\\tfrac12 k\\)</span></p>'
                              '<div class="math">\\[h_j = d_j \\tag{8}\\]</div>'
-                             '<div class="cell_output"><pre>short</pre></div>')
-    result = site.browser_check([broken, good], numbered=["broken.html", "good.html"])
+                             '<div class="cell_output"><pre>short</pre></div>'
+                             '<figure><img src="ok.png" alt="drawn"><figcaption><p>Figure 1. The arm.</p></figcaption>'
+                             '</figure>')
+    (tmp_path / "ok.png").write_bytes((ROOT / "figures" / "lenzo2017_two_spring_arm" / "fig5_layouts.png").read_bytes())
+    result = site.browser_check([broken, good], numbered=["broken.html", "good.html"],
+                                captioned=["broken.html", "good.html"])
     problems = "\n".join(result["broken.html"])
     for expected in ("raw Markdown table", "TeX left as text: ", "doubled backslash", "could not parse",
-                     "px wide in a 600 px column", "points to a folder", "no numbered equation"):
+                     "px wide in a 600 px column", "points to a folder", "no numbered equation",
+                     "no numbered caption: a figure with no caption", "no numbered caption: a caption with no number"):
         assert expected in problems, (expected, problems)
     assert result["good.html"] == []
 

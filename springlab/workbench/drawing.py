@@ -46,6 +46,7 @@ SPRING_COLOURS = ("tab:red", "tab:orange", "tab:purple", "tab:brown", "tab:pink"
 LINK_COLOUR = "0.15"
 COLUMN_COLOUR = "0.55"
 SHELL_COLOUR = "0.88"
+AUXILIARY_COLOUR = "0.6"
 
 
 @dataclass(frozen=True)
@@ -67,6 +68,9 @@ class Scene:
     :ivar cables: {spring label: [(P (N, 3), Q (N, 3)), ...]}: a realised spring's cable runs, drawn as thin
         lines in its colour (its ``springs`` entry is then its coil)
     :ivar pulleys: {spring label: (centre (N, 3), radius m)}: its pulley, drawn as a circle of its radius
+    :ivar auxiliary: polylines (N, k, 3) of links that carry no load of the arm's own but close a loop (paper
+        001's auxiliary links of its RSSR modules, with the brackets to each pseudobase's end): drawn thinner
+        and lighter than the links
     """
 
     up: np.ndarray
@@ -81,6 +85,7 @@ class Scene:
     shells: list = field(default_factory=list)
     cables: dict = field(default_factory=dict)
     pulleys: dict = field(default_factory=dict)
+    auxiliary: list = field(default_factory=list)
 
     @property
     def poses(self) -> int:
@@ -119,6 +124,7 @@ class Scene:
         parts += [e.reshape(-1, 3) for e in self.extras.values()]
         parts += [b.reshape(-1, 3) for b in (self.brackets, self.masses) if b is not None]
         parts += [shell.reshape(-1, 3) for shell in self.shells]
+        parts += [a.reshape(-1, 3) for a in self.auxiliary]
         parts.append(np.outer(self.column, self.up))
         if self.path is not None:
             parts.append(np.asarray(self.path).reshape(-1, 3))
@@ -223,8 +229,11 @@ def hardware_scene(design, q) -> Scene:
 
 
 def pseudobase_scene(arm, springs, q) -> Scene:
-    """Paper 001's arm at joint angles q (N, n): the primary links through the frame origins,
-    each module's pseudobase as the segment C_i D_i (it keeps its direction at every pose),
+    """Paper 001's arm at joint angles q (N, n): the primary links through the frame origins, the
+    auxiliary links through their own (the primary frames' origins moved by the auxiliary chain's offset,
+    001 Section 4) with a bracket from each module's auxiliary link to D_i and from its primary link to
+    C_i (so each RSSR loop is closed in the drawing), each module's pseudobase as the segment C_i D_i (it
+    keeps its direction at every pose),
     the equilibrator springs A B with their brackets (A_i on the pseudobase's line, B_i fixed to
     link i at O_i) and the primary links' centres of mass (each fixed in its frame, at O_i)
     (route 2's positions)."""
@@ -235,6 +244,11 @@ def pseudobase_scene(arm, springs, q) -> Scene:
     ends = {f"S{sp.link}": (p["A"][:, k], p["B"][:, k]) for k, sp in enumerate(springs)}
     extras = {f"pseudobase {i}": np.stack([p["C"][:, k], p["D"][:, k]], axis=1) for k, i in enumerate(arm.modules)}
     origins = p["O"]
+    hat = origins + np.asarray(arm.aux_offset, dtype=float)  # the auxiliary chain's frame origins
+    first = arm.modules[0] - 1  # the body the first module's auxiliary link is jointed to, at Ô_first
+    auxiliary = [hat[:, [first, *arm.modules]], np.stack([origins[:, first], hat[:, first]], axis=1)]
+    auxiliary += [np.stack([hat[:, i], p["D"][:, k]], axis=1) for k, i in enumerate(arm.modules)]
+    auxiliary += [np.stack([origins[:, i], p["C"][:, k]], axis=1) for k, i in enumerate(arm.modules)]
     column_k = {i: k for k, i in enumerate(arm.modules)}
     # A_i sits on the pseudobase's line, l_CA from C_i; B_i on a bracket fixed to link i at O_i
     brackets = [np.stack([p["C"][:, column_k[sp.link]], p["A"][:, k]], axis=1) for k, sp in enumerate(springs)]
@@ -244,7 +258,7 @@ def pseudobase_scene(arm, springs, q) -> Scene:
     low = min(0.0, float(np.min(origins @ base)))
     column = (low - 0.05 * float(np.ptp(origins @ base) + 1e-9), float(np.max(origins[:, :2] @ base)))
     return Scene(base, [origins], ends, column, extras,
-                 brackets=np.stack(brackets, axis=1) if brackets else None, masses=p["com"])
+                 brackets=np.stack(brackets, axis=1) if brackets else None, masses=p["com"], auxiliary=auxiliary)
 
 
 def zigzag(P, Q, *, coils: int = 6, width: float) -> np.ndarray:
@@ -294,6 +308,10 @@ def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=
         outline = _hull(scene.project(shell[pose], view))
         artists += ax.fill(*outline.T, facecolor=SHELL_COLOUR, edgecolor="0.6", linewidth=0.5, zorder=0.5,
                            label="links' outlines (URDF geometry)" if k == 0 else None)
+    for k, chain in enumerate(scene.auxiliary):
+        pts = scene.project(chain[pose], view)
+        artists += ax.plot(*pts.T, color=AUXILIARY_COLOUR, linewidth=1.8, solid_capstyle="round", zorder=2,
+                           marker="o", markersize=3, label="auxiliary links (RSSR modules)" if k == 0 else None)
     for name, body in scene.extras.items():
         pts = scene.project(body[pose], view)
         artists += ax.plot(*pts.T, color="tab:blue", linewidth=2.4, solid_capstyle="round", zorder=2,
@@ -505,7 +523,8 @@ def _at(scene: Scene, poses) -> Scene:
     return replace(scene, links=[link[k] for link in scene.links],
                    springs={n: (A[k], B[k]) for n, (A, B) in scene.springs.items()},
                    extras={n: e[k] for n, e in scene.extras.items()}, brackets=pick(scene.brackets),
-                   masses=pick(scene.masses), shells=[shell[k] for shell in scene.shells])
+                   masses=pick(scene.masses), shells=[shell[k] for shell in scene.shells],
+                   auxiliary=[a[k] for a in scene.auxiliary])
 
 
 def _legend_and_title(fig, axes, title: str, into=None, fontsize: float = 7):
@@ -733,6 +752,7 @@ def lowest(scene: Scene) -> np.ndarray:
     parts += [np.stack(ab, axis=1) for ab in scene.springs.values()]
     parts += [e.reshape(scene.poses, -1, 3) for e in scene.extras.values()]
     parts += [b.reshape(scene.poses, -1, 3) for b in (scene.brackets, scene.masses) if b is not None]
+    parts += [a.reshape(scene.poses, -1, 3) for a in scene.auxiliary]
     return np.min(np.concatenate(parts, axis=1) @ scene.up, axis=1)
 
 

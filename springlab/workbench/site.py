@@ -213,7 +213,11 @@ for (const el of article.querySelectorAll('.cell_output > *, mjx-container[displ
     if (width > 2 * column) wide.push([Math.round(width), el.textContent.trim().slice(0, 60)]);
 }
 const numbered = Array.from(article.querySelectorAll('mjx-container [data-mml-node="mlabeledtr"]')).length;
-return {column, pipes, leaks, wide, numbered};
+const uncaptioned = Array.from(article.querySelectorAll('img')).filter(img => {
+    const caption = img.closest('figure') && img.closest('figure').querySelector('figcaption');
+    return !(caption && /^\s*Figure \d+\. \S/.test(caption.textContent));
+}).map(img => (img.getAttribute('alt') || img.getAttribute('src') || '').slice(0, 80));
+return {column, pipes, leaks, wide, numbered, uncaptioned};
 """
 
 
@@ -269,7 +273,7 @@ def _wait(driver, script: str, timeout: float):
 
 
 def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, search=None, numbered=(),
-                  math_timeout: float = 30.0) -> dict[str, list[str]]:
+                  captioned=(), math_timeout: float = 30.0) -> dict[str, list[str]]:
     """Open each page in headless Chromium and list what a reader would see broken: an image
     that did not load, a link to a missing local file, folder or anchor (:func:`check_links`:
     a download included), a traceback in an output, TeX that MathJax left unrendered or could
@@ -287,6 +291,8 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
         (reported under "search")
     :param numbered: page names (``zhang2023_dyad.html``) that must show a numbered display
         equation (a ``\\tag``: a paper's own equation number)
+    :param captioned: page names whose every image (a figure, an animation) must stand in a figure
+        with a numbered caption ("Figure 3. ...")
     :returns: {page: problems}, each page named by its path from the first page's folder
     :raises SolverError: when Chromium and its driver are not installed
     """
@@ -328,6 +334,8 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
             problems += [f"an output {w} px wide in a {reader['column']} px column: {t}" for w, t in reader["wide"]]
             if page.name in numbered and not reader["numbered"]:
                 problems.append("no numbered equation (a display equation with the paper's number, \\tag{...})")
+            if page.name in captioned:
+                problems += [f"a figure with no numbered caption: {t}" for t in reader["uncaptioned"]]
             if k == 0 and chapters:
                 linked = {Path(h.split("#")[0]).name for h in driver.execute_script(
                     "return Array.from(document.querySelectorAll('nav.bd-docs-nav a')).map(a => a.href)")}

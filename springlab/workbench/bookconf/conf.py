@@ -109,7 +109,19 @@ def _data_stays_home(app, modname, attribute):
     return modname
 
 
+def _number_figures(app, doctree):
+    """Each chapter's figures numbered from 1 in their order on the page, as a paper numbers them: the
+    caption a notebook gives a figure (myst-nb's cell metadata ``mystnb.figure``) begins "Figure k." """
+    from docutils import nodes
+
+    figures = [f for f in doctree.findall(nodes.figure) if any(isinstance(c, nodes.caption) for c in f.children)]
+    for k, figure in enumerate(figures, 1):
+        caption = next(c for c in figure.children if isinstance(c, nodes.caption))
+        caption.insert(0, nodes.inline("", f"Figure {k}. ", classes=["caption-number"]))
+
+
 def setup(app):
+    app.connect("doctree-read", _number_figures)
     app.connect("viewcode-follow-imported", _data_stays_home)
     app.connect("autodoc-process-docstring", _plain_text)
     app.connect("autodoc-process-docstring", _link_citations)
