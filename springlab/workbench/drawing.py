@@ -311,7 +311,7 @@ def draw(ax, scene: Scene, pose: int, view: str, *, labels: bool = True, limits=
     for k, chain in enumerate(scene.auxiliary):
         pts = scene.project(chain[pose], view)
         artists += ax.plot(*pts.T, color=AUXILIARY_COLOUR, linewidth=1.8, solid_capstyle="round", zorder=2,
-                           marker="o", markersize=3, label="auxiliary links (RSSR modules)" if k == 0 else None)
+                           marker="o", markersize=3, label="auxiliary links" if k == 0 else None)
     for name, body in scene.extras.items():
         pts = scene.project(body[pose], view)
         artists += ax.plot(*pts.T, color="tab:blue", linewidth=2.4, solid_capstyle="round", zorder=2,
