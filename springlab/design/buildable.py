@@ -410,7 +410,8 @@ class Fitted(NamedTuple):
         link has no room for it), the room (m) the bracket gives it: its link's length less the post's and the
         pulley's; None for a coil on its link
     :ivar choice: a layout's spring: how its realisation placed it, (pulley at the post, the lengths' change:
-        False as laid out, True the point's and the post's swapped, a number the point's scaled by it)
+        False as laid out, True the point's and the post's swapped, a number the point's scaled by it), and
+        whether its coil fit its room and its pulley cleared the table so placed
         (:func:`springlab.design.layouts.realise_layout`)
     """
 
@@ -419,7 +420,7 @@ class Fitted(NamedTuple):
     ratio: int = 1
     cable: object = None
     bracket: float | None = None
-    choice: tuple = (False, False)
+    choice: tuple = (False, False, True, True)
 
     def coil_length(self, path):
         """The coil's length (m, inside the hooks) at the cable's paths ``path`` (m): path / ratio plus the

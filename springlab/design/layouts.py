@@ -521,8 +521,9 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
     fits nowhere, its point's and post's lengths are scaled in inverse proportion (:data:`SCALES`), on the
     link and on the bracket, and the first placing that fits and clears with the fewest coils is kept. Each
     coil records its placing (:attr:`~springlab.design.buildable.Fitted.choice`); ``prefer`` maps a layout
-    spring's index to an earlier round's (placing, coils side by side), tried first and kept where it still
-    fits and clears with no more coils (the design's rounds for the springs' own mass).
+    spring's index to an earlier round's (placing, coils side by side), tried first and kept where it does
+    as well again, fitting and clearing as it did with no more coils (the design's rounds for the springs'
+    own mass).
 
     :raises SpringlabError: naming a spring no stocked wire realises or no stocked cable carries, or a given
         cable that a given pulley is too small for
@@ -603,17 +604,17 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
             return {"s": s, "lead": lead, "rho": rho, "chosen": chosen, "lengths": lengths, "coil": coil,
                     "ratio": ratio, "parallel": parallel, "room": fits_in if at_post else None,
                     "fits": coil.max_length <= fits_in - (2 * (rho + d) if ratio > 1 else 0.0), "clear": clear >= 0,
-                    "choice": (at_post, swap)}
+                    "choice": (at_post, swap, coil.max_length <= fits_in - (2 * (rho + d) if ratio > 1 else 0.0),
+                               clear >= 0)}
 
         got = None
-        if index in prefer:  # the placing the previous round searched for, where it still fits and clears with
-            choice, parallel = prefer[index]  # no more coils: the arm carries the hardware it was designed for
-            try:
-                got = attempt(*choice)
+        if index in prefer:  # the placing the previous round searched for, where it does as well again (fits
+            (at_post, swap, fits, clear), parallel = prefer[index]  # and clears as it did, with no more coils):
+            try:  # the arm carries the hardware it was designed for, and the search is not run again
+                got = attempt(at_post, swap)
             except SpringlabError:
                 got = None
-            if got is not None and not ("left" not in got and got["fits"] and got["clear"]
-                                        and got["parallel"] <= parallel):
+            if got is not None and ("left" in got or _better({"fits": fits, "clear": clear, "parallel": parallel}, got)):
                 got = None
         if got is None:
             got = attempt(False)
