@@ -2,8 +2,10 @@
 balance it with their own mass carried, checked against Pinocchio's collision geometry and MuJoCo, with
 negative controls that must fail."""
 
+import csv
 import dataclasses
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -118,11 +120,19 @@ def test_mujoco_holds_the_realised_belt_springs_as_route_2_does(ur5):
 
 
 def test_the_cli_designs_belts_and_refuses_what_it_cannot(tmp_path, capsys):
-    out = tmp_path / "ur5.json"
-    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--samples", "300",
+    out, bom = tmp_path / "ur5.json", tmp_path / "ur5-parts.csv"
+    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--samples", "300", "--bom", str(bom),
                  "--quiet"]) == 0  # the default: auto
     assert "target 90 % reached" in capsys.readouterr().out.splitlines()[0]
     data = json.loads(out.read_text())
+    with bom.open() as f:  # the shopping list: every part of the JSON's, each where it goes
+        rows = list(csv.DictReader(f))
+    assert sum(int(r["quantity"]) for r in rows) == len(data["parts"])
+    coils = [r for r in rows if "extension spring" in r["what to buy"]]
+    assert len(coils) == len(data["realised"]) and all("wire" in r["what to buy"] and " to " in r["ends (mm, their "
+                                                                                                "links' frames)"]
+                                                       for r in coils)
+    assert all(r["rides on"] and r["where (mm, its link's frame)"].startswith("(") for r in rows)
     assert data["target"]["reached"] and data["target"]["missed"] == []
     for s in data["realised"]:  # the contract's hardware: the coil's hooks, both on link_a, as far apart as
         a, b = np.array(s["coil_a"]["point"]), np.array(s["coil_b"]["point"])  # the coil at the check's longest
@@ -138,7 +148,13 @@ def test_the_cli_designs_belts_and_refuses_what_it_cannot(tmp_path, capsys):
     for bad in (["--share", "1.5"], ["--share", "0.1", "--layout", "two-point"]):  # out of range; not for two-point
         args = ["design", str(robot_urdf("UR5")), *bad, "--json", str(tmp_path / "x.json"), "--quiet"]
         assert main(args) == 2 and "--share" in capsys.readouterr().err
-    assert not (tmp_path / "x.json").exists()
+    for bad in (["--bom", str(tmp_path)], ["--bom", str(tmp_path / "x.json")]):  # a folder; the JSON's own path
+        args = ["design", str(robot_urdf("UR5")), *bad, "--json", str(tmp_path / "x.json"), "--quiet"]
+        assert main(args) == 2 and "--bom" in capsys.readouterr().err
+    arm_file = Path(__file__).resolve().parents[1] / "notebooks" / "arms" / "paper000_arm.toml"
+    assert main(["design", str(arm_file), "--bom", str(tmp_path / "b.csv"), "--json", str(tmp_path / "x.json"),
+                 "--quiet"]) == 2 and "URDF" in capsys.readouterr().err
+    assert not (tmp_path / "x.json").exists() and not (tmp_path / "b.csv").exists()
     panda = load_robot("Panda")  # its loaded joints are no planar chain: no level reference to carry
     with pytest.raises(SpringlabError, match="not a planar chain"):
         belt_layout(panda, structure(panda))

@@ -43,6 +43,7 @@ from springlab.design.audit import Audit
 from springlab.design.buildable import (
     COIL_COLUMNS,
     ENDURANCE_CYCLES,
+    MATERIALS,
     SERVICE_COLUMNS,
     check_tolerances,
     coil_cells,
@@ -570,6 +571,41 @@ class ArmDesign:
                               if isinstance(v, float) else str(v) for k, v in p.loads.items() if k != "breaking_load_N")
             rows.append((p.name, p.kind, p.link, f"{1e3 * p.mass:.0f}", size, loads))
         return Table(["part", "kind", "rides on", "mass (g)", "sizes (mm)", "largest loads"], rows)
+
+    def bom(self) -> Table:
+        """The shopping list: one row per item to buy (identical parts at one place counted together), with
+        its quantity, what to buy (a coil: its wire, diameters, coils, free length inside its machine hooks,
+        initial tension and rate; a rope: its construction and length; a pulley, a belt, a post, a bracket:
+        their sizes), the link it rides on and where there (mm, in the link's URDF frame; a spring's and its
+        cable's ends too), and its mass (g). Its parts are :func:`springlab.design.hardware.parts`'s."""
+
+        mm = lambda p: "(" + ", ".join(f"{round(1e3 * v, 1) + 0.0:.1f}" for v in p) + ")"  # noqa: E731
+        springs = dict(zip(self.realised_names, zip(self.realised, self.coils, strict=True), strict=True))
+        rows: dict = {}
+        for p in parts(self.model, self.realised, self.kinds, self.coils, self.realised_names, self.q):
+            name = p.name.split(" ", 1)[0]
+            r, fit = springs.get(name, (None, None))
+            ends = f"{r.link_a} {mm(r.point_a)} to {r.link_b} {mm(r.point_b)}" if r is not None else ""
+            if p.kind == "spring":
+                c = fit.coil
+                what = (f"{c.material} ({MATERIALS[c.material].standard}) extension spring, machine hooks: wire "
+                        f"{1e3 * c.wire:.2f} mm, outer diameter {1e3 * c.outer_diameter:.2f} mm, {c.body_coils:.2f} "
+                        f"body coils, free length {1e3 * c.free_length:.1f} mm inside the hooks, initial tension "
+                        f"{c.initial_tension:.2f} N, rate {c.rate / 1e3:.4g} N/mm")
+            elif p.kind == "cable" and fit is not None and fit.cable is not None:
+                what = (f"wire rope {fit.cable.name}, breaking load {fit.cable.breaking:.4g} N, cut to "
+                        f"{1e3 * p.size['length']:.0f} mm")
+            else:
+                what = p.kind + ": " + ", ".join(
+                    f"{k.replace('_', ' ')} {1e3 * v:.3g} mm" if isinstance(v, float) else f"{k.replace('_', ' ')} {v}"
+                    for k, v in p.size.items() if not k.endswith("_kg"))
+                ends = ends if p.kind == "cable" else ""
+            key = (p.kind, what, p.link, mm(p.centre), ends, f"{1e3 * p.mass:.0f}")
+            rows.setdefault(key, []).append(p.name)
+        return Table(["items", "quantity", "what to buy", "rides on", "where (mm, its link's frame)",
+                      "ends (mm, their links' frames)", "mass each (g)"],
+                     [(", ".join(names), len(names), what, link, at, ends, mass)
+                      for (kind, what, link, at, ends, mass), names in rows.items()])
 
     def control(self, factor: float = 0.9) -> tuple[float, float]:
         """The negative control: the largest holding torque (N m, over joints and the workspace poses)

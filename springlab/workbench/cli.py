@@ -203,7 +203,11 @@ def _design(args) -> int:
     if args.payload_range is not None and path.suffix != ".urdf":
         raise SpringlabError(f"--payload-range = {args.payload_range!r} applies to URDF files, designed on the general "
                              "model with a payload dial (an arm file's payload is its [payload] table)")
-    if path.suffix == ".urdf" and (args.workspace is not None or args.reach is not None or args.package_dir
+    if args.bom is not None and path.suffix != ".urdf":
+        raise SpringlabError(f"--bom {args.bom}: the shopping list is written for a URDF arm's springs, their parts "
+                             "placed on its links (an arm file's springs are on its --sheet)")
+    if path.suffix == ".urdf" and (args.bom is not None or args.workspace is not None or args.reach is not None
+                                   or args.package_dir
                                    or args.payload_range is not None or args.margin is not None
                                    or args.layout != "auto" or args.share is not None
                                    or args.samples is not None or args.fit_poses is not None):
@@ -294,9 +298,10 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     if args.sheet:
         for sheet_path in _sheet_paths(out):
             _writable(sheet_path, "--sheet")
+    bom = None if args.bom is None else _writable(Path(args.bom), "--bom")
     mjcf = _mjcf_paths(args)
     _no_clash(path, [("--json", out), *(("--sheet", p) for p in (_sheet_paths(out) if args.sheet else ())),
-                     *(("--mjcf", p) for p in mjcf)])
+                     *(("--mjcf", p) for p in mjcf), *((("--bom", bom),) if bom else ())])
     started = time.perf_counter()
     reach = None if args.reach is None else _checks.positive(
         "--reach", parse_quantity(args.reach, "length", "--reach"), allow_zero=True, unit="m") + 0.0
@@ -388,6 +393,14 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     print(f"\ndesign written to {out}")
     if args.sheet:
         _write_general_sheet(args, path, design, study, out)
+    if bom is not None:
+        from springlab.design.buildable import table_csv
+
+        try:
+            bom.write_text(table_csv(design.bom()))
+        except OSError as err:
+            raise SpringlabError(f"--bom {bom} cannot be written ({err.strerror})") from None
+        print(f"shopping list written to {bom}")
     if mjcf:
         _write_mjcf(mjcf, design.model, design.ideal, design.realised)
     flags = design.flags()
@@ -530,7 +543,7 @@ def _design_dh(args, path: Path) -> int:
         raise SpringlabError(f"--mjcf writes a chain of revolute joints with springs between points of its links; "
                              f"{path} is designed by paper 001's pseudobase method, whose springs ride on "
                              "parallelogram auxiliary links (RSSR modules) that springlab does not export: leave out --mjcf")
-    for flag, given in (("--sheet", args.sheet), ("--up", args.up), ("--tip", args.tip), ("--base", args.base),
+    for flag, given in (("--sheet", args.sheet), ("--bom", args.bom), ("--up", args.up), ("--tip", args.tip), ("--base", args.base),
                         ("--payload", args.payload), ("--method", args.method != "fewest springs"),
                         ("--reach", args.reach), ("--package-dir", args.package_dir), ("--workspace", args.workspace),
                         ("--payload-range", args.payload_range)):
@@ -660,6 +673,9 @@ def main(argv=None) -> int:
     p.add_argument("--csv", help="also write every ranked design to this CSV file (one row a design)")
     p.add_argument("--sheet", action="store_true",
                    help="also write the built springs' spec sheet beside the JSON (.sheet.csv, .sheet.md)")
+    p.add_argument("--bom", metavar="FILE.csv",
+                   help="a URDF arm: also write the shopping list, each part with its quantity, what to buy, the link "
+                        "it rides on and where (the springs' and cables' ends too)")
     p.add_argument("--material", default="auto", choices=("auto", "music wire", "chrome silicon", "stainless 302"),
                    help="spring wire (default auto: music wire, and for a URDF arm's coils chrome silicon where that "
                         "saves a side-by-side coil or a pulley block; an arm file's --sheet: music wire)")
