@@ -396,3 +396,27 @@ def test_the_ur5s_coils_keep_their_hooks_and_outlast_their_cycles_and_an_overloa
     assert any("hook bends" in f for f in dataclasses.replace(ur5, coils=tuple(hard)).hardware_flags())
     slack = [fit._replace(span=(0.0, fit.span[1])) for fit in ur5.coils]
     assert any("fail in fatigue" in f for f in dataclasses.replace(ur5, coils=tuple(slack)).hardware_flags())
+
+
+def test_the_tolerance_that_costs_most_is_named_with_the_band_that_keeps_a_point(ur5):
+    ranking = ur5.tolerance_ranking()
+    costs = [float(row[3]) for row in ranking.rows]
+    assert costs == sorted(costs, reverse=True) and len(ranking.rows) == 3 * len(ur5.realised)
+    name, tolerance, limit, cost, band = ranking.rows[0]
+    assert float(cost) > 1 and float(band) < float(limit)  # the costliest must be held tighter than the maker's
+    m = ur5.realised_names.index(name)
+    loaded = list(ur5.structure.loaded)
+    arm = ur5.designed_for
+    peak = np.abs(gravity_torques(arm, ur5.q)).max(axis=0)[loaded]
+
+    def removed(springs):
+        return 100 * (1 - np.abs(joint_torques(arm, springs, ur5.q)).max(axis=0)[loaded] / peak)
+
+    nominal = removed(ur5.built())
+    key = tolerance.replace(" ", "_")
+    for f, within in ((0.99 * float(band) / 100, True), (1.2 * float(band) / 100, False)):  # at the band; past it
+        worst = max(np.max(nominal - removed(ur5.built(only=m, **{key: 1 + s * f}))) for s in (1, -1))
+        assert (worst <= 1.0) == within
+    assert all(row[4] == row[2] for row in ur5.tolerance_ranking(points=100).rows)  # the control: a loose bound
+    spec = next(row for row in ur5.tolerance_table().rows if row[0] == "as specified")
+    assert all(float(v) >= 95 for v in spec[1:3])  # on the arm carrying its hardware, as designed

@@ -333,26 +333,32 @@ class ArmDesign:
         return Table(["spring", "end A: link (mm)", "end B: link (mm)", "realisation", *COIL_COLUMNS, *SERVICE_COLUMNS,
                       "cable offset L0 - Fi/k (mm)", "pulley radius (mm)", "lead (link_a frame)", "maker's note"], rows)
 
-    def built(self, *, tension: float = 1.0, free_length: float = 1.0, stiffness: float = 1.0) -> tuple:
+    def built(self, *, tension: float = 1.0, free_length: float = 1.0, stiffness: float = 1.0,
+              only: int | None = None) -> tuple:
         """The realised springs as wound, each coil's initial tension, free length and rate multiplied by
-        the factors (1: as specified; :data:`~springlab.design.buildable.TOLERANCES`). A cable's length
+        the factors (1: as specified; :data:`~springlab.design.buildable.TOLERANCES`), or only the coil of
+        realised spring ``only`` (its index), the others as specified. A cable's length
         stays as cut: its offset c = L_0 - F_i / k is kept, so the force along its path is
         F_i' + k' (path + c - L_0'); over a pulley block of ratio n the coil moves path / n and the cable
         pulls (F_i' + k' (path / n + c - L_0')) / n, a spring of rate k' / n^2, initial tension F_i' / n and
         free length n (L_0' - c) along the path."""
         out = []
-        for r, (coil, _, ratio, *_) in zip(self.realised, self.coils, strict=True):
+        factors = [_checks.positive(n, v) for n, v in (("stiffness", stiffness), ("free_length", free_length),
+                                                          ("tension", tension))]
+        for m, (r, (coil, _, ratio, *_)) in enumerate(zip(self.realised, self.coils, strict=True)):
+            f_k, f_L, f_T = factors if only is None or m == only else (1.0, 1.0, 1.0)
             offset = coil.free_length - r.free_length / ratio  # the cable's offset; 0 for a zero-length spring
-            k = r.k * _checks.positive("stiffness", stiffness)
-            L0 = ratio * (coil.free_length * _checks.positive("free_length", free_length) - offset)
-            Fi = r.initial_tension * _checks.positive("tension", tension)
+            k = r.k * f_k
+            L0 = ratio * (coil.free_length * f_L - offset)
+            Fi = r.initial_tension * f_T
             fields = {"free_length": L0, "initial_tension": Fi} if L0 >= 0 else {"free_length": 0.0,
                                                                                   "initial_tension": Fi - k * L0}
             out.append(with_changes(r, k=k, **fields))
         return tuple(out)
 
     def tolerance_table(self, tolerances: dict | None = None) -> Table:
-        """The balance the built springs leave (route 2, the design's poses): per loaded joint, the
+        """The balance the built springs leave (route 2, the design's poses, on the arm they were designed for,
+        :attr:`designed_for`): per loaded joint, the
         percentage of its peak gravity torque removed, by the ideal springs, the realised ones as
         specified, and with each of the maker's tolerances (default
         :data:`~springlab.design.buildable.TOLERANCES`; each at most 0.5) at its + and - limit on every
@@ -360,10 +366,11 @@ class ArmDesign:
 
         tolerances = check_tolerances(tolerances)
         loaded = list(self.structure.loaded)
-        peak = np.max(np.abs(gravity_torques(self.model, self.q)), axis=0)[loaded]
+        arm = self.designed_for  # the springs' hardware carried where the layout designed for it
+        peak = np.max(np.abs(gravity_torques(arm, self.q)), axis=0)[loaded]
 
         def removed(springs):
-            left = np.max(np.abs(joint_torques(self.model, springs, self.q)), axis=0)[loaded]
+            left = np.max(np.abs(joint_torques(arm, springs, self.q)), axis=0)[loaded]
             return [f"{100 * (1 - v / p):.1f}" for v, p in zip(left, peak, strict=True)]
 
         rows = [("as designed (ideal springs)", *removed(self.ideal)), ("as specified", *removed(self.built()))]
@@ -372,6 +379,44 @@ class ArmDesign:
                 rows.append((f"{name.replace('_', ' ')} {'+' if sign > 0 else '-'}{100 * value:g} %",
                              *removed(self.built(**{name: 1 + sign * value}))))
         return Table(["built", *(f"{self.model.joints[i]} removed (%)" for i in loaded)], rows)
+
+    def tolerance_ranking(self, tolerances: dict | None = None, *, points: float = 1.0) -> Table:
+        """Which spring's tolerance costs the balance most: per realised spring and maker's tolerance (default
+        :data:`~springlab.design.buildable.TOLERANCES`), that spring alone at the tolerance's + and - limit, the
+        others as specified, and the points of a loaded joint's peak removed it costs at worst (route 2, the
+        design's poses, on :attr:`designed_for`); and the band (+- %) that keeps it within ``points`` of the springs as specified
+        (bisection; the whole tolerance where that already does). The costliest first."""
+
+        tolerances = check_tolerances(tolerances)
+        points = _checks.positive("points", points, unit="percentage points")
+        loaded = list(self.structure.loaded)
+        arm = self.designed_for
+        peak = np.max(np.abs(gravity_torques(arm, self.q)), axis=0)[loaded]
+
+        def removed(springs):
+            return 100 * (1 - np.max(np.abs(joint_torques(arm, springs, self.q)), axis=0)[loaded] / peak)
+
+        nominal = removed(self.built())
+
+        def loss(m, name, value):
+            return max(float(np.max(nominal - removed(self.built(only=m, **{name: 1 + sign * value}))))
+                       for sign in (1, -1))
+
+        rows = []
+        for m, label in enumerate(self.realised_names):
+            for name, value in tolerances.items():
+                cost = loss(m, name, value)
+                band, low, high = value, 0.0, value
+                if cost > points:  # the largest band within the points, the cost rising with the band
+                    for _ in range(40):
+                        mid = 0.5 * (low + high)
+                        low, high = (mid, high) if loss(m, name, mid) <= points else (low, mid)
+                    band = low
+                rows.append((cost, label, name.replace("_", " "), value, band))
+        rows.sort(key=lambda row: -row[0])
+        return Table(["spring", "tolerance", "limit (+- %)", "points lost at worst", f"band within {points:g} point (+- %)"],
+                     [(label, name, f"{100 * value:g}", f"{cost:.2f}", f"{100 * band:.2g}")
+                      for cost, label, name, value, band in rows])
 
     def clearance_table(self) -> Table:
         """The realised springs' clearance from the bodies over the workspace (:func:`clearance`)."""

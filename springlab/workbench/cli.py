@@ -358,6 +358,10 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
         print(design.trade_off())
     print("\nthe balance the built springs leave, with a maker's tolerances on every spring at once (route 2):")
     print(design.tolerance_table())
+    if design.realised:
+        print("\nwhich tolerance costs the balance most, each spring's alone (the others as specified), and the band "
+              "that keeps it within a point of the springs as specified:")
+        print(design.tolerance_ranking())
     study = None
     if args.tip and design.ideal:
         from springlab.design.arms import ends_outside
@@ -491,7 +495,11 @@ def _write_general_sheet(args, path: Path, design, study, out: Path) -> None:
           "lengths are measured inside the hooks.\n\n"
           "## Balance the built springs leave (route 2)\n\nPer loaded joint, the percentage of its peak gravity "
           "torque removed; each tolerance at its limit on every spring at once.\n\n"
-          f"{design.tolerance_table().markdown()}\n\n## What the realisation changed\n\nEach realised spring keeps "
+          f"{design.tolerance_table().markdown()}\n\n"
+          + ("" if not design.realised else "Which spring's tolerance costs the balance most, each spring's alone (the "
+             "others as specified), and the band that keeps it within a point of the springs as specified:\n\n"
+             f"{design.tolerance_ranking().markdown()}\n\n")
+          + "## What the realisation changed\n\nEach realised spring keeps "
           f"the name of the ideal spring it realises.\n\n{design.changes_table().markdown()}\n"
           f"{clearance}" + ("" if study is None else _dial_markdown(study))
           + "\n## Notes\n\n" + "".join(f"- {note}\n" for note in design.notes)
