@@ -270,3 +270,12 @@ def test_the_glossary_defines_the_routes_and_links_the_statuses(built):
     page = (built / "glossary.html").read_text()
     assert all(f"Route {k}." in page for k in (1, 2, 3)) and 'href="report.html"' in page
     assert 'href="glossary.html"' in (built / "index.html").read_text()  # in the book's table of contents
+
+
+def test_each_chapter_says_how_to_run_it(built):
+    # under each chapter's title: the set-up, and the command that runs that chapter's own notebook
+    for stem in ALL_STEMS:
+        text = (built / f"{stem}.html").read_text()
+        assert "Run it yourself" in text and f"-m papermill notebooks/{stem}.ipynb" in text and "make lab" in text
+    front = (built / "index.html").read_text()
+    assert "Run it yourself" in front and "make figures" in front and "papermill" not in front

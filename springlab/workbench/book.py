@@ -210,7 +210,7 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
              "for a reader's own arm. A design is balanced when the total potential energy (gravity and "
              "springs) does not depend on the pose; springlab checks that three independent ways: the "
              "papers' algebra (the quadratic form), direct geometry, and a multibody simulation (exudyn).",
-             "", "## The papers", ""]
+             "", run_yourself(), "## The papers", ""]
     names = paper_names(stems)
     for stem in stems:
         paper = PAPERS.get(stem, {"authors": "", "year": "", "title": stem, "venue": "", "doi": None})
@@ -340,6 +340,39 @@ def mathjax_dir() -> Path:
     return folder
 
 
+def repository() -> str | None:
+    """The project's repository, from ``pyproject.toml``'s ``[project.urls]`` (its Repository, Source or
+    Homepage), or None where it names none."""
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+    try:
+        urls = tomllib.loads((ROOT / "pyproject.toml").read_text()).get("project", {}).get("urls", {})
+    except (OSError, tomllib.TOMLDecodeError):
+        return None
+    return next((urls[k] for k in ("Repository", "Source", "Homepage") if k in urls), None)
+
+
+def run_yourself(stem: str | None = None) -> str:
+    """A chapter's (or, without ``stem``, the front page's) "Run it yourself" box (MyST Markdown): where
+    springlab comes from, the command that sets it up, and the one that opens or runs the chapter as the
+    book ran it."""
+    where = repository()
+    start = (f"Clone [springlab]({where}) and run `make figures` in it" if where else
+             "In a checkout of springlab, run `make figures`")
+    lines = ["```{admonition} Run it yourself", ":class: tip",
+             f"{start}: it installs everything into `.venv` on its first run (Python 3.10 or later), then runs "
+             "every chapter; `make test` runs the tests."]
+    if stem is not None:
+        lines += ["", f"This chapter is `notebooks/{stem}.ipynb`: `make lab` opens it in JupyterLab, and",
+                  "", f"`.venv/bin/python -m papermill notebooks/{stem}.ipynb {stem}.run.ipynb`", "",
+                  "runs it as the book did, its figures written to `figures/" + stem + "/`; its parameters, in its "
+                  "first code cell, are papermill's `-p name value` (`-p figures_dir elsewhere` keeps the book's "
+                  "figures). The download button above gives the notebook as the book ran it."]
+    return "\n".join([*lines, "```", ""])
+
+
 def stage(notebooks_dir, figures_dir, src, *, api: bool = True) -> list[str]:
     """Write the book's sources into ``src`` (with the API reference unless ``api`` is False);
     returns the chapters' stems."""
@@ -352,6 +385,9 @@ def stage(notebooks_dir, figures_dir, src, *, api: bool = True) -> list[str]:
     names, labels = paper_names(stems), equation_labels(notebooks)
     for stem in stems:
         shown = with_legend(readable(labelled(notebooks[stem], stem), stem, names, labels), claims.get(stem, []))
+        if shown["cells"] and shown["cells"][0]["cell_type"] == "markdown":  # under the title, no cell added:
+            first = shown["cells"][0]  # the claims' cell numbers stay the notebook's
+            first["source"] = "".join(first["source"]).rstrip("\n") + "\n\n" + run_yourself(stem)
         _write_if_changed(src / f"{stem}.ipynb", json.dumps(shown, indent=1))
         figure = PAPERS.get(stem, {}).get("key_figure")
         if figure and (figures_dir / stem / figure).exists():
