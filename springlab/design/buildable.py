@@ -187,13 +187,19 @@ def _strong(mat: Material, d: float, C, K, force: float):
     (:meth:`ExtensionSpring.hook_stresses`, the same formulas on arrays)."""
     C = np.asarray(C, dtype=float)
     Sut = mat.tensile_strength(d)
-    C2 = 2 * HOOK_BEND
-    KA, KB = (4 * C**2 - C - 1) / (4 * C * (C - 1)), (4 * C2 - 1) / (4 * C2 - 4)
     body = K * 8 * force * C / (np.pi * d**2)
-    bending = force / (np.pi * d**2) * (16 * KA * C + 4)
-    torsion = KB * 8 * force * C / (np.pi * d**2)
+    bending, torsion = _hook_stresses(force, d, C * d, C, 2 * HOOK_BEND)
     return ((body <= STRESS_SHARE * mat.body_allowable * Sut) & (bending <= STRESS_SHARE * mat.end_bending * Sut)
             & (torsion <= STRESS_SHARE * mat.end_torsion * Sut))
+
+
+def _hook_stresses(F, d: float, D, C1, C2) -> tuple:
+    """(sigma_A, tau_B) Pa of machine hooks of indices ``C1`` (the hook, 2 r_1 / d) and ``C2`` (its root,
+    2 r_2 / d) on a coil of wire ``d`` and mean diameter ``D`` (m) under force ``F`` (N), any of them arrays
+    (:meth:`ExtensionSpring.hook_stresses`)."""
+    KA = (4 * C1**2 - C1 - 1) / (4 * C1 * (C1 - 1))
+    KB = (4 * C2 - 1) / (4 * C2 - 4)
+    return F * (KA * 16 * D / (np.pi * d**3) + 4 / (np.pi * d**2)), KB * 8 * F * D / (np.pi * d**3)
 
 
 def _gerber(a: float, m: float, Se: float, Su: float) -> float:
@@ -331,9 +337,7 @@ class ExtensionSpring:
         if min(C1, C2) <= 1:
             raise SpringlabError(f"a hook's bend radius of {1e3 * min(r1, r2):g} mm is no more than half the "
                                  f"{1e3 * d:g} mm wire: give r1, r2 above d / 2")
-        KA = (4 * C1**2 - C1 - 1) / (4 * C1 * (C1 - 1))
-        KB = (4 * C2 - 1) / (4 * C2 - 4)
-        return F * (KA * 16 * D / (np.pi * d**3) + 4 / (np.pi * d**2)), KB * 8 * F * D / (np.pi * d**3)
+        return _hook_stresses(F, d, D, C1, C2)
 
     @property
     def hook_allowables(self) -> tuple[float, float]:
