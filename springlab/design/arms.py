@@ -526,7 +526,7 @@ class ArmDesign:
                            f"(D/d {fit.cable.ratio:g}): give a larger --pulley-radius, or leave it to be sized")
             body, at = self.model.locate(r.link_a, r.point_a)
             behind = r.pulley_radius + HOOK_GAP + block_room(fit, r.pulley_radius)
-            bracket = getattr(fit, "bracket", None)
+            bracket = fit.bracket
             if bracket is not None:  # on a bracket of the level frame: the room its layout gave it
                 room = bracket - block_room(fit, r.pulley_radius)
                 if fit.coil.max_length > room * (1 + 1e-9):

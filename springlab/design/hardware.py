@@ -84,7 +84,7 @@ def coil_bound(model: RevoluteChain, spring, fit) -> float:
     balances, :func:`balanced_body`), or for a coil on a bracket of the level frame, the room its layout gave
     it plus what lies behind its pulley (the pulley, the hook's gap and the rope): the longer link at its
     joint (the base: unbounded)."""
-    if getattr(fit, "bracket", None) is None:
+    if fit.bracket is None:
         return link_length(model, balanced_body(model, spring))
     return fit.bracket + spring.pulley_radius + HOOK_GAP + _cable_diameter(fit)
 
@@ -340,7 +340,7 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
                     out.append(Part("pulley", f"{name} block sheave", s.link_a, tuple(sheave), m,
                                     {"tread_diameter": 2 * rho - d, "cable_radius": rho, "ratio": fit.ratio},
                                     {"shaft_load_N": float(coil.max_force)}, (on(s.link_a, sheave) + (m,),)))
-            if getattr(fit, "bracket", None) is not None:  # the pulley and the coil on a bracket of the level frame
+            if fit.bracket is not None:  # the pulley and the coil on a bracket of the level frame
                 belt = model.belts[ia - model.n - 1] if ia > model.n else None
                 root = np.zeros(3) if belt is not None else _joint_in(model, ia)
                 reach = float(np.linalg.norm(fixed - root))  # from the joint's axis out to the coil's fixed hook
