@@ -407,8 +407,8 @@ class ArmDesign:
             for name, value in tolerances.items():
                 cost = loss(m, name, value)
                 band, low, high = value, 0.0, value
-                if cost > points:  # the largest band within the points, the cost rising with the band
-                    for _ in range(40):
+                if cost > points:  # the largest band within the points, the cost rising with the band: to
+                    for _ in range(12):  # 2^-12 of the limit, past the two figures the table prints
                         mid = 0.5 * (low + high)
                         low, high = (mid, high) if loss(m, name, mid) <= points else (low, mid)
                     band = low
