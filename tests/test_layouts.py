@@ -148,13 +148,16 @@ def test_the_cli_designs_belts_and_refuses_what_it_cannot(tmp_path, capsys):
     for bad in (["--share", "1.5"], ["--share", "0.1", "--layout", "two-point"]):  # out of range; not for two-point
         args = ["design", str(robot_urdf("UR5")), *bad, "--json", str(tmp_path / "x.json"), "--quiet"]
         assert main(args) == 2 and "--share" in capsys.readouterr().err
-    for bad in (["--bom", str(tmp_path)], ["--bom", str(tmp_path / "x.json")]):  # a folder; the JSON's own path
+    (tmp_path / "arm.toml").write_text("kept")
+    for bad in (["--bom", str(tmp_path)], ["--bom", str(tmp_path / "x.json")], ["--bom", str(tmp_path / "arm.toml")]):
+        # a folder; the JSON's own path; a file that is no CSV, which it must not replace
         args = ["design", str(robot_urdf("UR5")), *bad, "--json", str(tmp_path / "x.json"), "--quiet"]
         assert main(args) == 2 and "--bom" in capsys.readouterr().err
     arm_file = Path(__file__).resolve().parents[1] / "notebooks" / "arms" / "paper000_arm.toml"
     assert main(["design", str(arm_file), "--bom", str(tmp_path / "b.csv"), "--json", str(tmp_path / "x.json"),
                  "--quiet"]) == 2 and "URDF" in capsys.readouterr().err
     assert not (tmp_path / "x.json").exists() and not (tmp_path / "b.csv").exists()
+    assert (tmp_path / "arm.toml").read_text() == "kept"
     panda = load_robot("Panda")  # its loaded joints are no planar chain: no level reference to carry
     with pytest.raises(SpringlabError, match="not a planar chain"):
         belt_layout(panda, structure(panda))
@@ -384,6 +387,9 @@ def test_the_ur5s_coils_keep_their_hooks_and_outlast_their_cycles_and_an_overloa
     # workspace within Zimmerli's endurance (Gerber): rated for 1e7 cycles and more, so for a million
     sheet = ur5.sheet()
     assert "fatigue factor: body, hook A, hook B" in sheet.headers and "rated cycles" in sheet.headers
+    column = sheet.headers.index("cable offset L0 - Fi/k (mm)")  # the coil's own L0 - Fi/k, over a block too
+    assert any(fit.ratio > 1 for fit in ur5.coils)
+    assert [row[column] for row in sheet.rows] == [f"{1e3 * fit.coil.cable_offset:.1f}" for fit in ur5.coils]
     for fit in ur5.coils:
         bending, torsion = fit.coil.hook_stresses(fit.coil.max_force)
         assert bending <= fit.coil.hook_allowables[0] and torsion <= fit.coil.hook_allowables[1]

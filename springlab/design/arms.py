@@ -83,6 +83,12 @@ from springlab.errors import GeometryError, SpringlabError
 from springlab.model.revolute import RevoluteChain, body_frames, check_point_springs
 from springlab.tables import Table
 
+
+def _mm(point) -> str:
+    """A point (m) as the tables print it: "(x, y, z)" in mm to 0.1 mm, no "-0.0"."""
+    return "(" + ", ".join(f"{round(1e3 * v, 1) + 0.0:.1f}" for v in point) + ")"
+
+
 CLEARANCE_SAMPLES = 32
 """Points along each spring at which its clearance from the bodies is measured."""
 
@@ -296,16 +302,15 @@ class ArmDesign:
         in the link's URDF frame) and rate, and how it is built: the kind, the pulley's radius and the
         cable's lead, the coil's own free length and longest stretched length (mm, inside the hooks),
         its initial tension (N) and wire (mm). A spring no stocked wire realises is named in the notes."""
-        mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
         if which == "ideal":
             return Table(["spring", "link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)"],
-                         [(name, s.link_a, mm(s.point_a), s.link_b, mm(s.point_b), f"{s.k:.4g}")
+                         [(name, s.link_a, _mm(s.point_a), s.link_b, _mm(s.point_b), f"{s.k:.4g}")
                           for name, s in zip(self.names, self.ideal, strict=True)])
         rows = []
         for n, r, kind, (coil, *_) in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
             pulley = (f"{1e3 * r.pulley_radius:g}, lead ({', '.join(f'{v + 0.0:.2f}' for v in r.lead)})"
                       if r.pulley_radius > 0 else "")
-            rows.append((n, r.link_a, mm(r.point_a), r.link_b, mm(r.point_b), f"{r.k:.4g}", kind, pulley,
+            rows.append((n, r.link_a, _mm(r.point_a), r.link_b, _mm(r.point_b), f"{r.k:.4g}", kind, pulley,
                          f"{1e3 * coil.free_length:.1f}", f"{1e3 * coil.max_length:.1f}", f"{coil.initial_tension:.3g}",
                          f"{1e3 * coil.wire:.2g}"))
         return Table(["spring", "link_a", "point_a (mm)", "link_b", "point_b (mm)", "k (N/m)", "realised as",
@@ -320,13 +325,12 @@ class ArmDesign:
         radius and lead, and the maker's note (:func:`~springlab.design.buildable.maker_note`);
         :data:`~springlab.design.buildable.SHEET_NOTE` says what it is designed to."""
 
-        mm = lambda p: "(" + ", ".join(f"{1e3 * v + 0.0:.1f}" for v in p) + ")"  # noqa: E731
         rows = []
         for n, r, kind, fit in zip(self.realised_names, self.realised, self.kinds, self.coils, strict=True):
             cable, coil = kind.startswith("cable"), fit.coil
-            rows.append((n, f"{r.link_a} {mm(r.point_a)}", f"{r.link_b} {mm(r.point_b)}", kind, *coil_cells(coil),
+            rows.append((n, f"{r.link_a} {_mm(r.point_a)}", f"{r.link_b} {_mm(r.point_b)}", kind, *coil_cells(coil),
                          *service_cells(coil, *fit.forces()),
-                         f"{1e3 * (coil.free_length - r.free_length):.1f}" if cable else "",
+                         f"{1e3 * coil.cable_offset:.1f}" if cable else "",  # over a block too
                          f"{1e3 * r.pulley_radius:g}" if r.pulley_radius > 0 else "",
                          "(" + ", ".join(f"{v + 0.0:.2f}" for v in r.lead) + ")" if r.pulley_radius > 0 else "",
                          maker_note(coil)))
@@ -624,13 +628,12 @@ class ArmDesign:
         their sizes), the link it rides on and where there (mm, in the link's URDF frame; a spring's and its
         cable's ends too), and its mass (g). Its parts are :func:`springlab.design.hardware.parts`'s."""
 
-        mm = lambda p: "(" + ", ".join(f"{round(1e3 * v, 1) + 0.0:.1f}" for v in p) + ")"  # noqa: E731
         springs = dict(zip(self.realised_names, zip(self.realised, self.coils, strict=True), strict=True))
         rows: dict = {}
         for p in parts(self.model, self.realised, self.kinds, self.coils, self.realised_names, self.q):
             name = p.name.split(" ", 1)[0]
             r, fit = springs.get(name, (None, None))
-            ends = f"{r.link_a} {mm(r.point_a)} to {r.link_b} {mm(r.point_b)}" if r is not None else ""
+            ends = f"{r.link_a} {_mm(r.point_a)} to {r.link_b} {_mm(r.point_b)}" if r is not None else ""
             if p.kind == "spring":
                 c = fit.coil
                 what = (f"{c.material} ({MATERIALS[c.material].standard}) extension spring, machine hooks: wire "
@@ -645,7 +648,7 @@ class ArmDesign:
                     f"{k.replace('_', ' ')} {1e3 * v:.3g} mm" if isinstance(v, float) else f"{k.replace('_', ' ')} {v}"
                     for k, v in p.size.items() if not k.endswith("_kg"))
                 ends = ends if p.kind == "cable" else ""
-            key = (p.kind, what, p.link, mm(p.centre), ends, f"{1e3 * p.mass:.0f}")
+            key = (p.kind, what, p.link, _mm(p.centre), ends, f"{1e3 * p.mass:.0f}")
             rows.setdefault(key, []).append(p.name)
         return Table(["items", "quantity", "what to buy", "rides on", "where (mm, its link's frame)",
                       "ends (mm, their links' frames)", "mass each (g)"],

@@ -94,7 +94,7 @@ class PayloadDial:
         """Each move: the spring (``names``, by default S1, S2, ... in order), its end and link, the move
         per kilogram (mm/kg, in the link's frame) and its size (mm/kg)."""
         return Table(["spring", "end", "link", "move per kg (mm/kg, link frame)", "size of the move (mm/kg)"],
-                     [(names[i] if names else f"S{i + 1}", end, link, "(" + ", ".join(f"{1e3 * v + 0.0:.2f}" for v in per_kg) + ")",
+                     [(names[i] if names else f"S{i + 1}", end, link, "(" + ", ".join(f"{round(1e3 * v, 2) + 0.0:.2f}" for v in per_kg) + ")",
                        f"{1e3 * float(np.linalg.norm(per_kg)):.2f}") for i, end, link, per_kg in self.moves])
 
     def as_dict(self, names=None) -> dict:

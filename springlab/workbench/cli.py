@@ -299,6 +299,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
         for sheet_path in _sheet_paths(out):
             _writable(sheet_path, "--sheet")
     bom = None if args.bom is None else _writable(Path(args.bom), "--bom")
+    if bom is not None and bom.suffix.lower() != ".csv":  # a list for a spreadsheet, never over another kind of file
+        raise SpringlabError(f"--bom {bom}: the shopping list is a CSV file: give a name ending in .csv")
     mjcf = _mjcf_paths(args)
     _no_clash(path, [("--json", out), *(("--sheet", p) for p in (_sheet_paths(out) if args.sheet else ())),
                      *(("--mjcf", p) for p in mjcf), *((("--bom", bom),) if bom else ())])
@@ -682,8 +684,9 @@ def main(argv=None) -> int:
     p.add_argument("--sheet", action="store_true",
                    help="also write the built springs' spec sheet beside the JSON (.sheet.csv, .sheet.md)")
     p.add_argument("--bom", metavar="FILE.csv",
-                   help="a URDF arm: also write the shopping list, each part with its quantity, what to buy, the link "
-                        "it rides on and where (the springs' and cables' ends too)")
+                   help="URDF arms only: also write the shopping list (a .csv file, replaced if it exists), each part "
+                        "with its quantity, what to buy, the link it rides on and where (the springs' and cables' ends "
+                        "too)")
     p.add_argument("--material", default="auto", choices=("auto", "music wire", "chrome silicon", "stainless 302"),
                    help="spring wire (default auto: music wire, and for a URDF arm's coils chrome silicon where that "
                         "saves a side-by-side coil or a pulley block; an arm file's --sheet: music wire)")
