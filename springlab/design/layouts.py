@@ -604,8 +604,7 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
             return {"s": s, "lead": lead, "rho": rho, "chosen": chosen, "lengths": lengths, "coil": coil,
                     "ratio": ratio, "parallel": parallel, "room": fits_in if at_post else None,
                     "fits": coil.max_length <= fits_in - (2 * (rho + d) if ratio > 1 else 0.0), "clear": clear >= 0,
-                    "choice": (at_post, swap, coil.max_length <= fits_in - (2 * (rho + d) if ratio > 1 else 0.0),
-                               clear >= 0)}
+                    "choice": (at_post, swap)}
 
         got = None
         if index in prefer:  # the placing the previous round searched for, where it does as well again (fits
@@ -626,7 +625,7 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
                     if got["fits"] and got["clear"]:
                         break
             if "left" not in got and given != 0 and plane.bracket:
-                # fewer coils side by side, or any that fit and clear: the point nearer its joint, or farther
+                # fewer coils side by side, or any that fit and clear: the point nearer its joint, the post farther
                 tries = [(at_post, scale) for scale in SCALES for at_post in (False, True)]
                 for at_post, scale in tries:
                     if got["fits"] and got["clear"] and got["parallel"] == 1:  # none can do better than one coil
@@ -645,7 +644,8 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
             origins.append(index)
             continue
         s, lead, rho, chosen, lengths = (got[key] for key in ("s", "lead", "rho", "chosen", "lengths"))
-        coil, ratio, parallel, bracket, choice = got["coil"], got["ratio"], got["parallel"], got["room"], got["choice"]
+        coil, ratio, parallel, bracket = got["coil"], got["ratio"], got["parallel"], got["room"]
+        choice = (*got["choice"], got["fits"], got["clear"])  # the placing, and how well it did
         shift = parallel * coil.outer_diameter if plane.beside else 0.0  # beside the links by the coils' width
         out_a, out_b = layout.outward[index] if bracket is None else layout.outward[index][::-1]
         s = PointSpring(s.link_a, on_grid(np.asarray(s.point_a) + shift * out_a), s.link_b,
