@@ -89,6 +89,12 @@ def _mm(point) -> str:
     return "(" + ", ".join(f"{round(1e3 * v, 1) + 0.0:.1f}" for v in point) + ")"
 
 
+def _sizes(part, unit: str = "") -> str:
+    """A part's sizes as the tables print them: lengths in mm (followed by ``unit``), counts as they are."""
+    return ", ".join(f"{k.replace('_', ' ')} {1e3 * v:.3g}{unit}" if isinstance(v, float) else f"{k.replace('_', ' ')} {v}"
+                     for k, v in part.size.items() if not k.endswith("_kg"))
+
+
 CLEARANCE_SAMPLES = 32
 """Points along each spring at which its clearance from the bodies is measured."""
 
@@ -369,20 +375,26 @@ class ArmDesign:
         spring at once."""
 
         tolerances = check_tolerances(tolerances)
-        loaded = list(self.structure.loaded)
-        arm = self.designed_for  # the springs' hardware carried where the layout designed for it
-        peak = np.max(np.abs(gravity_torques(arm, self.q)), axis=0)[loaded]
+        percent = self._removal()
 
         def removed(springs):
-            left = np.max(np.abs(joint_torques(arm, springs, self.q)), axis=0)[loaded]
-            return [f"{100 * (1 - v / p):.1f}" for v, p in zip(left, peak, strict=True)]
+            return [f"{v:.1f}" for v in percent(springs)]
 
         rows = [("as designed (ideal springs)", *removed(self.ideal)), ("as specified", *removed(self.built()))]
         for name, value in tolerances.items():
             for sign in (1, -1):
                 rows.append((f"{name.replace('_', ' ')} {'+' if sign > 0 else '-'}{100 * value:g} %",
                              *removed(self.built(**{name: 1 + sign * value}))))
-        return Table(["built", *(f"{self.model.joints[i]} removed (%)" for i in loaded)], rows)
+        return Table(["built", *(f"{self.model.joints[i]} removed (%)" for i in self.structure.loaded)], rows)
+
+    def _removal(self):
+        """A function of springs: the percentage of each loaded joint's peak gravity torque they remove (route 2,
+        the design's poses, on :attr:`designed_for`, the springs' hardware carried where the layout designed for
+        it), the peaks computed once."""
+        loaded = list(self.structure.loaded)
+        arm = self.designed_for
+        peak = np.max(np.abs(gravity_torques(arm, self.q)), axis=0)[loaded]
+        return lambda springs: 100 * (1 - np.max(np.abs(joint_torques(arm, springs, self.q)), axis=0)[loaded] / peak)
 
     def tolerance_ranking(self, tolerances: dict | None = None, *, points: float = 1.0) -> Table:
         """Which spring's tolerance costs the balance most: per realised spring and maker's tolerance (default
@@ -393,13 +405,7 @@ class ArmDesign:
 
         tolerances = check_tolerances(tolerances)
         points = _checks.positive("points", points, unit="percentage points")
-        loaded = list(self.structure.loaded)
-        arm = self.designed_for
-        peak = np.max(np.abs(gravity_torques(arm, self.q)), axis=0)[loaded]
-
-        def removed(springs):
-            return 100 * (1 - np.max(np.abs(joint_torques(arm, springs, self.q)), axis=0)[loaded] / peak)
-
+        removed = self._removal()
         nominal = removed(self.built())
 
         def loss(m, name, value):
@@ -614,8 +620,7 @@ class ArmDesign:
 
         rows = []
         for p in parts(self.model, self.realised, self.kinds, self.coils, self.realised_names, self.q):
-            size = ", ".join(f"{k.replace('_', ' ')} {1e3 * v:.3g}" if isinstance(v, float) else f"{k.replace('_', ' ')} {v}"
-                             for k, v in p.size.items() if not k.endswith("_kg"))
+            size = _sizes(p)
             loads = ", ".join(f"{k.rsplit('_', 1)[0].replace('_', ' ')} {v:.3g} {k.rsplit('_', 1)[1]}"
                               if isinstance(v, float) else str(v) for k, v in p.loads.items() if k != "breaking_load_N")
             rows.append((p.name, p.kind, p.link, f"{1e3 * p.mass:.0f}", size, loads))
@@ -644,9 +649,7 @@ class ArmDesign:
                 what = (f"wire rope {fit.cable.name}, breaking load {fit.cable.breaking:.4g} N, cut to "
                         f"{1e3 * p.size['length']:.0f} mm")
             else:
-                what = p.kind + ": " + ", ".join(
-                    f"{k.replace('_', ' ')} {1e3 * v:.3g} mm" if isinstance(v, float) else f"{k.replace('_', ' ')} {v}"
-                    for k, v in p.size.items() if not k.endswith("_kg"))
+                what = f"{p.kind}: {_sizes(p, ' mm')}"
                 ends = ends if p.kind == "cable" else ""
             key = (p.kind, what, p.link, _mm(p.centre), ends, f"{1e3 * p.mass:.0f}")
             rows.setdefault(key, []).append(p.name)
