@@ -23,7 +23,7 @@ from quickruns import STEMS as ALL_STEMS
 
 from springlab.errors import SolverError
 from springlab.papers import PAPERS
-from springlab.workbench import book, prose, site
+from springlab.workbench import book, coverage, prose, site
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build" / "book-check"
@@ -143,7 +143,9 @@ def test_the_book_reads_in_chromium_offline(built):
                      **{page: shots / f"{page.stem}.png" for page in chapters}},
         chapters=[p.name for p in chapters] + ["report.html", "index.html"], search=(term, "zhang2023_dyad.html"),
         numbered=[f"{stem}.html" for stem in ALL_STEMS if PAPERS.get(stem, {}).get("key")],
-        captioned=[f"{stem}.html" for stem in ALL_STEMS])
+        captioned=[f"{stem}.html" for stem in ALL_STEMS],
+        covered={f"{stem}.html": [i.item for i in coverage.inventory(PAPERS[stem]["key"])]
+                 for stem in ALL_STEMS if PAPERS.get(stem, {}).get("key")})
     assert result == {**{str(p.relative_to(built)): [] for p in pages}, "search": []}, term
     log = (OUT / "network.log").read_text().splitlines()
     assert any(f"_static/mathjax/{book.MATHJAX_SCRIPT}" in line for line in log)  # the log holds every request
@@ -191,20 +193,27 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                   '<div class="cell_output"><pre style="white-space: pre">' + "Claim(quantity=...) " * 120 + "</pre></div>"
                   '<a href="_sources/">.ipynb</a>'  # a download of a folder
                   '<img src="ok.png" alt="a figure with no caption">'
-                  '<figure><img src="ok.png" alt="a caption with no number"><figcaption>The arm</figcaption></figure>')
+                  '<figure><img src="ok.png" alt="a caption with no number"><figcaption>The arm</figcaption></figure>'
+                  '<table class="coverage"><tr data-item="Eq. (1)"><td>Eq. (1)</td></tr></table>')  # Eq. (2) left out
     good = page("good.html", "<p>A table:</p><table><tr><td>k</td><td>718.67</td></tr></table>"
                              '<p><span class="math">\\(\\tfrac12 k\\)</span></p>'
                              '<div class="math">\\[h_j = d_j \\tag{8}\\]</div>'
                              '<div class="cell_output"><pre>short</pre></div>'
                              '<figure><img src="ok.png" alt="drawn"><figcaption><p>Figure 1. The arm.</p></figcaption>'
-                             '</figure>')
+                             '</figure><table class="coverage"><tr data-item="Eq. (1)"><td>Eq. (1)</td></tr>'
+                             '<tr data-item="Eq. (2)"><td>Eq. (2)</td></tr></table>')
+    bare = page("bare.html", "<p>A chapter without its coverage table.</p>")
     (tmp_path / "ok.png").write_bytes((ROOT / "figures" / "lenzo2017_two_spring_arm" / "fig5_layouts.png").read_bytes())
-    result = site.browser_check([broken, good], numbered=["broken.html", "good.html"],
-                                captioned=["broken.html", "good.html"])
+    items = ["Eq. (1)", "Eq. (2)"]
+    result = site.browser_check([broken, good, bare], numbered=["broken.html", "good.html"],
+                                captioned=["broken.html", "good.html"],
+                                covered={"broken.html": items, "good.html": items, "bare.html": items})
+    assert result["bare.html"] == ["no coverage table of the paper's items"]
     problems = "\n".join(result["broken.html"])
     for expected in ("raw Markdown table", "TeX left as text: ", "doubled backslash", "could not parse",
                      "px wide in a 600 px column", "points to a folder", "no numbered equation",
-                     "no numbered caption: a figure with no caption", "no numbered caption: a caption with no number"):
+                     "no numbered caption: a figure with no caption", "no numbered caption: a caption with no number",
+                     "a paper item missing from the coverage table: Eq. (2)"):
         assert expected in problems, (expected, problems)
     assert result["good.html"] == []
 

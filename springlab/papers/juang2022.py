@@ -16,6 +16,7 @@ from springlab.errors import SpringlabError
 from springlab.mechanisms.planar.model import PlanarArm, PlanarSpring, Workspace
 from springlab.mechanisms.planar.synthesis import solve_configuration
 from springlab.model.armfile import arm_from_dict
+from springlab.tables import Table
 
 # Table 3: link 1 is the ground (reference length r_1 = 1 m)
 R = (1.000, 0.360, 0.445, 0.300)  # m
@@ -101,3 +102,23 @@ def arm_spec():
     return arm_from_dict({"name": "paper 003's arm (Section 5)", "g": ARM.g,
                           "link": [{"length": float(r), "com": float(s), "mass": float(m), "joint": [0, 0, 1]}
                                    for r, s, m in zip(ARM.r[1:], ARM.s[1:], ARM.m[1:], strict=True)]}, source="003")
+
+
+def table_3() -> Table:
+    """Table 3 as the paper prints it: the links' lengths (m), masses (kg) and workspace (deg); link 1 is
+    the ground's reference length, link 4 the added one.
+
+    >>> print(table_3())
+    | link | length r_i (m) | mass m_i (kg) | workspace |
+    |---|---|---|---|
+    | 1 | 1.000 | - | - |
+    | 2 | 0.360 | 25 | theta_2: +180° to -20° |
+    | 3 | 0.445 | 26 | theta_3: +140° to -140° |
+    | 4 | 0.300 (an additional link) | 18 | theta_4: +140° to -140° |
+    """
+    rows = [[1, f"{R[0]:.3f}", "-", "-"]]
+    for i in range(3):
+        lo, hi = WORKSPACE.low[i], WORKSPACE.high[i]
+        rows.append([i + 2, f"{R[i + 1]:.3f}" + (" (an additional link)" if i == 2 else ""), f"{M[i]:g}",
+                     f"theta_{i + 2}: {hi:+g}° to {lo:+g}°"])
+    return Table(["link", "length r_i (m)", "mass m_i (kg)", "workspace"], rows)

@@ -21,6 +21,7 @@ from springlab.design.rules import SpringSlot
 from springlab.errors import SpringlabError
 from springlab.model.chain import serial_chain
 from springlab.model.springs import Spring
+from springlab.tables import Table
 
 G = 9.8
 """m/s^2. The paper does not print g; Table 3's k_S(1,2) = 294.00 N/m follows
@@ -144,3 +145,40 @@ def table1_configurations(n: int) -> list[tuple[SpringSlot, ...]]:
             slots = [SpringSlot(i, j, pat) for (i, j), alt in zip(pairs, choice, strict=True) for pat in alt]
             out.add(tuple(sorted(slots)))
     return sorted(out)
+
+
+def table_2() -> Table:
+    """Table 2 as the paper prints it: each link's length r_i (m), centre of mass d_i (m) and mass m_i (kg).
+
+    >>> print(table_2())  # doctest: +NORMALIZE_WHITESPACE
+    | link | length r_i (m) | mass centre d_i (m) | mass m_i (kg) |
+    |---|---|---|---|
+    | 2 | 0.30 | 0.15 | 4.0 |
+    | 3 | 0.24 | 0.12 | 3.2 |
+    | 4 | 0.20 | 0.10 | 2.8 |
+    """
+    return Table(["link", "length r_i (m)", "mass centre d_i (m)", "mass m_i (kg)"],
+                 [[i + 2, f"{R[i]:.2f}", f"{D[i]:.2f}", f"{M[i]:.1f}"] for i in range(3)])
+
+
+def _angle(value: float, moved: bool) -> str:
+    """A printed angle: '+21°', '-50°', '0°' in a posture, '±0°' in a rotation."""
+    deg = round(float(np.degrees(value)))
+    return ("±0°" if moved else "0°") if deg == 0 else f"{deg:+d}°"
+
+
+def _trajectory(initial, rotation) -> Table:
+    rows = [[f"initial posture, i = {i + 2}", *(_angle(v, False) for v in initial[i])] for i in range(3)]
+    rows += [[f"rotation of links, i = {i + 2}", *(_angle(v, True) for v in rotation[i])] for i in range(3)]
+    return Table(["", "theta_i", "phi_i", "psi_i"], rows)
+
+
+def table_4() -> Table:
+    """Table 4 as the paper prints it: the spatial trajectory's initial posture and the links' rotations
+    (deg) about x, y and z of the link before."""
+    return _trajectory(TABLE_4_INITIAL, TABLE_4_ROTATION)
+
+
+def table_5() -> Table:
+    """Table 5 as the paper prints it: the planar trajectory's initial posture and rotations (deg)."""
+    return _trajectory(TABLE_5_INITIAL, TABLE_5_ROTATION)

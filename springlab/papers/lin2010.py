@@ -24,6 +24,7 @@ from springlab.mechanisms.pseudobase.model import (
 )
 from springlab.mechanisms.pseudobase.subsystems import combined_subsystems
 from springlab.rounding import half_unit, propagated_rounding
+from springlab.tables import Table
 
 # Table 1: DH parameters (standard DH), primary / auxiliary chains
 DH_PRIMARY = DH(d=[0.0, 0.0, 0.0, 0.5, 0.0, 0.27],
@@ -158,3 +159,40 @@ def table3_rows(base: PseudobaseArm, springs) -> list[dict]:
         rows.append({"quantity": f"b_{i}, {'xyz'[jb]} (largest difference)", "kind": "b",
                      "paper": B[k][jb], "ours": sp_.b[jb], "band": _band(b_comp), "note": None, **common})
     return rows
+
+
+def _g(x: float) -> str:
+    return f"{x:g}"
+
+
+def table_1() -> Table:
+    """Table 1 as the paper prints it: the standard DH parameters of frames i / i^ (primary / auxiliary
+    chain): d (m), theta, a (m), alpha (deg).
+
+    >>> print(table_1())  # doctest: +ELLIPSIS
+    | frame i / i^ | d_i / d^_i (m) | theta_i | a_i / a^_i (m) | alpha_i / alpha^_i (deg) |
+    |---|---|---|---|---|
+    | 1 / 1^ | 0 / 0.1 | theta_1 | 0.1 / 0.1 | 90 / 90 |
+    ...
+    """
+    p, q = DH_PRIMARY, DH_AUX
+    return Table(["frame i / i^", "d_i / d^_i (m)", "theta_i", "a_i / a^_i (m)", "alpha_i / alpha^_i (deg)"],
+                 [[f"{i + 1} / {i + 1}^", f"{_g(p.d[i])} / {_g(q.d[i])}", f"theta_{i + 1}",
+                   f"{_g(p.a[i])} / {_g(q.a[i])}",
+                   f"{_g(round(np.degrees(p.alpha[i])))} / {_g(round(np.degrees(q.alpha[i])))}"]
+                  for i in range(len(p.d))])
+
+
+def table_2() -> Table:
+    """Table 2 as the paper prints it (kg and m, vectors in frame i), a column a link: the masses of the
+    links, pseudobases and auxiliary links, the vectors s, s^, r, r^ and c, and the combined masses and
+    vectors (001 Eqs. 24-25) the chapter recomputes. A vector's components print without trailing zeros
+    (the paper prints some with two decimals, some with one)."""
+    def vec(v):
+        return "(" + ", ".join(_g(x) for x in v) + ")"
+    rows = [("m_i", [f"{x:.2f}" for x in M]), ("m*_i", [f"{x:.2f}" for x in M_STAR]),
+            ("m^_i", [f"{x:.2f}" for x in M_HAT]),
+            ("s_i", [vec(v) for v in S]), ("s^_i", [vec(v) for v in S_HAT]), ("r_i", [vec(v) for v in R]),
+            ("r^_i", [vec(v) for v in R_HAT]), ("c_i", [vec(v) for v in C]),
+            ("mu~_i", [f"{x:.2f}" for x in MU_TILDE]), ("sigma~_i", [vec(v) for v in SIGMA_TILDE])]
+    return Table(["link i", *map(str, LINKS)], [[name, *cells] for name, cells in rows])

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from springlab.mechanisms.dyad.model import Compensator, Dyad
+from springlab.tables import Table
 
 K, L0, G, S = 1000.0, 1.0, 75.0, 0.84  # k (N/m), l0 (m), G (N), s (m): Section V A and B
 
@@ -42,3 +43,24 @@ MAX_GRAVITY_MOMENT = (63.0, 0)  # "reduced from 63 Nm" (= G s)
 def printed_dyad(example: str) -> Dyad:
     p = PRINTED[example]
     return Dyad(p["r"][0], p["l"][0], np.radians(p["beta_deg"][0]))
+
+
+def inputs() -> Table:
+    """Section V's inputs as the paper prints them: the spring, the load, the prescribed positions.
+
+    >>> print(inputs())  # doctest: +ELLIPSIS
+    | input | value | where |
+    |---|---|---|
+    | spring rate k | 1000 N/m | Section V, examples A and B |
+    ...
+    """
+    return Table(["input", "value", "where"], [
+        ["spring rate k", f"{K:g} N/m", "Section V, examples A and B"],
+        ["spring free length l0", f"{L0:g} m", "Section V, examples A and B"],
+        ["load G", f"{G:g} N", "Section V, examples A and B"],
+        ["distance s of the load from the pivot", f"{S:g} m", "Section V, examples A and B"],
+        ["prescribed positions, example A", ", ".join(f"{np.degrees(a):g}°" for a in EXAMPLE_A_POSITIONS),
+         "Section V.A"],
+        ["prescribed positions, example B", "n = 120 positions between 30° and 150°, a step of one degree",
+         "Section V.B (quoted: 120 positions and a 1° step cannot both hold)"],
+    ])

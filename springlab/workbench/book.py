@@ -36,7 +36,7 @@ from docutils.nodes import make_id
 
 from springlab.errors import SolverError
 from springlab.papers import PAPERS
-from springlab.workbench import prose
+from springlab.workbench import coverage, prose
 from springlab.workbench.claims import (
     MEANINGS,
     REPORT_COLUMNS,
@@ -248,6 +248,58 @@ def _statuses() -> list[str]:
     return [f"- **{status}**: {_md(MEANINGS[status])}{'.' if k == last else ';'}" for k, status in enumerate(REPORT_COLUMNS)]
 
 
+def _kinds(items) -> str:
+    """'48 numbered equations, 5 tables and 17 figures'."""
+    counts = Counter(i.kind for i in items)
+    parts = [f"{counts[kind]} {word if counts[kind] == 1 else word + 's'}" for kind, word in
+             (("Eq.", "numbered equation"), ("Table", "table"), ("Fig.", "figure")) if counts[kind]]
+    return ", ".join(parts[:-1]) + (" and " if len(parts) > 1 else "") + parts[-1]
+
+
+def coverage_markdown(stem: str, notebook: dict, records: list[dict]) -> str:
+    """What chapter ``stem`` covers of its paper (:mod:`springlab.workbench.coverage`): a sentence counting
+    its items by how the chapter treats them, and the whole table, folded, each item linked to the
+    section that treats it and, for an equation the chapter shows, to the equation. "" for a chapter
+    without a paper."""
+    key = PAPERS.get(stem, {}).get("key")
+    if not key:
+        return ""
+    items = coverage.inventory(key)
+    by_item = coverage.concerning(items, records, key)
+    titles, _ = sections(notebook)
+    anchors = {_section_number(t, k)[1:]: make_id(section_label(stem, k)) for k, t in enumerate(titles) if k}
+    shown = {f"Eq. ({n})": make_id(prose.equation_label(key, n)) for cell in notebook["cells"]
+             if cell["cell_type"] == "markdown" for n in prose.equation_numbers("".join(cell["source"]))}
+    counts = coverage.summary(items, by_item)
+    verbs = {"compared": "compares {} with its own numbers", "derived": "derives {}", "used": "uses {}",
+             "shown": "shows {} as printed", "not covered": "leaves {} out, each with its reason"}
+    said = [verbs[h].format(counts[h]) for h in coverage.HOWS if counts[h]]
+    sentence = ", ".join(said[:-1]) + (" and " if len(said) > 1 else "") + said[-1]
+    return (f"**What this chapter covers.** Of the paper's {_kinds(items)}, the chapter {sentence} "
+            "({ref}`how and verdict <coverage>`):\n\n"
+            '<details class="coverage"><summary>Every numbered item of the paper, where the chapter treats it, '
+            "and its verdict</summary>" + coverage.table_html(items, by_item, anchors, shown) + "</details>")
+
+
+def _coverage_report(stems: list[str], claims: dict[str, list[dict]]) -> list[str]:
+    """The report's coverage section: how a chapter treats an item, and the items counted per paper."""
+    papers = [s for s in stems if PAPERS.get(s, {}).get("key")]
+    lines = ["(coverage)=", "## Coverage of the papers", "",
+             "Each paper chapter opens with a table of every numbered equation, table and figure of its paper, "
+             "the section that treats it and how:", "",
+             *[f"- **{h}**: {_md(m)}{'.' if h == 'not covered' else ';'}" for h, m in coverage.HOWS.items()], "",
+             "| how | " + " | ".join(f"{{doc}}`{short_name(s)} <{s}>`" for s in papers) + " | all |",
+             "|---|" + "---:|" * (len(papers) + 1)]
+    counts = {}
+    for s in papers:
+        items = coverage.inventory(PAPERS[s]["key"])
+        counts[s] = coverage.summary(items, coverage.concerning(items, claims.get(s, []), PAPERS[s]["key"]))
+    for h in (*coverage.HOWS, "total"):
+        row = [sum(counts[s].values()) if h == "total" else counts[s].get(h, 0) for s in papers]
+        lines.append(f"| {'**total**' if h == 'total' else h} | " + " | ".join(map(str, row)) + f" | {sum(row)} |")
+    return lines + [""]
+
+
 def _section_number(title: str, k: int) -> str:
     """'§2b' for a heading "2b. The rules ...", else '§k' (the k-th heading)."""
     number = re.match(r"(\w{1,4})\.\s", title)
@@ -265,6 +317,7 @@ def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, 
              "Every number the notebooks reproduce, beside the paper's, from `figures/<notebook>/claims.json` "
              "(the same claims as `figures/REPRODUCTION.md`). The last column links to the notebook section "
              "whose cell records the claim.", "", "## Statuses", "", *_statuses(), "",
+             *_coverage_report(stems, claims),
              "## Claims by paper and status", "",
              "| status | " + " | ".join(f"{{doc}}`{short_name(stem)} <{stem}>`" for stem in stems) + " | all |",
              "|---|" + "---:|" * (len(stems) + 1)]
@@ -387,7 +440,9 @@ def stage(notebooks_dir, figures_dir, src, *, api: bool = True) -> list[str]:
         shown = with_legend(readable(labelled(notebooks[stem], stem), stem, names, labels), claims.get(stem, []))
         if shown["cells"] and shown["cells"][0]["cell_type"] == "markdown":  # under the title, no cell added:
             first = shown["cells"][0]  # the claims' cell numbers stay the notebook's
-            first["source"] = "".join(first["source"]).rstrip("\n") + "\n\n" + run_yourself(stem)
+            covered = coverage_markdown(stem, notebooks[stem], claims.get(stem, []))
+            first["source"] = "".join(first["source"]).rstrip("\n") + "\n\n" + (
+                covered + "\n\n" if covered else "") + run_yourself(stem)
         _write_if_changed(src / f"{stem}.ipynb", json.dumps(shown, indent=1))
         figure = PAPERS.get(stem, {}).get("key_figure")
         if figure and (figures_dir / stem / figure).exists():

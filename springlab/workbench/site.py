@@ -217,7 +217,8 @@ const uncaptioned = Array.from(article.querySelectorAll('img')).filter(img => {
     const caption = img.closest('figure') && img.closest('figure').querySelector('figcaption');
     return !(caption && /^\s*Figure \d+\. \S/.test(caption.textContent));
 }).map(img => (img.getAttribute('alt') || img.getAttribute('src') || '').slice(0, 80));
-return {column, pipes, leaks, wide, numbered, uncaptioned};
+const covered = Array.from(article.querySelectorAll('table.coverage tr[data-item]')).map(tr => tr.dataset.item);
+return {column, pipes, leaks, wide, numbered, uncaptioned, covered};
 """
 
 
@@ -273,7 +274,7 @@ def _wait(driver, script: str, timeout: float):
 
 
 def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, search=None, numbered=(),
-                  captioned=(), math_timeout: float = 30.0) -> dict[str, list[str]]:
+                  captioned=(), covered=None, math_timeout: float = 30.0) -> dict[str, list[str]]:
     """Open each page in headless Chromium and list what a reader would see broken: an image
     that did not load, a link to a missing local file, folder or anchor (:func:`check_links`:
     a download included), a traceback in an output, TeX that MathJax left unrendered or could
@@ -293,6 +294,8 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
         equation (a ``\\tag``: a paper's own equation number)
     :param captioned: page names whose every image (a figure, an animation) must stand in a figure
         with a numbered caption ("Figure 3. ...")
+    :param covered: {page name: the paper's items}: the page's coverage table
+        (:mod:`springlab.workbench.coverage`) must list each of them
     :returns: {page: problems}, each page named by its path from the first page's folder
     :raises SolverError: when Chromium and its driver are not installed
     """
@@ -336,6 +339,10 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
                 problems.append("no numbered equation (a display equation with the paper's number, \\tag{...})")
             if page.name in captioned:
                 problems += [f"a figure with no numbered caption: {t}" for t in reader["uncaptioned"]]
+            if page.name in (covered or {}):
+                listed = set(reader["covered"])
+                problems += ([f"a paper item missing from the coverage table: {i}" for i in covered[page.name]
+                              if i not in listed] if listed else ["no coverage table of the paper's items"])
             if k == 0 and chapters:
                 linked = {Path(h.split("#")[0]).name for h in driver.execute_script(
                     "return Array.from(document.querySelectorAll('nav.bd-docs-nav a')).map(a => a.href)")}
