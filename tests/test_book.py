@@ -23,7 +23,7 @@ from quickruns import STEMS as ALL_STEMS
 
 from springlab.errors import SolverError
 from springlab.papers import PAPERS
-from springlab.workbench import book, coverage, prose, site
+from springlab.workbench import book, coverage, prose, site, view3d
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build" / "book-check"
@@ -58,6 +58,7 @@ def test_every_page_resolves_and_fetches_nothing_from_the_internet(built):
     assert len(pages) > 20  # chapters, report, API pages, module sources, search, index
     assert {p: site.check_links(p) for p in pages if site.check_links(p)} == {}
     assert (built / "_static" / "mathjax" / book.MATHJAX_SCRIPT).exists()  # MathJax served by the site
+    assert (built / "_static" / view3d.PLOTLY_JS).exists()  # and plotly.js, which draws the 3-D views
 
 
 def test_the_front_page_gives_dois_run_times_and_claims_by_status(built):
@@ -177,6 +178,11 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
     the same page without the defects (the control) passes."""
     mathjax = (built / "_static" / "mathjax" / book.MATHJAX_SCRIPT).as_uri()
     (tmp_path / "_sources").mkdir()
+    (tmp_path / "_static").mkdir()
+    shutil.copyfile(built / "_static" / view3d.PLOTLY_JS, tmp_path / "_static" / view3d.PLOTLY_JS)  # as the book serves it
+    tetrahedron = {"type": "mesh3d", "x": [0, 1, 0, 0], "y": [0, 0, 1, 0], "z": [0, 0, 0, 1],
+                   "i": [0, 0, 0, 1], "j": [1, 2, 3, 2], "k": [2, 3, 1, 3]}
+    view = view3d.ArmView({"data": [tetrahedron], "layout": {}, "frames": [], "config": {}}, "v", "a tetrahedron")
 
     def page(name, body):
         path = tmp_path / name
@@ -194,14 +200,17 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                   '<a href="_sources/">.ipynb</a>'  # a download of a folder
                   '<img src="ok.png" alt="a figure with no caption">'
                   '<figure><img src="ok.png" alt="a caption with no number"><figcaption>The arm</figcaption></figure>'
-                  '<table class="coverage"><tr data-item="Eq. (1)"><td>Eq. (1)</td></tr></table>')  # Eq. (2) left out
+                  '<table class="coverage"><tr data-item="Eq. (1)"><td>Eq. (1)</td></tr></table>'  # Eq. (2) left out
+                  + view.html().replace("_static/plotly.min.js", "_static/missing.js")  # a view that cannot draw
+                  + view3d.ArmView(view.figure, "w", "a view from a network").html().replace(  # nor one that fetches
+                      "'_static/plotly.min.js'", "'https://cdn.example.invalid/plotly.min.js'"))
     good = page("good.html", "<p>A table:</p><table><tr><td>k</td><td>718.67</td></tr></table>"
                              '<p><span class="math">\\(\\tfrac12 k\\)</span></p>'
                              '<div class="math">\\[h_j = d_j \\tag{8}\\]</div>'
                              '<div class="cell_output"><pre>short</pre></div>'
                              '<figure><img src="ok.png" alt="drawn"><figcaption><p>Figure 1. The arm.</p></figcaption>'
                              '</figure><table class="coverage"><tr data-item="Eq. (1)"><td>Eq. (1)</td></tr>'
-                             '<tr data-item="Eq. (2)"><td>Eq. (2)</td></tr></table>')
+                             '<tr data-item="Eq. (2)"><td>Eq. (2)</td></tr></table>' + view.html())
     bare = page("bare.html", "<p>A chapter without its coverage table.</p>")
     (tmp_path / "ok.png").write_bytes((ROOT / "figures" / "lenzo2017_two_spring_arm" / "fig5_layouts.png").read_bytes())
     items = ["Eq. (1)", "Eq. (2)"]
@@ -213,7 +222,9 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
     for expected in ("raw Markdown table", "TeX left as text: ", "doubled backslash", "could not parse",
                      "px wide in a 600 px column", "points to a folder", "no numbered equation",
                      "no numbered caption: a figure with no caption", "no numbered caption: a caption with no number",
-                     "a paper item missing from the coverage table: Eq. (2)"):
+                     "a paper item missing from the coverage table: Eq. (2)",
+                     "a 3-D view that did not draw: a tetrahedron", "a 3-D view that did not draw: a view from a network",
+                     "request left the machine: https://cdn.example.invalid/plotly.min.js"):
         assert expected in problems, (expected, problems)
     assert result["good.html"] == []
 

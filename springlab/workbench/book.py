@@ -36,7 +36,7 @@ from docutils.nodes import make_id
 
 from springlab.errors import SolverError
 from springlab.papers import PAPERS
-from springlab.workbench import coverage, prose
+from springlab.workbench import coverage, prose, view3d
 from springlab.workbench.claims import (
     MEANINGS,
     REPORT_COLUMNS,
@@ -500,6 +500,9 @@ def build_book(notebooks_dir="build/notebooks", figures_dir="figures", site_dir=
     target = site_dir / "_static" / "mathjax"
     if not (target / MATHJAX_SCRIPT).exists():
         shutil.copytree(mathjax_dir(), target, dirs_exist_ok=True)
+    plotly = site_dir / "_static" / view3d.PLOTLY_JS  # the 3-D views load it from there, never from a network
+    if not plotly.exists() or plotly.stat().st_size != view3d.plotly_js().stat().st_size:
+        shutil.copyfile(view3d.plotly_js(), plotly)
     if api:
         link_source_citations(site_dir, stems)
     return site_dir / "index.html"

@@ -218,7 +218,9 @@ const uncaptioned = Array.from(article.querySelectorAll('img')).filter(img => {
     return !(caption && /^\s*Figure \d+\. \S/.test(caption.textContent));
 }).map(img => (img.getAttribute('alt') || img.getAttribute('src') || '').slice(0, 80));
 const covered = Array.from(article.querySelectorAll('table.coverage tr[data-item]')).map(tr => tr.dataset.item);
-return {column, pipes, leaks, wide, numbered, uncaptioned, covered};
+const undrawn = Array.from(article.querySelectorAll('.springlab-view3d')).filter(
+    v => !(v.classList.contains('js-plotly-plot') && v.querySelector('canvas'))).map(v => v.getAttribute('aria-label') || v.id);
+return {column, pipes, leaks, wide, numbered, uncaptioned, covered, undrawn};
 """
 
 
@@ -281,8 +283,8 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
     not parse, TeX with a doubled backslash (``\\\\tfrac``), a paragraph that is a raw Markdown
     table (pipes and ``---``), TeX shown as text outside the math (``\\frac``, ``$...$``, in
     prose and in outputs), an output (or a display equation) more than twice as wide as the
-    text column, and any request that leaves the machine (Chromium's network log: every
-    request must be ``file://`` or inline).
+    text column, a 3-D view (:mod:`springlab.workbench.view3d`) that did not draw, and any request that
+    leaves the machine (Chromium's network log: every request must be ``file://`` or inline).
 
     :param screenshots: {page: png path}: screenshots to save (the page as a reader first sees it)
     :param network_log: a file to write every request to, page by page
@@ -331,6 +333,8 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
             if math["errors"]:
                 problems.append(f"{math['errors']} equation(s) MathJax could not parse")
             problems += [f"TeX with a doubled backslash (a command read as a line break): {t}" for t in math["doubled"]]
+            _wait(driver, "return Array.from(document.querySelectorAll('.springlab-view3d'))"
+                          ".every(v => v.querySelector('canvas'))", 20)  # the 3-D views draw once plotly.js loads
             reader = driver.execute_script(_READER)
             problems += [f"a raw Markdown table in a paragraph: {t}" for t in reader["pipes"]]
             problems += [f"TeX left as text: {t}" for t in reader["leaks"]]
@@ -339,6 +343,7 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
                 problems.append("no numbered equation (a display equation with the paper's number, \\tag{...})")
             if page.name in captioned:
                 problems += [f"a figure with no numbered caption: {t}" for t in reader["uncaptioned"]]
+            problems += [f"a 3-D view that did not draw: {v}" for v in reader["undrawn"]]
             if page.name in (covered or {}):
                 listed = set(reader["covered"])
                 problems += ([f"a paper item missing from the coverage table: {i}" for i in covered[page.name]
