@@ -38,6 +38,7 @@ PAPERS = {
     },
     "springlab_design_your_arm": {
         "key": None,  # built on 000 and 003, not a paper
+        "builds_on": ("000", "003"),  # the papers whose printed values its prose may quote
         "authors": "springlab, from papers 000 and 003",  # the book names them (springlab.workbench.prose)
         "year": 2026,
         "title": "Design springs for your own arm: ranked, verified designs, a tolerance study, an exudyn check",
