@@ -146,7 +146,8 @@ def test_the_book_reads_in_chromium_offline(built):
         numbered=[f"{stem}.html" for stem in ALL_STEMS if PAPERS.get(stem, {}).get("key")],
         captioned=[f"{stem}.html" for stem in ALL_STEMS],
         covered={f"{stem}.html": [i.item for i in coverage.inventory(PAPERS[stem]["key"])]
-                 for stem in ALL_STEMS if PAPERS.get(stem, {}).get("key")})
+                 for stem in ALL_STEMS if PAPERS.get(stem, {}).get("key")},
+        prose=[f"{stem}.html" for stem in ALL_STEMS])
     assert result == {**{str(p.relative_to(built)): [] for p in pages}, "search": []}, term
     log = (OUT / "network.log").read_text().splitlines()
     assert any(f"_static/mathjax/{book.MATHJAX_SCRIPT}" in line for line in log)  # the log holds every request
@@ -196,8 +197,13 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                   "<p>the energy $\\tfrac12 k|AB|^2$ as text</p>"  # TeX outside the math
                   '<p><span class="math">\\(\\\\tfrac12 k\\)</span></p>'  # a doubled backslash
                   '<p><span class="math">\\(\\frac{a}\\)</span></p>'  # TeX MathJax cannot parse
+                  '<div class="math">\\[' + " + ".join(f"k_{{{i}}} a_{{{i}}} b_{{{i}}}" for i in range(40))
+                  + ' = 0 \\tag{9}\\]</div>'  # a numbered display wider than the column
+                  '<div class="cell_input"><pre style="white-space: pre">' + "x = 1; " * 200 + "</pre></div>"  # scrolls
                   '<div class="cell_output"><pre style="white-space: pre">' + "Claim(quantity=...) " * 120 + "</pre></div>"
                   '<a href="_sources/">.ipynb</a>'  # a download of a folder
+                  "<p>as <code>expand_gravity_energy</code> in <code>arms/paper000_arm.toml</code> does for the "
+                  "issue, see 000 Table 3</p>"  # internal names
                   '<img src="ok.png" alt="a figure with no caption">'
                   '<figure><img src="ok.png" alt="a caption with no number"><figcaption>The arm</figcaption></figure>'
                   '<table class="coverage"><tr data-item="Eq. (1)"><td>Eq. (1)</td></tr></table>'  # Eq. (2) left out
@@ -208,6 +214,9 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                              '<p><span class="math">\\(\\tfrac12 k\\)</span></p>'
                              '<div class="math">\\[h_j = d_j \\tag{8}\\]</div>'
                              '<div class="cell_output"><pre>short</pre></div>'
+                             '<div class="cell_input"><pre>y = 2</pre></div>'
+                             "<p>run <code>make figures</code>; Table 3 prints 0.004 m</p>"  # words for readers
+                             '<div class="admonition"><p><code>notebooks/a.ipynb</code></p></div>'
                              '<figure><img src="ok.png" alt="drawn"><figcaption><p>Figure 1. The arm.</p></figcaption>'
                              '</figure><table class="coverage"><tr data-item="Eq. (1)"><td>Eq. (1)</td></tr>'
                              '<tr data-item="Eq. (2)"><td>Eq. (2)</td></tr></table>' + view.html())
@@ -216,7 +225,8 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
     items = ["Eq. (1)", "Eq. (2)"]
     result = site.browser_check([broken, good, bare], numbered=["broken.html", "good.html"],
                                 captioned=["broken.html", "good.html"],
-                                covered={"broken.html": items, "good.html": items, "bare.html": items})
+                                covered={"broken.html": items, "good.html": items, "bare.html": items},
+                                prose=["broken.html", "good.html"])
     assert result["bare.html"] == ["no coverage table of the paper's items"]
     problems = "\n".join(result["broken.html"])
     for expected in ("raw Markdown table", "TeX left as text: ", "doubled backslash", "could not parse",
@@ -224,6 +234,10 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                      "no numbered caption: a figure with no caption", "no numbered caption: a caption with no number",
                      "a paper item missing from the coverage table: Eq. (2)",
                      "a 3-D view that did not draw: a tetrahedron", "a 3-D view that did not draw: a view from a network",
+                     "an equation tag outside the column (a numbered display", "a code cell that scrolls sideways: x = 1;",
+                     "an internal name in the prose: expand_gravity_energy",
+                     "an internal name in the prose: arms/paper000_arm.toml", "does for the issue, see",
+                     "see 000 Table",
                      "request left the machine: https://cdn.example.invalid/plotly.min.js"):
         assert expected in problems, (expected, problems)
     assert result["good.html"] == []

@@ -220,7 +220,24 @@ const uncaptioned = Array.from(article.querySelectorAll('img')).filter(img => {
 const covered = Array.from(article.querySelectorAll('table.coverage tr[data-item]')).map(tr => tr.dataset.item);
 const undrawn = Array.from(article.querySelectorAll('.springlab-view3d')).filter(
     v => !(v.classList.contains('js-plotly-plot') && v.querySelector('canvas'))).map(v => v.getAttribute('aria-label') || v.id);
-return {column, pipes, leaks, wide, numbered, uncaptioned, covered, undrawn};
+const mj = window.MathJax && MathJax.startup && MathJax.startup.document;
+const texts = new Map(mj ? Array.from(mj.math).map(m => [m.typesetRoot, m.math]) : []);
+const cut = Array.from(article.querySelectorAll('mjx-container[display="true"]')).filter(
+    c => c.querySelector('[data-mml-node="mlabeledtr"]') && c.scrollWidth > c.parentElement.clientWidth + 1).map(
+    c => [c.scrollWidth, c.parentElement.clientWidth, (texts.get(c) || '').trim().slice(0, 60)]);
+const sideways = Array.from(article.querySelectorAll('.cell_input pre')).filter(
+    p => p.scrollWidth > p.clientWidth + 1).map(p => p.textContent.trim().split('\n')[0].slice(0, 60));
+const internal = [];
+const name = /^(?:[A-Za-z_]\w*\.)*[a-z_][a-z0-9]*_[a-z0-9_]*(?:\(\))?$|^(?:[a-z_]\w*\.)+[A-Za-z_]\w*(?:\(\))?$|^[\w.-]+\/[\w.\/-]*\.\w+$|^[\w-]+\.(?:toml|json|py|urdf|csv|ipynb|md)$/;
+for (const el of article.querySelectorAll('p, li, figcaption')) {
+    if (el.closest('.admonition, .cell_input, .cell_output, table, details.coverage, dl.py, .doctest')) continue;
+    for (const c of el.querySelectorAll('code')) if (name.test(c.textContent.trim())) internal.push(c.textContent.trim());
+    const text = el.textContent;
+    const key = text.match(/(?<![\w.,\/-])00[0-4](?![\w,]|\.\d)/), issue = text.match(/\bissues?\b/i);
+    if (key) internal.push(text.slice(Math.max(0, key.index - 30), key.index + 20).trim());
+    if (issue) internal.push(text.slice(Math.max(0, issue.index - 30), issue.index + 20).trim());
+}
+return {column, pipes, leaks, wide, numbered, uncaptioned, covered, undrawn, cut, sideways, internal};
 """
 
 
@@ -276,14 +293,16 @@ def _wait(driver, script: str, timeout: float):
 
 
 def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, search=None, numbered=(),
-                  captioned=(), covered=None, math_timeout: float = 30.0) -> dict[str, list[str]]:
+                  captioned=(), covered=None, prose=(), math_timeout: float = 30.0) -> dict[str, list[str]]:
     """Open each page in headless Chromium and list what a reader would see broken: an image
     that did not load, a link to a missing local file, folder or anchor (:func:`check_links`:
     a download included), a traceback in an output, TeX that MathJax left unrendered or could
     not parse, TeX with a doubled backslash (``\\\\tfrac``), a paragraph that is a raw Markdown
     table (pipes and ``---``), TeX shown as text outside the math (``\\frac``, ``$...$``, in
     prose and in outputs), an output (or a display equation) more than twice as wide as the
-    text column, a 3-D view (:mod:`springlab.workbench.view3d`) that did not draw, and any request that
+    text column, a code cell that scrolls sideways, a numbered display equation wider than its column
+    (its tag out of sight), a 3-D view
+    (:mod:`springlab.workbench.view3d`) that did not draw, and any request that
     leaves the machine (Chromium's network log: every request must be ``file://`` or inline).
 
     :param screenshots: {page: png path}: screenshots to save (the page as a reader first sees it)
@@ -296,6 +315,9 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
         equation (a ``\\tag``: a paper's own equation number)
     :param captioned: page names whose every image (a figure, an animation) must stand in a figure
         with a numbered caption ("Figure 3. ...")
+    :param prose: page names whose prose (paragraphs, list items, captions; not code, outputs, tables or
+        the boxes that say how to run a chapter) must name no function, module, variable or file, no
+        paper by its key and no "issue": words for readers
     :param covered: {page name: the paper's items}: the page's coverage table
         (:mod:`springlab.workbench.coverage`) must list each of them
     :returns: {page: problems}, each page named by its path from the first page's folder
@@ -344,6 +366,11 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
             if page.name in captioned:
                 problems += [f"a figure with no numbered caption: {t}" for t in reader["uncaptioned"]]
             problems += [f"a 3-D view that did not draw: {v}" for v in reader["undrawn"]]
+            problems += [f"a code cell that scrolls sideways: {t}" for t in reader["sideways"]]
+            if page.name in prose:
+                problems += [f"an internal name in the prose: {t}" for t in reader["internal"]]
+            problems += [f"an equation tag outside the column (a numbered display {w} px wide in {c} px): {t}"
+                         for w, c, t in reader["cut"]]
             if page.name in (covered or {}):
                 listed = set(reader["covered"])
                 problems += ([f"a paper item missing from the coverage table: {i}" for i in covered[page.name]

@@ -6,7 +6,8 @@ the API reference. Everything is served from the site itself: MathJax, fonts, se
 import os
 import re
 
-from springlab.workbench.book import CITATION, MATHJAX_SCRIPT
+from springlab.workbench import prose
+from springlab.workbench.book import MATHJAX_SCRIPT, short_name
 
 project = "springlab"
 author = "springlab"
@@ -66,14 +67,19 @@ html_show_sourcelink = False
 html_copy_source = True  # the download button: the executed notebook (the builder puts papermill's copy there)
 html_sourcelink_suffix = ""
 
-# the book links each citation in a docstring (a paper's key before an equation, table or figure) to its chapter
+# the book names each paper a docstring cites by its key ("000 Eq. (23b)", "paper 003's") by its authors and
+# year, linked to its chapter (springlab.workbench.prose): the key stays in the code, the reader sees the name
 CHAPTERS = dict(item.split("=", 1) for item in os.environ.get("SPRINGLAB_BOOK_CHAPTERS", "").split(";") if item)
+NAMES = {key: (stem, short_name(stem)) for key, stem in CHAPTERS.items()}
+_REST_KEPT = re.compile(r"``.*?``|:[\w:-]+:`[^`]*`|`[^`]*`")
+"""reST a docstring's names stay out of: literals, roles, references."""
 
 
 def _link_citations(app, what, name, obj, options, lines):
     for k, line in enumerate(lines):
-        lines[k] = CITATION.sub(lambda m: f":doc:`{m.group(1)} </{CHAPTERS[m.group(1)]}>`"
-                             if m.group(1) in CHAPTERS else m.group(0), line)
+        lines[k] = prose._outside(line, _REST_KEPT, lambda text: prose._rewrite(
+            text, None, NAMES, set(), lambda key, shown: f":doc:`{shown} </{NAMES[key][0]}>`",
+            lambda key, number, shown: shown))
 
 
 _UNDERLINE = re.compile(r"\s*-{3,}\s*")
