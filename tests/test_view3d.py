@@ -56,3 +56,13 @@ def test_an_arm_without_shapes_is_refused(pendulum):
 def test_plotly_js_is_the_packaged_file():
     path = view3d.plotly_js()
     assert path.name == view3d.PLOTLY_JS and path.stat().st_size > 1_000_000
+
+
+def test_the_design_view_shows_where_each_spring_comes_nearest_a_link(pendulum):
+    view = view3d.design_view(pendulum, title="double pendulum")
+    labels = [f["name"] for f in view.figure["frames"]]
+    assert labels[0] == "a workspace pose" and view.element == "view-doublependulum" and len(labels) > 1
+    nearest = {row[0]: row for row in pendulum.clearance.rows}
+    for label in labels[1:]:  # each names a spring, the link it comes nearest and by how much
+        spring = label.split(" ")[0]
+        assert label == f"{spring} nearest {nearest[spring][2]} ({1e3 * nearest[spring][4]:.0f} mm)"

@@ -25,7 +25,7 @@ import numpy as np
 from springlab.design.hardware import spring_pieces
 from springlab.model.revolute import body_frames
 
-__all__ = ["MAX_FACES", "ArmView", "arm_view", "plotly_js", "PLOTLY_JS"]
+__all__ = ["MAX_FACES", "HULL_POINTS", "ArmView", "arm_view", "design_view", "plotly_js", "PLOTLY_JS"]
 
 MAX_FACES = 800
 """A link mesh with more triangles than this is shown as its convex hull (a page stays light)."""
@@ -197,3 +197,18 @@ def arm_view(design, q, *, labels=None, title: str = "", element: str = "view") 
               "sliders": [{"steps": steps, "currentvalue": {"prefix": "pose: "}, "x": 0.05, "len": 0.9}]}
     config = {"displaylogo": False, "responsive": True, "modeBarButtonsToRemove": ["toImage"]}
     return ArmView({"data": data, "layout": layout, "frames": frames, "config": config}, element, title)
+
+
+def design_view(design, *, title: str = "", element: str | None = None, most: int = 5) -> ArmView:
+    """:func:`arm_view` of ``design`` at the poses a reader wants to see: the first of its workspace, then the
+    pose where each spring comes nearest a link (its clearance check's, :attr:`ArmDesign.clearance`), up to
+    ``most`` poses, each labelled by what it shows."""
+    q, labels = [design.q[0]], ["a workspace pose"]
+    for spring, piece, link, pose, gap in (design.clearance.rows if design.clearance is not None else ()):
+        if len(q) >= most:
+            break
+        if not any(np.allclose(design.q[pose], other) for other in q):
+            q.append(design.q[pose])
+            labels.append(f"{spring} nearest {link} ({1e3 * gap:.0f} mm)")
+    element = element or "view-" + "".join(ch for ch in (title or design.model.name) if ch.isalnum()).lower()
+    return arm_view(design, np.asarray(q), labels=labels, title=title, element=element)
