@@ -326,3 +326,25 @@ def test_a_hook_stressed_past_its_allowable_is_named():
     assert sum("hook's" in p for p in spring.problems()) == 2
     easy = bd.ExtensionSpring("music wire", 1e-3, 10e-3, 20.0, 2.0, spring.free_length * 1.05)  # the control
     assert not any("hook's" in p for p in easy.problems())
+
+
+def test_the_open_coil_alternative_pulls_as_the_closed_coil_and_is_offered_only_below_the_windable_range():
+    # a light cable spring: its initial tension falls below what a maker winds at its index
+    coil, why = bd.cable_spring(500.0, (0.02, 0.2))  # its shortest path allows less tension than the index winds
+    assert coil is not None, why
+    lo, _ = coil.initial_tension_range
+    assert coil.initial_tension < lo  # the case the alternative is for
+    o = coil.open_coil()
+    k, paths = coil.rate, np.linspace(0.02, 0.2, 7)
+    closed = coil.initial_tension + k * (paths + coil.cable_offset - coil.free_length)  # F_i + k (x - L_0)
+    opened = k * (paths + o.cable_offset - o.free_length)  # no initial tension, x' - L_0'
+    assert np.allclose(closed, k * paths) and np.allclose(opened, k * paths)  # both k times the path
+    assert np.all(paths + o.cable_offset > o.free_length)  # stretched everywhere: never slack
+    grown = (coil.body_coils - 1) * bd.OPEN_GAP * coil.wire
+    assert o.max_length == pytest.approx(coil.max_length + coil.initial_tension / k + grown)
+    assert o.pitch == pytest.approx(coil.wire * (1 + bd.OPEN_GAP))
+    assert "wind it open" in bd.maker_note(coil, cable=True)
+    assert "wind it open" not in bd.maker_note(coil)  # a zero-length spring needs its initial tension
+    inside, _ = bd.cable_spring(2000.0, (0.1, 0.3))  # the control: inside the range, no note at all
+    lo, _ = inside.initial_tension_range
+    assert inside.initial_tension >= lo * (1 - 1e-9) and bd.maker_note(inside, cable=True) == ""

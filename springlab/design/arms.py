@@ -339,7 +339,7 @@ class ArmDesign:
                          f"{1e3 * coil.cable_offset:.1f}" if cable else "",  # over a block too
                          f"{1e3 * r.pulley_radius:g}" if r.pulley_radius > 0 else "",
                          "(" + ", ".join(f"{v + 0.0:.2f}" for v in r.lead) + ")" if r.pulley_radius > 0 else "",
-                         maker_note(coil)))
+                         maker_note(coil, cable)))
         return Table(["spring", "end A: link (mm)", "end B: link (mm)", "realisation", *COIL_COLUMNS, *SERVICE_COLUMNS,
                       "cable offset L0 - Fi/k (mm)", "pulley radius (mm)", "lead (link_a frame)", "maker's note"], rows)
 

@@ -224,6 +224,22 @@ def initial_tension_stress_range(C):
     return (mid - half) * 1e6, (mid + half) * 1e6
 
 
+OPEN_GAP = 0.25
+"""An open-wound coil's gap between its body coils, as a share of the wire's diameter (its pitch d (1 + gap))."""
+
+
+@dataclass(frozen=True)
+class OpenCoil:
+    """An extension spring's open-wound alternative (:meth:`ExtensionSpring.open_coil`): its body coils'
+    pitch, free length (inside the hooks), the cable offset that takes up that free length, and its longest
+    length in service (m)."""
+
+    pitch: float
+    free_length: float
+    cable_offset: float
+    max_length: float
+
+
 @dataclass(frozen=True)
 class ExtensionSpring:
     """A helical extension spring with two machine hooks.
@@ -287,6 +303,20 @@ class ExtensionSpring:
         """L_0 - F_i / k (m): what a cable realisation adds to its path so that the coil pulls k times the
         path (the coil's length is the path plus this)."""
         return self.free_length - self.initial_tension / self.rate
+
+    def open_coil(self, gap: float = None) -> OpenCoil:
+        """The same wire, coil diameter, body coils and rate wound open, with no initial tension: the
+        alternative for a cable spring whose initial tension lies below the windable range. Its body coils
+        stand ``gap`` (a share of the wire, :data:`OPEN_GAP`) apart, so its free length grows by
+        (N_b - 1) gap d; its cable absorbs that whole free length, L_0' (the coil pre-stretched at assembly, and
+        stretched everywhere in service, as long as the path is), so the force is k times the path as
+        before. It is then F_i / k + (N_b - 1) gap d longer in service than the closed coil, at the same
+        force and stress."""
+        gap = OPEN_GAP if gap is None else _checks.positive("gap", gap, unit="of the wire's diameter")
+        grown = (self.body_coils - 1) * gap * self.wire
+        free = self.free_length + grown
+        return OpenCoil(pitch=self.wire * (1 + gap), free_length=free, cable_offset=free,
+                        max_length=self.max_length + self.initial_tension / self.rate + grown)
 
     @property
     def mass(self) -> float:
@@ -782,7 +812,8 @@ SHEET_COLUMNS = ("spring", "realisation", *COIL_COLUMNS, "a (mm)", "b (mm)", "ca
 SHEET_NOTE = (f"Designed to: body and machine-hook stresses at the largest force at most {100 * STRESS_SHARE:.0f} % of "
               f"their allowables (a margin of {1 / STRESS_SHARE:.2f} on each); initial tension inside the windable range where a stocked "
               "wire allows it (the cable offset takes up the rest of the force law), else below it and flagged: wound "
-              "at the range and stress-relieved down to it; at least 3 body coils; index C 4-12.")
+              "at the range and stress-relieved down to it, or, for a cable spring, wound open with no initial tension "
+              "and its cable shortened (the maker's note gives both); at least 3 body coils; index C 4-12.")
 """The sheet's statement of what it designs to, printed with it."""
 
 
@@ -797,13 +828,20 @@ def coil_cells(coil: ExtensionSpring) -> tuple:
             f"{c.allowable_stress / 1e6:.0f}", f"{100 * c.stress(c.max_force) / c.allowable_stress:.0f}")
 
 
-def maker_note(coil: ExtensionSpring) -> str:
+def maker_note(coil: ExtensionSpring, cable: bool = False) -> str:
     """The sheet's note to the maker: how to reach an initial tension below the windable range ('' when
-    it lies inside it)."""
+    it lies inside it); for a cable spring (``cable``), also the open-coil alternative
+    (:meth:`ExtensionSpring.open_coil`), which needs no initial tension at all."""
     lo, _ = coil.initial_tension_range
     if coil.initial_tension < lo * (1 - 1e-9):
-        return (f"wind at {lo:.2f} N or more, then stress-relieve to {coil.initial_tension:.2f} N (below the windable "
+        note = (f"wind at {lo:.2f} N or more, then stress-relieve to {coil.initial_tension:.2f} N (below the windable "
                 "range)")
+        if cable:
+            o = coil.open_coil()
+            note += (f"; or wind it open, no initial tension, pitch {1e3 * o.pitch:.2f} mm, free length "
+                     f"{1e3 * o.free_length:.1f} mm, and shorten the cable to a {1e3 * o.cable_offset:.1f} mm offset "
+                     f"(pre-stretched at assembly): {1e3 * o.max_length:.1f} mm long in service, check its room")
+        return note
     return ""
 
 
@@ -818,7 +856,7 @@ def spec_sheet(realisations) -> Table:
                      f"{r.pulley_radius * 1e3:.1f}" if r.pulley_radius is not None else "",
                      "" if not r.cable else "base column" if r.room is None else
                      f"{r.room * 1e3:.0f}" + ("" if r.fits else " (too short: mount it past the joint)"),
-                     maker_note(r.coil)))
+                     maker_note(r.coil, bool(r.cable))))
     return Table(list(SHEET_COLUMNS), rows)
 
 
