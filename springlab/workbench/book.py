@@ -110,10 +110,14 @@ def readable(notebook: dict, stem: str, names: dict, labels: set) -> dict:
     """A copy of the notebook as the book shows it (:mod:`springlab.workbench.prose`): its
     numbered equations anchored, papers named by authors and year and linked, equation
     mentions linked, in its Markdown cells and its cells' Markdown and HTML outputs (papers named,
-    unlinked, in its printed outputs)."""
+    unlinked, in its printed outputs); papermill's cell of the run's parameters folded, as the notebook's own
+    parameters cell is."""
     notebook = json.loads(json.dumps(notebook))
     key = PAPERS.get(stem, {}).get("key")
     for cell in notebook["cells"]:
+        tags = cell.get("metadata", {}).get("tags", [])
+        if "injected-parameters" in tags and "hide-input" not in tags:  # papermill's: the run's parameters, folded
+            cell["metadata"]["tags"] = [*tags, "hide-input"]
         if cell["cell_type"] == "markdown":
             text = "".join(cell["source"])
             cell["source"] = prose.link_markdown(prose.anchor_equations(text, key) if key else text, key, names, labels)
