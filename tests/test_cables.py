@@ -87,3 +87,18 @@ def test_the_cli_refuses_a_cable_its_pulley_cannot_take_and_a_bad_target(tmp_pat
     assert main(["design", str(robot_urdf("UR5")), *bad, "--json", str(out), "--quiet"]) == 2
     err = capsys.readouterr().err
     assert word in err and err.count("\n") == 1 and not out.exists()
+
+
+def test_a_bracket_foot_gets_the_least_bolt_pattern_that_holds_it():
+    from springlab.design.hardware import BOLT_PROOF, BOLT_SAFETY, BOLTS, bolt_pattern
+
+    # the pattern named holds: the outer bolt's F / 2 + M / s within its proof load over the safety factor
+    for force, moment in ((50.0, 2.0), (400.0, 30.0), (2000.0, 150.0)):
+        said = bolt_pattern(force, moment)
+        name, spacing = said.split(" ")[2], float(said.split("least ")[1].split(" mm")[0]) * 1e-3
+        _, d, area = next(b for b in BOLTS if b[0] == name)
+        assert force / 2 + moment / spacing <= area * BOLT_PROOF / BOLT_SAFETY
+        assert 3 * d <= spacing <= 10 * d + 1e-3
+        smaller = [b for b in BOLTS if b[1] < d]  # and no smaller bolt would do within ten diameters
+        assert all(force / 2 + moment / (10 * db) > ab * BOLT_PROOF / BOLT_SAFETY for _, db, ab in smaller)
+    assert "pattern of its own" in bolt_pattern(2e4, 2e3)  # the control: past two M12s, no pattern is claimed

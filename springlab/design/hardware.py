@@ -234,6 +234,45 @@ BALL_JOINT = 0.01
 pseudobase (001 Fig. 5)."""
 
 
+BOLTS = (("M3", 3e-3, 5.03e-6), ("M4", 4e-3, 8.78e-6), ("M5", 5e-3, 14.2e-6), ("M6", 6e-3, 20.1e-6),
+         ("M8", 8e-3, 36.6e-6), ("M10", 10e-3, 58.0e-6), ("M12", 12e-3, 84.3e-6))
+"""Metric coarse bolts: (name, nominal diameter m, tensile stress area m^2), ISO 898-1 Table 4 (ISO 724)."""
+
+BOLT_PROOF = 580e6
+"""Pa: the proof stress of property class 8.8 bolts (ISO 898-1, d <= 16 mm)."""
+
+BOLT_SAFETY = 2.0
+"""The factor between a bolt's proof load and the largest tension a bracket's bolt pattern puts on it."""
+
+BOLT_COMPACT = 10.0
+"""A bolt pattern is sized for the smallest bolt whose spacing stays within this many bolt diameters."""
+
+
+def bolt_pattern(force: float, moment: float) -> str:
+    """The least bolt pattern for a post's or bracket's foot carrying ``force`` (N) and the bending
+    ``moment`` (N m) at its root: two class 8.8 bolts in line with the moment, the outer one taking the
+    couple M / s on top of half the force, F / 2 + M / s <= A_t S_p / :data:`BOLT_SAFETY`; the smallest
+    bolt of :data:`BOLTS` whose least spacing s is at most :data:`BOLT_COMPACT` diameters, and s at least
+    three diameters. A minimum for the designer to check against the part the foot is bolted into (a
+    printed link's threads hold less than a steel nut).
+
+    >>> bolt_pattern(100.0, 10.0)  # M3's proof load 2.9 kN: 1.41 kN allowed beside F / 2, s = 7.1 mm, 3 d = 9 mm
+    '2 x M3 (class 8.8), at least 9 mm apart'
+    >>> bolt_pattern(2000.0, 150.0)  # M4 would need 97 mm, over 10 d; M5: 150 / 3.12e3 = 48.1 mm
+    '2 x M5 (class 8.8), at least 49 mm apart'
+    """
+    force, moment = abs(float(force)), abs(float(moment))
+    for name, d, area in BOLTS:
+        allowed = area * BOLT_PROOF / BOLT_SAFETY - force / 2
+        if allowed <= 0:
+            continue
+        spacing = max(3 * d, moment / allowed)
+        if spacing <= BOLT_COMPACT * d:
+            return f"2 x {name} (class 8.8), at least {np.ceil(spacing * 1e3 - 1e-6):.0f} mm apart"
+    return (f"more than two {BOLTS[-1][0]} bolts: {force:.0f} N and {moment:.1f} N m need a pattern of its own "
+            "(ISO 898-1 class 8.8 proof loads)")
+
+
 @dataclass(frozen=True)
 class Part:
     """A part of the springs' hardware: its kind ('spring', 'cable', 'pulley', 'belt', 'post', 'bracket', 'rssr'), name, the
@@ -350,7 +389,7 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
                 m = ALUMINIUM * np.pi * dia**2 / 4 * reach
                 centre = (fixed + root) / 2
                 out.append(Part("bracket", f"{name} bracket", s.link_a, tuple(centre), m,
-                                {"length": reach, "rod_diameter": dia},
+                                {"length": reach, "rod_diameter": dia, "bolts": bolt_pattern(F, F * arm)},
                                 {"largest_force_N": F, "root_moment_Nm": F * arm}, (on(s.link_a, centre) + (m,),)))
                 if belt is not None:  # the cable's pull on the bracket, about the frame's origin: the belt carries it
                     w = R[:, belt.joint + 1] @ model.axes[belt.joint]
@@ -375,7 +414,8 @@ def parts(model: RevoluteChain, realised, kinds, coils, names, q) -> tuple:
             m = ALUMINIUM * np.pi * dia**2 / 4 * length
             centre = tuple((np.asarray(pb) + root) / 2)
             carried = on(s.link_b, centre) + (m,) if belt is not None else (s.link_b, centre, m)
-            out.append(Part("post", f"{name} post", s.link_b, centre, m, {"length": length, "rod_diameter": dia},
+            out.append(Part("post", f"{name} post", s.link_b, centre, m,
+                            {"length": length, "rod_diameter": dia, "bolts": bolt_pattern(F, F * length)},
                             {"largest_force_N": F, "root_moment_Nm": F * length}, (carried,)))
     out += _modules(model, {b: float(np.max(np.abs(moments[b.name]))) for b in model.belts if b.kind != "belt"})
     for belt in model.belts:
