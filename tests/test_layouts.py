@@ -426,3 +426,16 @@ def test_the_tolerance_that_costs_most_is_named_with_the_band_that_keeps_a_point
     assert all(row[4] == row[2] for row in ur5.tolerance_ranking(points=100).rows)  # the control: a loose bound
     spec = next(row for row in ur5.tolerance_table().rows if row[0] == "as specified")
     assert all(float(v) >= 95 for v in spec[1:3])  # on the arm carrying its hardware, as designed
+
+
+def test_the_negative_control_is_judged_joint_by_joint(ur5):
+    by_joint = ur5.control_by_joint()
+    assert set(by_joint) == {"shoulder_lift_joint", "elbow_joint"}  # the joints the springs act on
+    assert all(scaled > 1.5 * designed for designed, scaled in by_joint.values())
+    assert not any("negative control" in f or "move no" in f for f in ur5.balance_flags())
+    # the controls: one spring that balances nothing of its joint is named at that joint, and springs that
+    # balance nothing at all are named at each
+    spoiled = dataclasses.replace(ur5, ideal=(ur5.ideal[0], ur5.ideal[1].scaled(1e-12)))
+    assert any("at elbow_joint" in f and "negative control" in f for f in spoiled.balance_flags())
+    idle = dataclasses.replace(ur5, ideal=tuple(s.scaled(1e-15) for s in ur5.ideal))
+    assert all("negative control" in f for f in idle.balance_flags()[:2])

@@ -447,15 +447,19 @@ class ArmDesign:
 
     def balance_flags(self, factor: float = 0.9) -> tuple:
         """What makes its balance fail, in words: the ideal springs
-        leaving no less than their negative control (every rate times ``factor``), or any joint left with
+        leaving a loaded joint no less than their negative control (every rate times ``factor``) does, joint by
+        joint (:meth:`control_by_joint`), or any joint left with
         more holding torque by the ideal or the realised springs than by gravity alone (above round-off:
         1e-9 of the arm's largest gravity torque), a spring with no line of action or whose cable's end
         crosses its lead, a spring that does not clear the links."""
         out = []
-        designed, control = self.control(factor)
-        if self.ideal and sig(control) <= sig(designed):
-            out.append(f"the springs leave {designed:.3g} N m at worst, no less than their negative control (every rate "
-                       f"x {factor:g}) leaves, {control:.3g} N m: they do not balance this arm")
+        by_joint = self.control_by_joint(factor) if self.ideal else {}
+        if self.ideal and not by_joint:
+            out.append("the springs move no loaded joint's torque: they do not balance this arm")
+        for joint, (designed, control) in by_joint.items():  # joint by joint: a light joint left out hides nothing
+            if sig(control) <= sig(designed):
+                out.append(f"the springs leave {designed:.3g} N m at {joint} at worst, no less than their negative control "
+                           f"(every rate x {factor:g}) leaves, {control:.3g} N m: they do not balance it")
         for case, count, pose, why in (self.audit.undefined if self.audit else ()):
             where = (f"at {count} of the {self.audit.samples:,} poses of the independent check" if count else
                      "at a pose of the workspace the independent check's local search reached")
@@ -666,6 +670,19 @@ class ArmDesign:
         arm = self.designed_for
         return (float(np.max(np.abs(joint_torques(arm, self.ideal, self.q)))),
                 float(np.max(np.abs(joint_torques(arm, scaled, self.q)))))
+
+    def control_by_joint(self, factor: float = 0.9) -> dict:
+        """The negative control joint by joint: {loaded joint's name: (the largest holding torque as designed,
+        with every rate times ``factor``) N m over the workspace poses}, for the loaded joints but the light
+        ones the springs leave alone (below :data:`~springlab.design.layouts.SHARE` of the largest peak, as
+        :meth:`reached` counts them: a light joint left out keeps its own torque whatever the rates, which
+        would hide the control)."""
+        arm = self.designed_for
+        designed = np.max(np.abs(joint_torques(arm, self.ideal, self.q)), axis=0)
+        scaled = np.max(np.abs(joint_torques(arm, [s.scaled(factor) for s in self.ideal], self.q)), axis=0)
+        peak = np.asarray(self.structure.peak)
+        return {self.model.joints[j]: (float(designed[j]), float(scaled[j])) for j in self.structure.loaded
+                if peak[j] >= SHARE * float(np.max(peak)) or abs(scaled[j] - designed[j]) > 1e-12 * max(1.0, designed[j])}
 
     @property
     def designed_for(self) -> RevoluteChain:
