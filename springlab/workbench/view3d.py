@@ -204,7 +204,7 @@ def design_view(design, *, title: str = "", element: str | None = None, most: in
     pose where each spring comes nearest a link (its clearance check's, :attr:`ArmDesign.clearance`), up to
     ``most`` poses, each labelled by what it shows."""
     q, labels = [design.q[0]], ["a workspace pose"]
-    for spring, piece, link, pose, gap in (design.clearance.rows if design.clearance is not None else ()):
+    for spring, _, link, pose, gap in (design.clearance.rows if design.clearance is not None else ()):
         if len(q) >= most:
             break
         if not any(np.allclose(design.q[pose], other) for other in q):
