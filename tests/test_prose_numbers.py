@@ -29,7 +29,7 @@ def test_the_check_catches_a_typed_number_and_passes_a_glued_one():
         "14.57", "10", "0.75", "1.17"]
     # the controls: glued, printed by the paper (s = 0.84 m, C = 184), references and small counts pass
     assert numbers.unglued("{glue:text}`balanced_torque:.2f` N m; the paper prints s = 0.84 m and C = 184; "
-                           "Eqs. (24)-(25), Fig. 2, Section V.A, 001's 6 links and $S_{1,4}$, R3, route 2 (2023)",
+                           "Eqs. (24)-(25), Fig. 2, Section V.A, 001's 6 links and $S_{1,4}$, R3, route 2 (2023), the SO-101",
                            values) == []
     assert numbers.unglued("s = 0.85 m", values) == ["0.85"]  # one digit off is not printed
 

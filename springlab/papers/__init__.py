@@ -56,8 +56,8 @@ PAPERS = {
         "venue": "",
         "doi": None,
         "key_figure": "panda.png",
-        "key_caption": "The Franka Panda from its published URDF with the six springs that remove about 99 % of "
-                       "its shoulder's peak gravity torque: front, side and top views",
+        "key_caption": "The Franka Panda from its published URDF with the ideal springs of its best design "
+                       "(the chapter gives their share of each joint's peak): front, side and top views",
     },
     "zhang2023_dyad": {
         "key": "002",

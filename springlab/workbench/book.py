@@ -255,8 +255,8 @@ def _statuses() -> list[str]:
 def _kinds(items) -> str:
     """'48 numbered equations, 5 tables and 17 figures'."""
     counts = Counter(i.kind for i in items)
-    parts = [f"{counts[kind]} {word if counts[kind] == 1 else word + 's'}" for kind, word in
-             (("Eq.", "numbered equation"), ("Table", "table"), ("Fig.", "figure")) if counts[kind]]
+    parts = [f"{counts[kind]} {word if counts[kind] == 1 else word + 's'}" for kind, word in coverage.KINDS
+             if counts[kind]]
     return ", ".join(parts[:-1]) + (" and " if len(parts) > 1 else "") + parts[-1]
 
 
@@ -272,7 +272,7 @@ def coverage_markdown(stem: str, notebook: dict, records: list[dict]) -> str:
     by_item = coverage.concerning(items, records, key)
     titles, _ = sections(notebook)
     anchors = {_section_number(t, k)[1:]: make_id(section_label(stem, k)) for k, t in enumerate(titles) if k}
-    shown = {f"Eq. ({n})": make_id(prose.equation_label(key, n)) for cell in notebook["cells"]
+    shown = {coverage.equation_item(n): make_id(prose.equation_label(key, n)) for cell in notebook["cells"]
              if cell["cell_type"] == "markdown" for n in prose.equation_numbers("".join(cell["source"]))}
     counts = coverage.summary(items, by_item)
     verbs = {"compared": "compares {} with its own numbers", "derived": "derives {}", "used": "uses {}",

@@ -30,8 +30,17 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-__all__ = ["HOWS", "Item", "inventory", "references", "concerning", "verdict", "how", "summary", "table_html",
+__all__ = ["KINDS", "equation_item", "HOWS", "Item", "inventory", "references", "concerning", "verdict", "how", "summary", "table_html",
            "gaps"]
+
+KINDS = (("Eq.", "numbered equation"), ("Table", "table"), ("Fig.", "figure"))
+"""The kinds of numbered item, as an item's name begins, and their name in words."""
+
+
+def equation_item(number: str) -> str:
+    """An equation's item name: '23b' -> the paper's own form, as :class:`Item` writes it."""
+    return f"Eq. ({number})"
+
 
 HOWS = {
     "compared": "the chapter compares the paper's printed numbers with its own in claims; the verdict is their "

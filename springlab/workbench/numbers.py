@@ -7,7 +7,7 @@ A chapter's Markdown may quote a number only if it is
 * one the paper prints, kept in :mod:`springlab.papers` (:func:`printed_values`; in the unit the module
   keeps it, or in degrees for an angle kept in rad);
 * a reference: an equation, table, figure or section number, a heading's or a list item's number, a
-  paper's key, a year, a bibliographic line (one with a DOI), a rule R1-R6, route 1-3, a sign pattern or an index inside math;
+  paper's key, a year, a bibliographic line (one with a DOI), a product's name (the SO-101), a rule R1-R6, route 1-3, a sign pattern or an index inside math;
 * a small whole number (0 to 12) without a unit of measure: a count of links, springs or joints, a
   dimension n, which a reader can check by eye and which no run of the notebook moves.
 
@@ -51,7 +51,8 @@ _REFERENCE = re.compile(
     r"|\b(?:Tables?|Figs?\.|Figures?|Sections?|§)\s*[\dIVX]+(?:\.[\dA-Z]+)*[a-z]?"
     r"(?:\s*(?:[-–]|and|,)\s*[\dIVX]+(?:\.\d+)*[a-z]?(?![\d.]*\s*(?:%|°|mm|m\b|kg|N\b|s\b)))*"
     r"|(?<![\d,.])(?:19|20)\d\d(?![\d,.]?\d)|(?<![\d,.])00[0-4](?![\d,.]?\d)|\bR[1-6]\b|\broutes?\s+[1-3](?:\s*(?:,|and|-)\s*[1-3])*\b"
-    r"|\b\d+-(?:DOF|dof|link|joint|spring)s?\b|\([+\-],\s*[+\-]\)")
+    r"|\b\d+-(?:DOF|dof|link|joint|spring)s?\b|\([+\-],\s*[+\-]\)"
+    r"|\b[A-Z]{2,}[A-Za-z]*-\d+\b")  # a product's name: the SO-101
 _MATH = re.compile(r"\$([^$\n]+)\$")
 _INDEX = re.compile(r"[_^](?:\{[^{}]*\}|\\?\w)")  # a sub- or superscript: an index
 _NUMBER = re.compile(r"(?<![\w.,])[-+−]?(?:\d{1,3}(?:,\d{3})+|\d+)(?:\.\d+)?(?:[eE][-+−]?\d+)?(?![\w])")

@@ -67,8 +67,9 @@ html_show_sourcelink = False
 html_copy_source = True  # the download button: the executed notebook (the builder puts papermill's copy there)
 html_sourcelink_suffix = ""
 
-# the book names each paper a docstring cites by its key ("000 Eq. (23b)", "paper 003's") by its authors and
-# year, linked to its chapter (springlab.workbench.prose): the key stays in the code, the reader sees the name
+# the book names each paper a docstring cites by its key (before an equation's number, or "paper NNN's") by its
+# authors and year, linked to its chapter (springlab.workbench.prose): the key stays in the code, the reader
+# sees the name
 CHAPTERS = dict(item.split("=", 1) for item in os.environ.get("SPRINGLAB_BOOK_CHAPTERS", "").split(";") if item)
 NAMES = {key: (stem, short_name(stem)) for key, stem in CHAPTERS.items()}
 _REST_KEPT = re.compile(r"``.*?``|:[\w:-]+:`[^`]*`|`[^`]*`")
