@@ -519,7 +519,7 @@ def springs_per_n_figure(rows):
     relaxation proves it impossible (rows of :func:`springlab.design.ground.springs_per_n`)."""
     fig, ax = plt.subplots()
     ns = [r.n for r in rows]
-    ax.plot(ns, [r.necessary for r in rows], "o-", label="rules R1-R6 (000): fewest springs")
+    ax.plot(ns, [r.necessary for r in rows], "o-", label="rules R1-R6 (Juang et al. 2023): fewest springs")
     ax.plot(ns, [r.ground.spring_count for r in rows], "s-", label="any signs: n - 1 ground springs, verified")
     proved = [r.n for r in rows if r.screen is not None]
     ax.plot(proved, [n - 2 for n in proved], "x", color="C3", label="n - 2: impossible (linear relaxation)")
