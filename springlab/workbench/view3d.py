@@ -201,7 +201,8 @@ def arm_view(design, q, *, labels=None, title: str = "", element: str = "view") 
 
 def design_view(design, *, title: str = "", element: str | None = None, most: int = 5) -> ArmView:
     """:func:`arm_view` of ``design`` at the poses a reader wants to see: the first of its workspace, then the
-    pose where each spring comes nearest a link (its clearance check's, :attr:`ArmDesign.clearance`), up to
+    pose where each spring comes nearest a link (its clearance check's,
+    :attr:`~springlab.design.arms.ArmDesign.clearance`), up to
     ``most`` poses, each labelled by what it shows."""
     q, labels = [design.q[0]], ["a workspace pose"]
     for spring, _, link, pose, gap in (design.clearance.rows if design.clearance is not None else ()):
