@@ -197,8 +197,6 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                   "<p>the energy $\\tfrac12 k|AB|^2$ as text</p>"  # TeX outside the math
                   '<p><span class="math">\\(\\\\tfrac12 k\\)</span></p>'  # a doubled backslash
                   '<p><span class="math">\\(\\frac{a}\\)</span></p>'  # TeX MathJax cannot parse
-                  '<div class="math">\\[' + " + ".join(f"k_{{{i}}} a_{{{i}}} b_{{{i}}}" for i in range(40))
-                  + ' = 0 \\tag{9}\\]</div>'  # a numbered display wider than the column
                   '<div class="cell_input"><pre style="white-space: pre">' + "x = 1; " * 200 + "</pre></div>"  # scrolls
                   '<div class="cell_output"><pre style="white-space: pre">' + "Claim(quantity=...) " * 120 + "</pre></div>"
                   '<a href="_sources/">.ipynb</a>'  # a download of a folder
@@ -221,20 +219,23 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                              '</figure><table class="coverage"><tr data-item="Eq. (1)"><td>Eq. (1)</td></tr>'
                              '<tr data-item="Eq. (2)"><td>Eq. (2)</td></tr></table>' + view.html())
     bare = page("bare.html", "<p>A chapter without its coverage table.</p>")
+    wide = page("wide.html", '<div class="math">\\[' + " + ".join(f"k_{{{i}}} a_{{{i}}} b_{{{i}}}" for i in range(40))
+                + ' = 0 \\tag{9}\\]</div>')  # a numbered display wider than the column
     (tmp_path / "ok.png").write_bytes((ROOT / "figures" / "lenzo2017_two_spring_arm" / "fig5_layouts.png").read_bytes())
     items = ["Eq. (1)", "Eq. (2)"]
-    result = site.browser_check([broken, good, bare], numbered=["broken.html", "good.html"],
+    result = site.browser_check([broken, good, bare, wide], numbered=["broken.html", "good.html"],
                                 captioned=["broken.html", "good.html"],
                                 covered={"broken.html": items, "good.html": items, "bare.html": items},
                                 prose=["broken.html", "good.html"])
     assert result["bare.html"] == ["no coverage table of the paper's items"]
+    assert any("an equation tag outside the column (a numbered display" in p for p in result["wide.html"])
     problems = "\n".join(result["broken.html"])
     for expected in ("raw Markdown table", "TeX left as text: ", "doubled backslash", "could not parse",
                      "px wide in a 600 px column", "points to a folder", "no numbered equation",
                      "no numbered caption: a figure with no caption", "no numbered caption: a caption with no number",
                      "a paper item missing from the coverage table: Eq. (2)",
                      "a 3-D view that did not draw: a tetrahedron", "a 3-D view that did not draw: a view from a network",
-                     "an equation tag outside the column (a numbered display", "a code cell that scrolls sideways: x = 1;",
+                     "a code cell that scrolls sideways: x = 1;",
                      "an internal name in the prose: expand_gravity_energy",
                      "an internal name in the prose: arms/paper000_arm.toml", "does for the issue, see",
                      "see 000 Table",
@@ -302,7 +303,7 @@ def test_each_chapter_defines_its_statuses_above_its_first_claims_table(built):
 
 def test_the_glossary_defines_the_routes_and_links_the_statuses(built):
     page = (built / "glossary.html").read_text()
-    assert all(f"Route {k}." in page for k in (1, 2, 3)) and 'href="report.html"' in page
+    assert all(f'id="term-Route-{k}"' in page for k in (1, 2, 3)) and 'href="report.html' in page
     assert 'href="glossary.html"' in (built / "index.html").read_text()  # in the book's table of contents
 
 

@@ -356,7 +356,7 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
                 problems.append(f"{math['errors']} equation(s) MathJax could not parse")
             problems += [f"TeX with a doubled backslash (a command read as a line break): {t}" for t in math["doubled"]]
             _wait(driver, "return Array.from(document.querySelectorAll('.springlab-view3d'))"
-                          ".every(v => v.querySelector('canvas'))", 20)  # the 3-D views draw once plotly.js loads
+                          ".every(v => v.querySelector('canvas') || v.dataset.failed)", 20)  # drawn once plotly.js loads
             reader = driver.execute_script(_READER)
             problems += [f"a raw Markdown table in a paragraph: {t}" for t in reader["pipes"]]
             problems += [f"TeX left as text: {t}" for t in reader["leaks"]]

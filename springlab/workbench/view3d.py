@@ -114,7 +114,10 @@ class ArmView:
             f"var src='_static/{PLOTLY_JS}';"
             "var all=window.__springlabViews=window.__springlabViews||{};var q=all[src]=all[src]||[];q.push(draw);"
             "if(q.length>1)return;var s=document.createElement('script');s.src=src;"
-            "s.onload=function(){q.forEach(function(f){f();});};document.head.appendChild(s);})();</script>")
+            "s.onload=function(){q.forEach(function(f){f();});};"
+            "s.onerror=function(){document.querySelectorAll('.springlab-view3d').forEach(function(v){"
+            "if(!v.querySelector('canvas'))v.dataset.failed='plotly.js did not load';});};"
+            "document.head.appendChild(s);})();</script>")
 
     def _repr_html_(self) -> str:
         return self.html()
