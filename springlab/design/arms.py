@@ -39,7 +39,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from springlab import _checks
-from springlab.design.audit import Audit
+from springlab.design.audit import AUDIT_SAMPLES, Audit
 from springlab.design.buildable import (
     COIL_COLUMNS,
     ENDURANCE_CYCLES,
@@ -834,13 +834,14 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                  max_stiffness: float = MAX_STIFFNESS, material: str = "auto",
                  pulley_radius: float | None = 0.0, tag: str = "S", margin: float | None = None,
                  collisions: bool = True, layout: str = "two-point", share: float | None = None,
-                 cable=None) -> ArmDesign:
+                 cable=None, audit_samples: int = AUDIT_SAMPLES) -> ArmDesign:
     """Springs for an arm of the general model over its workspace (:func:`workspace_ranges`): its
     structure (:func:`~springlab.design.structure.structure`); the exact planar springs where its loaded joints form a planar
     chain (:func:`~springlab.design.structure.planar_springs`), else the best springs (:func:`~springlab.design.search.best_springs`, fitted on
     ``fit_poses`` poses); their realisation (:func:`~springlab.design.realise.realise_springs`); all checked by route 2 on
-    ``samples`` other random poses of the workspace, then re-checked on an independent sample
-    (:class:`~springlab.design.audit.Audit`). Its springs are named ``tag`` and a number (S1, S2, ...).
+    ``samples`` other random poses of the workspace, then re-checked on an independent sample of
+    ``audit_samples`` poses (:class:`~springlab.design.audit.Audit`; a quick run may take fewer). Its springs
+    are named ``tag`` and a number (S1, S2, ...).
 
     An arm with collision geometry (a URDF read with its shapes) is designed over its free workspace
     (:class:`~springlab.design.collision.Sampler`: no two links in collision, none below the mounting
@@ -875,6 +876,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     if not (isinstance(tag, str) and tag.isalpha() and tag.isupper()):
         raise SpringlabError(f"tag = {tag!r}: give capital letters, e.g. 'S' (springs S1, S2, ...) or 'P'")
     samples = _checks.count("samples", samples, least=1)
+    audit_samples = _checks.count("audit_samples", audit_samples, least=100)
     sized = pulley_radius is None  # the pulleys sized to their cables
     if not sized:
         _check_pulley(model, pulley_radius)
@@ -974,7 +976,8 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     kept = [m for m, r in enumerate(realised) if r is not None]
     realised, coils, kinds, origins = (tuple(v[m] for m in kept) for v in (realised, coils, kinds, origins))
     changes = realisation_changes(model, ideal, realised, kinds, origins)
-    audit = Audit.of(model, ranges, {"ideal": ideal, "realised": realised}, check, seed, sampler=sampler)
+    audit = Audit.of(model, ranges, {"ideal": ideal, "realised": realised}, check, seed, samples=audit_samples,
+                     sampler=sampler)
     check = np.vstack([check, audit.worst])  # the notes and tables report on the audit's worst poses too
     gravity = np.max(np.abs(gravity_torques(model, check)), axis=0)
     left = np.max(np.abs(joint_torques(model, ideal, check)), axis=0)

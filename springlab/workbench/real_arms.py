@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab.design.arms import ArmDesign, design_model, ends_outside
+from springlab.design.audit import AUDIT_SAMPLES
 from springlab.design.hardware import balanced_body, coil_bound
 from springlab.energy import geometry, simulation
 from springlab.model.mjcf import to_mjcf
@@ -124,12 +125,14 @@ def away_from_lead_lines(design: ArmDesign) -> np.ndarray:
 
 
 def study(label: str, *, samples: int = 2000, fit_poses: int = 300, sim_poses: int = 3, seed: int = 1,
-          payload: float | None = None, pulley_radius: float = PULLEY) -> ArmStudy:
+          payload: float | None = None, pulley_radius: float = PULLEY, audit_samples: int = AUDIT_SAMPLES) -> ArmStudy:
     """Design springs for a robot of :data:`~springlab.model.robots.ROBOTS` (the realised ones over
-    pulleys of ``pulley_radius``, m) and check them against exudyn, Pinocchio and MuJoCo."""
+    pulleys of ``pulley_radius``, m; the peaks re-checked on ``audit_samples`` independent poses) and check
+    them against exudyn, Pinocchio and MuJoCo."""
     model = load_robot(label, payload=payload)
     start = time.perf_counter()
-    design = design_model(model, samples=samples, fit_poses=fit_poses, seed=seed, pulley_radius=pulley_radius)
+    design = design_model(model, samples=samples, fit_poses=fit_poses, seed=seed, pulley_radius=pulley_radius,
+                          audit_samples=audit_samples)
     seconds = time.perf_counter() - start
     reference = pinocchio_gravity(robot_urdf(label).read_text(), model, design.q)
     ours = geometry.gravity_torques(model, design.q)
@@ -169,7 +172,8 @@ RATED_PAYLOADS = {
 
 
 def payload_study(label: str, *, nominal: float | None = None, masses: int = 11, samples: int = 2000,
-                  fit_poses: int = 300, seed: int = 1, design: ArmDesign | None = None):
+                  fit_poses: int = 300, seed: int = 1, design: ArmDesign | None = None,
+                  audit_samples: int = AUDIT_SAMPLES):
     """A robot's design made for ``nominal`` kg (default half its rated payload,
     :data:`RATED_PAYLOADS`) at its tip frame, studied from 0 to the rated payload at ``masses``
     payloads (:func:`springlab.design.payload.payload_study`), realised over :data:`PULLEY` pulleys.
@@ -182,7 +186,7 @@ def payload_study(label: str, *, nominal: float | None = None, masses: int = 11,
     nominal = 0.5 * rated if nominal is None else nominal
     if design is None:
         design = design_model(load_robot(label, payload=nominal), samples=samples, fit_poses=fit_poses, seed=seed,
-                              pulley_radius=PULLEY, tag="P")
+                              pulley_radius=PULLEY, tag="P", audit_samples=audit_samples)
     grid = np.union1d(np.linspace(0.0, rated, masses), [nominal, min(nominal + 1.0, rated)])
     return study_payload(design, ROBOTS[label].tip, grid, nominal=nominal)
 
@@ -329,13 +333,14 @@ def record_payload(claims, study, label: str) -> None:
 
 
 def belt_design(label: str, *, samples: int = 2000, seed: int = 1, pulley_radius: float | None = None,
-                layout: str = "belts") -> ArmDesign:
+                layout: str = "belts", audit_samples: int = AUDIT_SAMPLES) -> ArmDesign:
     """A robot of :data:`~springlab.model.robots.ROBOTS` with the belt layout
     (:func:`springlab.design.layouts.belt_layout`: one spring per loaded link on a level frame a belt carries
     to its joint) or, ``layout='pseudobases'``, paper 001's RSSR pseudobases
     (:func:`springlab.design.pseudobases.pseudobase_layout`: any arm), realised over pulleys of
     ``pulley_radius`` (m; None: each sized to its cable)."""
-    return design_model(load_robot(label), samples=samples, seed=seed, pulley_radius=pulley_radius, layout=layout)
+    return design_model(load_robot(label), samples=samples, seed=seed, pulley_radius=pulley_radius, layout=layout,
+                        audit_samples=audit_samples)
 
 
 def mujoco_agreement(design: ArmDesign, poses: int = 200) -> tuple[float, float]:
