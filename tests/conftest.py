@@ -36,3 +36,16 @@ def ur5_two_point():
     return shared("ur5-two-point", lambda: design_model(load_robot("UR5"), samples=300, fit_poses=100,
                                                         pulley_radius=0.005, collisions=False))
 
+
+
+@pytest.fixture(scope="session")
+def pendulum_belts():
+    """The double pendulum with belt springs: each link too short for its coil, or its pulley too near the table,
+    so both coils ride on brackets of the level frame; built once per test run and shared by every worker."""
+    from quickruns import shared
+
+    from springlab.design.arms import design_model
+    from springlab.model.robots import load_robot
+
+    return shared("pendulum-belts", lambda: design_model(load_robot("double pendulum"), pulley_radius=None,
+                                                         layout="belts", samples=600))

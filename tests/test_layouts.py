@@ -271,10 +271,9 @@ def test_the_realisation_turns_a_spring_for_the_margin_it_is_given():
 
 
 @pytest.fixture(scope="module")
-def pendulum():
-    """The double pendulum with belt springs: each link too short for its coil, or its pulley too near the table,
-    so both coils ride on brackets of the level frame."""
-    return design_model(load_robot("double pendulum"), pulley_radius=None, layout="belts", samples=600)
+def pendulum(pendulum_belts):
+    """The double pendulum with belt springs (tests/conftest.py)."""
+    return pendulum_belts
 
 
 def test_a_pulley_at_the_post_wraps_a_quarter_turn_as_route_2_computes_it():

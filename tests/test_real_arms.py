@@ -71,8 +71,8 @@ def test_the_panda_meets_its_targets():
     np.testing.assert_allclose(design.removed("realised")[1:4], removed[1:4], atol=1e-6)  # point pulleys: as ideal
 
 
-def test_realised_springs_are_wound_springs():
-    design = design_model(load_robot("UR5"))
+def test_realised_springs_are_wound_springs(ur5_two_point):
+    design = ur5_two_point  # built once per test run (tests/conftest.py)
     assert sorted(set(design.origins)) == list(range(len(design.ideal)))  # each realised, some side by side
     for built, kind in zip(design.realised, design.kinds, strict=True):
         assert built.free_length > 0 and built.initial_tension > 0
@@ -92,7 +92,7 @@ def test_workspace_ranges_stay_within_the_limits():
         parse_workspace("panda_joint2=-30")
 
 
-def test_the_cli_writes_the_json_contract(tmp_path, capsys):
+def test_the_cli_writes_the_json_contract(tmp_path, capsys, ur5_two_point):
     out = tmp_path / "ur5.json"
     # flagged (exit 3): the realised springs run through the links, which the JSON says, spring by spring
     assert main(["design", str(robot_urdf("UR5")), "--layout", "two-point", "--json", str(out), "--quiet",
@@ -118,7 +118,7 @@ def test_the_cli_writes_the_json_contract(tmp_path, capsys):
         n = s["block_ratio"]  # over a block the coil pulls n times the cable at n^2 times its rate
         assert s["cable_offset"] == pytest.approx(s["coil_free_length"] - s["initial_tension"] / (n * s["k"]), rel=1e-6)
     # the structure table and the torque table report on the same poses: the same peaks
-    design = design_model(load_robot("UR5"), samples=300)
+    design = ur5_two_point
     peaks = np.max(np.abs(geometry.gravity_torques(design.model, design.q)), axis=0)
     np.testing.assert_allclose(design.structure.peak, peaks, rtol=1e-12)
 

@@ -8,16 +8,14 @@ import json
 import numpy as np
 import pytest
 
-from springlab.design.arms import design_model
 from springlab.design.hardware import spring_pieces
 from springlab.errors import SpringlabError
-from springlab.model.robots import load_robot
 from springlab.workbench import view3d
 
 
 @pytest.fixture(scope="module")
-def pendulum():
-    return design_model(load_robot("double pendulum"), pulley_radius=None, layout="belts", samples=300)
+def pendulum(pendulum_belts):
+    return pendulum_belts  # the double pendulum's belt design (tests/conftest.py)
 
 
 def test_the_view_draws_every_shape_and_piece_at_every_pose(pendulum):
