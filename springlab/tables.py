@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from springlab.errors import SpringlabError
 
-__all__ = ["Table", "markdown_table"]
+__all__ = ["Table", "Note", "markdown_table"]
 
 
 def _cell(value) -> str:
@@ -71,3 +71,34 @@ class Table:
 
     def __str__(self) -> str:
         return self.markdown()
+
+    def titled(self, title: str) -> Note:
+        """The table under a bold ``title``, as one Markdown output (a printed title and a displayed table
+        would come apart in the book, which gathers a cell's printed lines together)."""
+        return Note(f"**{title}**\n\n{self.markdown()}")
+
+
+class Note:
+    """Markdown text a cell displays where it stands: a title over a table, or a list.
+
+    >>> print(Note.bullets("status", ["a coil too long", "a hook past its allowable"]))
+    **status**:
+    <BLANKLINE>
+    - a coil too long
+    - a hook past its allowable
+    """
+
+    def __init__(self, text: str):
+        self.text = str(text)
+
+    @classmethod
+    def bullets(cls, title: str, items, empty: str = "none") -> Note:
+        """``title`` and the ``items`` as a list (``empty`` where there are none)."""
+        items = [str(i) for i in items]
+        return cls(f"**{title}**: {empty}" if not items else f"**{title}**:\n\n" + "\n".join(f"- {i}" for i in items))
+
+    def _repr_markdown_(self) -> str:
+        return self.text
+
+    def __str__(self) -> str:
+        return self.text

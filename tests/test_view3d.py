@@ -35,8 +35,8 @@ def test_the_view_draws_every_shape_and_piece_at_every_pose(pendulum):
     buttons = fig["layout"]["updatemenus"][0]["buttons"]
     assert [b["label"] for b in buttons] == ["whole arm", *(f"{n} close" for n in pendulum.realised_names)]
     for name, button in zip(pendulum.realised_names, buttons[1:], strict=True):  # the close-up frames its spring
-        ranges = [button["args"][0][f"scene.{ax}axis.range"] for ax in "xyz"]
-        ends = np.concatenate([[pc.a[0], pc.b[0]] for pc in pieces if pc.name.startswith(name + " ")])
+        ranges = [button["args"][0][f"scene.{ax}axis.range"] for ax in "xyz"]  # at every pose of the slider
+        ends = np.concatenate([np.concatenate([pc.a, pc.b]) for pc in pieces if pc.name.startswith(name + " ")])
         assert all(lo < ends[:, k].min() and ends[:, k].max() < hi for k, (lo, hi) in enumerate(ranges))
     html = view.html()
     assert "_static/plotly.min.js" in html and "http" not in html.split("</div>", 1)[1]  # no network
@@ -59,6 +59,9 @@ def test_plotly_js_is_the_packaged_file():
 def test_the_design_view_shows_where_each_spring_comes_nearest_a_link(pendulum):
     view = view3d.design_view(pendulum, title="double pendulum")
     labels = [f["name"] for f in view.figure["frames"]]
+    ticks = [step["label"] for step in view.figure["layout"]["sliders"][0]["steps"]]
+    assert ticks[0] == "workspace" and all(t == lab.split(" nearest")[0] + ": " + lab.split("(")[1].rstrip(")")
+                                           for t, lab in zip(ticks[1:], labels[1:], strict=True))  # short ticks
     assert labels[0] == "a workspace pose" and view.element == "view-doublependulum" and len(labels) > 1
     nearest = {row[0]: row for row in pendulum.clearance.rows}
     for label in labels[1:]:  # each names a spring, the link it comes nearest and by how much

@@ -30,6 +30,7 @@ import pkgutil
 import re
 import shutil
 from collections import Counter
+from dataclasses import replace
 from pathlib import Path
 
 from docutils.nodes import make_id
@@ -268,7 +269,9 @@ def coverage_markdown(stem: str, notebook: dict, records: list[dict]) -> str:
     key = PAPERS.get(stem, {}).get("key")
     if not key:
         return ""
-    items = coverage.inventory(key)
+    names = paper_names(list(PAPERS))
+    items = tuple(replace(i, what=prose.name_papers(i.what, key, names), note=prose.name_papers(i.note, key, names))
+                  for i in coverage.inventory(key))  # another paper by its authors and year
     by_item = coverage.concerning(items, records, key)
     titles, _ = sections(notebook)
     anchors = {_section_number(t, k)[1:]: make_id(section_label(stem, k)) for k, t in enumerate(titles) if k}

@@ -207,14 +207,14 @@ def how(item: Item, claims: list[dict]) -> str:
 
 
 def verdict(item: Item, claims: list[dict]) -> str:
-    """The item's verdict: its claims' statuses with their counts ("reproduced (6), rounding (1)"), or how the
+    """The item's verdict: its claims' statuses with their counts ("reproduced (6 claims); rounding"), or how the
     chapter treats it."""
     from springlab.workbench.claims import REPORT_COLUMNS, report_column
 
     if not claims:
         return item.how
     counts = Counter(report_column(r) for r in claims)
-    return ", ".join(f"{status} ({counts[status]})" if counts[status] > 1 else status
+    return "; ".join(f"{status} ({counts[status]} claims)" if counts[status] > 1 else status
                      for status in REPORT_COLUMNS if counts[status])
 
 

@@ -127,10 +127,11 @@ def _round(a) -> list:
     return np.round(np.asarray(a, dtype=float), 3).tolist()
 
 
-def arm_view(design, q, *, labels=None, title: str = "", element: str = "view") -> ArmView:
+def arm_view(design, q, *, labels=None, short_labels=None, title: str = "", element: str = "view") -> ArmView:
     """The 3-D view of ``design`` (:class:`~springlab.design.arms.ArmDesign` with link shapes) at the
-    poses ``q`` (k, n) rad, a slider step each (``labels``: their names), with buttons for the whole arm
-    and a close-up of each spring at the first pose.
+    poses ``q`` (k, n) rad, a slider step each (``labels``: their names; ``short_labels``: what the slider
+    prints for each, the names by default), with buttons for the whole arm and a close-up of each spring
+    (its box over every pose, so that it frames the spring wherever the slider stands).
 
     :raises SpringlabError: when the arm has no link shapes or ``q`` is malformed
     """
@@ -141,6 +142,7 @@ def arm_view(design, q, *, labels=None, title: str = "", element: str = "view") 
         raise SpringlabError(f"{model.name!r} has no link shapes to draw: a 3-D view needs the URDF's geometry")
     q = model.check_q(np.atleast_2d(q))
     labels = list(labels) if labels is not None else [f"pose {k + 1}" for k in range(len(q))]
+    shorts = list(short_labels) if short_labels is not None else labels  # what the slider's ticks print
     R, o = body_frames(model, q)
     shapes = [(b, s.frame, *found) for b, solids in enumerate(model.solids) for s in solids
               if (found := _triangles(s)) is not None]
@@ -179,16 +181,16 @@ def arm_view(design, q, *, labels=None, title: str = "", element: str = "view") 
     whole = {f"scene.{ax}axis.range": [float(centre[k] - half), float(centre[k] + half)]
              for k, ax in enumerate("xyz")}
     buttons = [{"label": "whole arm", "method": "relayout", "args": [whole]}]
-    for name in design.realised_names:
-        ends = np.array([[piece.a[0], piece.b[0]] for piece in pieces if piece.name.split(" ")[0] == name])
-        ends = ends.reshape(-1, 3)
+    for name in design.realised_names:  # the box that holds the spring at every pose of the slider
+        ends = np.concatenate([np.concatenate([piece.a, piece.b]) for piece in pieces
+                               if piece.name.split(" ")[0] == name])
         c, h = (ends.min(axis=0) + ends.max(axis=0)) / 2, 0.6 * float(np.max(np.ptp(ends, axis=0))) + 0.03
         buttons.append({"label": f"{name} close", "method": "relayout",
                         "args": [{f"scene.{ax}axis.range": [float(c[k] - h), float(c[k] + h)]
                                   for k, ax in enumerate("xyz")}]})
-    steps = [{"label": label, "method": "animate",
+    steps = [{"label": short, "method": "animate",
               "args": [[label], {"mode": "immediate", "frame": {"duration": 0, "redraw": True},
-                                 "transition": {"duration": 0}}]} for label in labels]
+                                 "transition": {"duration": 0}}]} for label, short in zip(labels, shorts, strict=True)]
     axis = {"title": {"text": ""}, "showbackground": False}
     layout = {"title": {"text": title}, "margin": {"l": 0, "r": 0, "t": 40, "b": 0},
               "scene": {"aspectmode": "cube", "camera": {"eye": {"x": 1.1, "y": 1.1, "z": 0.7}}, **{f"{ax}axis": {**axis, "title": {"text": f"{ax} (m)"},
@@ -202,17 +204,18 @@ def arm_view(design, q, *, labels=None, title: str = "", element: str = "view") 
     return ArmView({"data": data, "layout": layout, "frames": frames, "config": config}, element, title)
 
 
-def design_view(design, *, title: str = "", element: str | None = None, most: int = 5) -> ArmView:
+def design_view(design, *, title: str = "", element: str | None = None, most: int = 9) -> ArmView:
     """:func:`arm_view` of ``design`` at the poses a reader wants to see: the first of its workspace, then the
     pose where each spring comes nearest a link (its clearance check's,
     :attr:`~springlab.design.arms.ArmDesign.clearance`), up to
     ``most`` poses, each labelled by what it shows."""
-    q, labels = [design.q[0]], ["a workspace pose"]
+    q, labels, shorts = [design.q[0]], ["a workspace pose"], ["workspace"]
     for spring, _, link, pose, gap in (design.clearance.rows if design.clearance is not None else ()):
         if len(q) >= most:
             break
         if not any(np.allclose(design.q[pose], other) for other in q):
             q.append(design.q[pose])
             labels.append(f"{spring} nearest {link} ({1e3 * gap:.0f} mm)")
+            shorts.append(f"{spring}: {1e3 * gap:.0f} mm")
     element = element or "view-" + "".join(ch for ch in (title or design.model.name) if ch.isalnum()).lower()
-    return arm_view(design, np.asarray(q), labels=labels, title=title, element=element)
+    return arm_view(design, np.asarray(q), labels=labels, short_labels=shorts, title=title, element=element)
