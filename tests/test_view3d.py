@@ -38,7 +38,10 @@ def test_the_view_draws_every_shape_and_piece_at_every_pose(pendulum):
         ranges = [button["args"][0][f"scene.{ax}axis.range"] for ax in "xyz"]  # at every pose of the slider
         ends = np.concatenate([np.concatenate([pc.a, pc.b]) for pc in pieces if pc.name.startswith(name + " ")])
         assert all(lo < ends[:, k].min() and ends[:, k].max() < hi for k, (lo, hi) in enumerate(ranges))
+    for name, traces in fig["springs"].items():  # the page's close-up reads these traces at the pose shown
+        assert [pieces[t - solids].name.split(" ")[0] for t in traces] == [name] * len(traces) and traces
     html = view.html()
+    assert "plotly_buttonclicked" in html
     assert "_static/plotly.min.js" in html and "http" not in html.split("</div>", 1)[1]  # no network
     assert json.loads(html.split("var fig=", 1)[1].split(";function draw", 1)[0])["frames"]
 

@@ -108,8 +108,13 @@ class ArmView:
             "(<code>make figures</code>, then <code>build/site/springlab_real_arms.html</code>).</div>"
             "<script>(function(){var el=document.getElementById(" + json.dumps(self.element) + ");"
             "var fig=" + figure + ";"
+            "function close(e){var t=(fig.springs||{})[e.button.label.split(' ')[0]];if(!t)return;"
+            "var lo=[1e9,1e9,1e9],hi=[-1e9,-1e9,-1e9];t.forEach(function(i){['x','y','z'].forEach(function(a,k){"
+            "el.data[i][a].forEach(function(v){lo[k]=Math.min(lo[k],v);hi[k]=Math.max(hi[k],v);});});});"
+            "var h=0.6*Math.max(hi[0]-lo[0],hi[1]-lo[1],hi[2]-lo[2])+0.03,u={};['x','y','z'].forEach(function(a,k){"
+            "var c=(lo[k]+hi[k])/2;u['scene.'+a+'axis.range']=[c-h,c+h];});Plotly.relayout(el,u);}"
             "function draw(){el.textContent='';Plotly.newPlot(el,fig.data,fig.layout,fig.config)"
-            ".then(function(){return Plotly.addFrames(el,fig.frames);});}"
+            ".then(function(){el.on('plotly_buttonclicked',close);return Plotly.addFrames(el,fig.frames);});}"
             "if(window.Plotly){draw();return;}"
             f"var src='_static/{PLOTLY_JS}';"
             "var all=window.__springlabViews=window.__springlabViews||{};var q=all[src]=all[src]||[];q.push(draw);"
@@ -130,8 +135,9 @@ def _round(a) -> list:
 def arm_view(design, q, *, labels=None, short_labels=None, title: str = "", element: str = "view") -> ArmView:
     """The 3-D view of ``design`` (:class:`~springlab.design.arms.ArmDesign` with link shapes) at the
     poses ``q`` (k, n) rad, a slider step each (``labels``: their names; ``short_labels``: what the slider
-    prints for each, the names by default), with buttons for the whole arm and a close-up of each spring
-    (its box over every pose, so that it frames the spring wherever the slider stands).
+    prints for each, the names by default), with buttons for the whole arm and a close-up of each spring: in
+    the page, the box of the spring at the pose the slider shows (its pieces' traces, ``springs`` of the
+    figure); without the page's script, its box over every pose.
 
     :raises SpringlabError: when the arm has no link shapes or ``q`` is malformed
     """
@@ -201,7 +207,10 @@ def arm_view(design, q, *, labels=None, short_labels=None, title: str = "", elem
                                "buttons": buttons, "showactive": False}],
               "sliders": [{"steps": steps, "currentvalue": {"prefix": "pose: "}, "x": 0.05, "len": 0.9}]}
     config = {"displaylogo": False, "responsive": True, "modeBarButtonsToRemove": ["toImage"]}
-    return ArmView({"data": data, "layout": layout, "frames": frames, "config": config}, element, title)
+    springs = {name: [len(shapes) + k for k, piece in enumerate(pieces) if piece.name.split(" ")[0] == name]
+               for name in design.realised_names}  # each spring's traces: its close-up at the pose shown
+    return ArmView({"data": data, "layout": layout, "frames": frames, "config": config, "springs": springs},
+                   element, title)
 
 
 def design_view(design, *, title: str = "", element: str | None = None, most: int = 9) -> ArmView:
