@@ -43,7 +43,7 @@ def test_the_view_draws_every_shape_and_piece_at_every_pose(pendulum):
     html = view.html()
     assert "plotly_buttonclicked" in html
     assert "_static/plotly.min.js" in html and "http" not in html.split("</div>", 1)[1]  # no network
-    assert json.loads(html.split("var fig=", 1)[1].split(";function draw", 1)[0])["frames"]
+    assert json.loads(html.split("var fig=", 1)[1].split(";function close", 1)[0])["frames"]
 
 
 def test_an_arm_without_shapes_is_refused(pendulum):
