@@ -130,13 +130,13 @@ def test_a_rebalanced_spring_left_with_nothing_is_left_out(monkeypatch):
 
 
 def test_every_reported_peak_holds_on_an_independent_sample(so101):
-    # a design checked on only 40 random poses: the audit's worst poses must still bound what 20,000
+    # a design checked on only 40 random poses: the audit's worst poses must still bound what 10,000
     # other random poses (another seed) find, for gravity, the ideal and the realised springs
     design = design_model(load_robot("SO-101"), samples=40, fit_poses=60, max_springs=3, pulley_radius=0.005)
     assert design.audit.samples == AUDIT_SAMPLES and len(design.q) > 40
     ranges = workspace_ranges(design.model)
     rng = np.random.default_rng(12345)  # the same workspace (free of collisions), drawn anew
-    fresh = Sampler(design.model, ranges, rng).draw(20_000, rng)
+    fresh = Sampler(design.model, ranges, rng).draw(10_000, rng)
     own = design.q[:40]
     missed = False
     for springs in ((), design.ideal, design.realised):
