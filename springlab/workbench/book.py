@@ -223,8 +223,9 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
                else (f"no DOI (the text prints none; {paper['url']})" if paper.get("url")
                      else "no DOI (the text prints none)") if paper.get("key") else "")
         run = _run_time(notebooks[stem])
-        lines += [f"**{_authors(paper, names)} ({paper['year']})**, *{_md(paper['title'])}*. "
-                  f"{_md(paper.get('venue') or '')} {doi}", "",
+        year = f" ({paper['year']})" if paper.get("key") else ""  # springlab's own chapters: no paper's year
+        lines += [f"**{_authors(paper, names)}{year}**, *{_md(paper['title'])}*. "
+                  "; ".join(t for t in (_md(paper.get("venue") or ""), doi) if t), "",
                   f"- chapter: {{doc}}`{stem}`; run time {run:.1f} s" if run is not None else
                   f"- chapter: {{doc}}`{stem}`; run time unknown",
                   f"- claims: {_tally(claims.get(stem, []))}", ""]
@@ -344,7 +345,8 @@ def report_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, 
             k = where.get(r.get("cell"))  # None: recorded outside a kernel, or in no numbered cell
             made.append((f"{stem}.html#{make_id(section_label(stem, k))}", _section_number(titles[k], k))
                         if k is not None else None)
-        lines += ["", f"## {_authors(paper, names, stem)} ({paper.get('year', '')})", "",
+        year = f" ({paper['year']})" if paper.get("key") else ""
+        lines += ["", f"## {_authors(paper, names, stem)}{year}", "",
                   f"Chapter: {{doc}}`{stem}`.", "",
                   prose.link_html(html_table(records, made_in=made), paper.get("key"), names, labels)]
     return "\n".join(lines) + "\n"
