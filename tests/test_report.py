@@ -51,3 +51,14 @@ def test_a_broken_page_is_caught(tmp_path):
     assert len(problems) == 3
     assert any("missing.png" in p for p in problems) and any("gone.html" in p for p in problems)
     assert any("from the internet" in p for p in problems)
+
+
+def test_the_front_page_names_each_chapter_once_with_its_venue_and_doi():
+    from springlab.workbench import book
+
+    stems = list(book.CHAPTER_ORDER)
+    page = book.front_page(stems, {s: {"cells": [], "metadata": {}} for s in stems}, {})
+    lines = [line for line in page.splitlines() if line.startswith("**")]
+    assert len(lines) == len(stems)
+    assert any(line.endswith("*. Mechanical Sciences (2022); no DOI (the text prints none)") for line in lines)
+    assert not any("(2026)" in line for line in lines)  # springlab's own chapters carry no paper's year

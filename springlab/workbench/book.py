@@ -224,8 +224,8 @@ def front_page(stems: list[str], notebooks: dict[str, dict], claims: dict[str, l
                      else "no DOI (the text prints none)") if paper.get("key") else "")
         run = _run_time(notebooks[stem])
         year = f" ({paper['year']})" if paper.get("key") else ""  # springlab's own chapters: no paper's year
-        lines += [f"**{_authors(paper, names)}{year}**, *{_md(paper['title'])}*. "
-                  "; ".join(t for t in (_md(paper.get("venue") or ""), doi) if t), "",
+        where = "; ".join(t for t in (_md(paper.get("venue") or ""), doi) if t)  # the venue; its DOI
+        lines += [f"**{_authors(paper, names)}{year}**, *{_md(paper['title'])}*. {where}", "",
                   f"- chapter: {{doc}}`{stem}`; run time {run:.1f} s" if run is not None else
                   f"- chapter: {{doc}}`{stem}`; run time unknown",
                   f"- claims: {_tally(claims.get(stem, []))}", ""]
