@@ -121,7 +121,7 @@ def test_mujoco_holds_the_realised_belt_springs_as_route_2_does(ur5):
 
 def test_the_cli_designs_belts_and_refuses_what_it_cannot(tmp_path, capsys):
     out, bom = tmp_path / "ur5.json", tmp_path / "ur5-parts.csv"
-    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--samples", "300", "--bom", str(bom),
+    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--samples", "300", "--audit-samples", "2000", "--bom", str(bom),
                  "--quiet"]) == 0  # the default: auto
     assert "target 90 % reached" in capsys.readouterr().out.splitlines()[0]
     data = json.loads(out.read_text())

@@ -204,7 +204,7 @@ def test_the_cli_writes_both_models(tmp_path, capsys):
     out = tmp_path / "ur5.json"
     mjcf = tmp_path / "ur5_balanced.xml"
     assert main(["design", str(robot_urdf("UR5")), "--layout", "two-point", "--json", str(out), "--mjcf", str(mjcf),
-                 "--samples", "300", "--quiet"]) == 3  # flagged: the two-point springs run through the links
+                 "--samples", "300", "--audit-samples", "2000", "--quiet"]) == 3  # flagged: the two-point springs run through the links
     assert mjcf.exists() and (tmp_path / "ur5_balanced.realised.xml").exists()
     # the --json contract read alone rebuilds the realised springs over their pulleys: route 2 on them is
     # what MuJoCo holds with the realised file

@@ -117,7 +117,7 @@ def test_the_cli_designs_the_z1_on_pseudobases_and_writes_their_frames(tmp_path,
     # the default layout takes pseudobases where the loaded joints are no planar chain; the JSON names each
     # post's frame (a belt's across the parallel joints, RSSR modules across the wrist's yaw) and the modules
     out = tmp_path / "z1.json"
-    code = main(["design", str(robot_urdf("Z1")), "--tip", "link06", "--json", str(out), "--samples", "300",
+    code = main(["design", str(robot_urdf("Z1")), "--tip", "link06", "--json", str(out), "--samples", "300", "--audit-samples", "2000",
                  "--quiet"])
     assert code in (0, 3)  # passed, or flagged with its reasons (exit 3)
     data = json.loads(out.read_text())

@@ -96,7 +96,7 @@ def test_the_cli_writes_the_json_contract(tmp_path, capsys, ur5_two_point):
     out = tmp_path / "ur5.json"
     # flagged (exit 3): the realised springs run through the links, which the JSON says, spring by spring
     assert main(["design", str(robot_urdf("UR5")), "--layout", "two-point", "--json", str(out), "--quiet",
-                 "--samples", "300", "--pulley-radius", "0"]) == 3
+                 "--samples", "300", "--audit-samples", "2000", "--pulley-radius", "0"]) == 3
     printed = capsys.readouterr().out
     assert "exact: planar chain" in printed and "negative control" in printed
     data = json.loads(out.read_text())
@@ -294,3 +294,15 @@ def test_springs_the_target_does_without_are_dropped():
     assert dropped == 1 and which == [0] and np.array_equal(kept, x[:7]) and ratio < 1e-12
     _, _, which, dropped = _pruned(x[:7], [0], F, 0.5 * g, 5, 2, 0.1)  # half the gravity: spring 0 over-holds
     assert dropped == 0 and which == [0]  # without it, half the torque: above the target, so it stays
+
+
+def test_the_audit_sample_is_the_users_to_set_and_a_bad_one_is_refused(tmp_path, capsys):
+    from springlab.design.audit import AUDIT_SAMPLES
+
+    out = tmp_path / "ur5.json"
+    assert main(["design", str(robot_urdf("UR5")), "--json", str(out), "--audit-samples", "50"]) == 2
+    said = capsys.readouterr()
+    assert "--audit-samples" in said.err and "50" in said.err and not out.exists()  # one line, nothing written
+    with pytest.raises(SystemExit):
+        main(["design", "--help"])
+    assert f"(default {AUDIT_SAMPLES:,})" in " ".join(capsys.readouterr().out.split())  # the help's default is the code's

@@ -181,7 +181,7 @@ def test_the_cli_takes_package_dirs_and_refuses_a_missing_one(tmp_path, capsys):
     share = robots_folder().parent.parent
     assert main(["design", str(robot_urdf("UR5")), "--tip", "wrist_3_link", "--package-dir", str(share),
                  "--reach", "0", "--json", str(out), "--quiet", "--pulley-radius", "0",
-                 "--samples", "300"]) == 3  # flagged: not clear
+                 "--samples", "300", "--audit-samples", "2000"]) == 3  # flagged: not clear
     data = json.loads(out.read_text())
     assert data["inputs"]["package_dirs"] == [str(share)] and data["inputs"]["reach_m"] == 0.0
     flags = data["status"]["flags"]

@@ -101,6 +101,9 @@ def _check_arguments(args) -> None:
         _checks.count("--samples", args.samples, least=100, why=": the poses every share is checked on")
     if args.fit_poses is not None:
         _checks.count("--fit-poses", args.fit_poses, least=20, why=": the best springs' fit needs a few per unknown")
+    if args.audit_samples is not None:
+        _checks.count("--audit-samples", args.audit_samples, least=100,
+                      why=": the independent poses the peaks are re-checked on")
     _checks.positive("--time-limit", args.time_limit, unit="s")
     from springlab.model.armfile import parse_quantity
 
@@ -310,7 +313,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     design = design_model(model, workspace=workspace, seed=args.seed + 1, samples=args.samples or 2000,
                           fit_poses=args.fit_poses or 300, material=args.material, reach=reach,
                           pulley_radius=args.pulley_radius, margin=args.margin, layout=args.layout, share=args.share,
-                          cable=args.cable)
+                          cable=args.cable, **({"audit_samples": args.audit_samples} if args.audit_samples else {}))
     seconds = time.perf_counter() - started
     tip = (f"the tip {args.tip!r} (fixed to {model.bodies[-1]!r}, the last body a joint moves)"
            if args.tip and args.tip != model.bodies[-1] else repr(model.bodies[-1]))
@@ -714,8 +717,11 @@ def main(argv=None) -> int:
                         "offers what fewer springs reach")
     p.add_argument("--samples", type=int, default=None,
                    help="a URDF arm, on the general model: the random poses of the workspace every torque, share and "
-                        "clearance is checked on (default 2000; an independent 20,000 re-check the peaks either way); "
+                        "clearance is checked on (default 2000; --audit-samples more re-check the peaks either way); "
                         "fewer is faster")
+    p.add_argument("--audit-samples", type=int, default=None,
+                   help="a URDF arm: the independent random poses every peak is re-checked on, with a local search from "
+                        "the worst (default 20,000); fewer is faster")
     p.add_argument("--fit-poses", type=int, default=None,
                    help="a URDF arm, on the general model: the poses the best springs are fitted on where the loaded "
                         "joints are not a planar chain (default 300)")
