@@ -582,8 +582,7 @@ class ArmDesign:
 
         names = [self.model.joints[i] for i in self.structure.loaded]
         removed = self.removed_by(self.realised) if self.realised else np.zeros(len(names))
-        peak = np.asarray(self.structure.peak)
-        light = [self.model.joints[i] for i in self.structure.loaded if peak[i] < SHARE * float(np.max(peak))]
+        light = [self.model.joints[i] for i in sorted(self._light())]
         missed = [n for n, v in zip(names, removed, strict=True) if not v >= 100 * share - 1e-9 and n not in light]
         return {"share": share, "reached": not missed,
                 "removed_percent": {n: float(v) for n, v in zip(names, removed, strict=True)}, "missed": missed,
@@ -680,9 +679,16 @@ class ArmDesign:
         arm = self.designed_for
         designed = np.max(np.abs(joint_torques(arm, self.ideal, self.q)), axis=0)
         scaled = np.max(np.abs(joint_torques(arm, [s.scaled(factor) for s in self.ideal], self.q)), axis=0)
-        peak = np.asarray(self.structure.peak)
+        light = self._light()
         return {self.model.joints[j]: (float(designed[j]), float(scaled[j])) for j in self.structure.loaded
-                if peak[j] >= SHARE * float(np.max(peak)) or abs(scaled[j] - designed[j]) > 1e-12 * max(1.0, designed[j])}
+                if j not in light or abs(scaled[j] - designed[j]) > 1e-12 * max(1.0, designed[j])}
+
+    def _light(self) -> set:
+        """The loaded joints (indices) whose gravity peak is below :data:`~springlab.design.layouts.SHARE` of
+        the largest: those a layout may leave out, which :meth:`reached` and :meth:`control_by_joint` set
+        apart."""
+        peak = np.asarray(self.structure.peak)
+        return {i for i in self.structure.loaded if peak[i] < SHARE * float(np.max(peak))}
 
     @property
     def designed_for(self) -> RevoluteChain:
