@@ -498,7 +498,8 @@ class ArmDesign:
         would break in fatigue (:meth:`~springlab.design.buildable.ExtensionSpring.fatigue`); a cable spring with
         no stocked cable for its pull, a
         cable pulled past its working load, a pulley smaller than its cable's D/d asks for, a coil longer
-        in service than its link has between its pulley and its joint (it would reach past the joint)."""
+        in service than its link has between its pulley and its joint (it would reach past the joint); a
+        stock part stretched past its catalogue's largest extension or load at a pose of :attr:`q`."""
 
         out = []
         R, o = body_frames(self.model, self.q)
@@ -508,6 +509,13 @@ class ArmDesign:
             except GeometryError:
                 longest = float(fit.span[1])  # no line of action at some pose: flagged by the balance checks
             stretched = float(fit.coil_length(longest)) if kind.startswith("cable") else longest
+            part = getattr(fit.coil, "part", None)
+            if part is not None:  # a stock part: the vendor's limits, at the poses checked
+                pull = float(fit.coil.force(max(stretched, part.free_length)))
+                if stretched > part.max_extended_length * (1 + 1e-9) or pull > part.max_load * (1 + 1e-9):
+                    out.append(f"the realised spring {name}'s stock part {part.part_number} is stretched to "
+                               f"{1e3 * stretched:.1f} mm at {pull:.1f} N, past its catalogue's "
+                               f"{1e3 * part.max_extended_length:.1f} mm and {part.max_load:.1f} N")
             stress = float(fit.coil.stress(fit.coil.force(max(stretched, fit.coil.free_length))))
             if longest > fit.span[1] and stress > fit.coil.allowable_stress:
                 out.append(f"the realised spring {name}'s coil is stretched to {1e3 * stretched:.1f} mm at a pose of the "
@@ -629,6 +637,27 @@ class ArmDesign:
             rows.append((p.name, p.kind, p.link, f"{1e3 * p.mass:.0f}", size, loads))
         return Table(["part", "kind", "rides on", "mass (g)", "sizes (mm)", "largest loads"], rows)
 
+    def stock_table(self) -> Table:
+        """Each realised spring's stock part (:mod:`springlab.design.catalogue`), or why it is wound to order: the
+        part number, how many side by side and over which block, the catalogue's rate, and the part's working
+        range over :attr:`q` (length inside the hooks, mm; pull, N) against the catalogue's largest extension
+        and load."""
+        rows = []
+        for name, kind, fit in zip(self.realised_names, self.kinds, self.coils, strict=True):
+            part = getattr(fit.coil, "part", None)
+            if part is None:
+                why = kind.split("custom-wound (", 1)[1].rstrip(")") if "custom-wound (" in kind else "wound to order"
+                rows.append((name, "none: wound to order", "", "", "", "", why))
+                continue
+            low, high = fit.forces()
+            short, long = (float(v) for v in fit.coil_length(np.asarray(fit.span, dtype=float)))
+            count = kind.split(" side by side")[0].rsplit(" of ", 1)[1] if " side by side" in kind else "1"
+            rows.append((name, part.part_number, f"{count}, {fit.ratio}:1", f"{part.rate / 1e3:.4g}",
+                         f"{1e3 * short:.1f}-{1e3 * long:.1f} of {1e3 * part.max_extended_length:.1f}",
+                         f"{low:.1f}-{high:.1f} of {part.max_load:.1f}", ""))
+        return Table(["spring", "stock part", "side by side, block", "rate (N/mm)", "length in service (mm)",
+                      "pull in service (N)", "why none"], rows)
+
     def bom(self) -> Table:
         """The shopping list: one row per item to buy (identical parts at one place counted together), with
         its quantity, what to buy (a coil: its wire, diameters, coils, free length inside its machine hooks,
@@ -642,7 +671,12 @@ class ArmDesign:
             name = p.name.split(" ", 1)[0]
             r, fit = springs.get(name, (None, None))
             ends = f"{r.link_a} {_mm(r.point_a)} to {r.link_b} {_mm(r.point_b)}" if r is not None else ""
-            if p.kind == "spring":
+            part = getattr(fit.coil, "part", None) if fit is not None else None
+            if p.kind == "spring" and part is not None:
+                what = (f"stock extension spring {part.part_number}: outer diameter {1e3 * part.outer_diameter:.2f} mm, "
+                        f"wire {1e3 * part.wire:.2f} mm, free length {1e3 * part.free_length:.1f} mm, rate "
+                        f"{part.rate / 1e3:.4g} N/mm, initial tension {part.initial_tension:.2f} N (catalogue)")
+            elif p.kind == "spring":
                 c = fit.coil
                 what = (f"{c.material} ({MATERIALS[c.material].standard}) extension spring, machine hooks: wire "
                         f"{1e3 * c.wire:.2f} mm, outer diameter {1e3 * c.outer_diameter:.2f} mm, {c.body_coils:.2f} "
@@ -785,6 +819,12 @@ def _coil_fields(kind: str, coil, span) -> dict:
     out = {"kind": kind, "coil_free_length": coil.free_length, "coil_max_length": coil.max_length,
            "wire_diameter": coil.wire, "mean_diameter": coil.mean_diameter, "body_coils": coil.body_coils,
            "material": coil.material, "end_distance_range": list(span)}
+    part = getattr(coil, "part", None)
+    if part is not None:  # a stock part: the catalogue's values (k N/m, lengths m, forces N)
+        out |= {"part_number": part.part_number,
+                "part": {"k": part.rate, "free_length": part.free_length, "initial_tension": part.initial_tension,
+                         "max_extended_length": part.max_extended_length, "max_load": part.max_load,
+                         "outer_diameter": part.outer_diameter} | {k: v for k, v in part.extra.items() if v}}
     if kind.startswith("cable over a pulley"):
         out["cable_offset"] = coil.cable_offset
     return out
@@ -840,7 +880,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                  max_stiffness: float = MAX_STIFFNESS, material: str = "auto",
                  pulley_radius: float | None = 0.0, tag: str = "S", margin: float | None = None,
                  collisions: bool = True, layout: str = "two-point", share: float | None = None,
-                 cable=None, audit_samples: int = AUDIT_SAMPLES) -> ArmDesign:
+                 cable=None, audit_samples: int = AUDIT_SAMPLES, catalogue=None) -> ArmDesign:
     """Springs for an arm of the general model over its workspace (:func:`workspace_ranges`): its
     structure (:func:`~springlab.design.structure.structure`); the exact planar springs where its loaded joints form a planar
     chain (:func:`~springlab.design.structure.planar_springs`), else the best springs (:func:`~springlab.design.search.best_springs`, fitted on
@@ -869,7 +909,10 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
 
     Each coil is wound from ``material``'s wire (:data:`springlab.design.buildable.MATERIALS`); ``'auto'``
     (default) from music wire, or chrome silicon where that saves a side-by-side coil or a pulley block
-    (:func:`springlab.design.realise.coil_for`)."""
+    (:func:`springlab.design.realise.coil_for`); with a ``catalogue``
+    (:func:`springlab.design.catalogue.read_catalogue`, the belts and pseudobases only) each is made of that
+    catalogue's stock parts where some fit, its ends re-placed for their rate
+    (:func:`springlab.design.layouts.realise_layout`), else wound to order."""
     if layout not in ("two-point", "belts", "pseudobases", "auto"):
         raise SpringlabError(f"layout = {layout!r}: give 'two-point' (springs between two links), 'belts' (a level "
                              "reference carried by belts to each joint of a planar chain), 'pseudobases' (carried "
@@ -911,6 +954,10 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                                    "pseudobases": "pseudobases (paper 001's RSSR modules), the loaded joints not "
                                                   "forming a planar chain",
                                    "two-point": "two-point springs (no link shapes to clear)"}[layout])
+    if catalogue is not None and layout == "two-point":
+        raise SpringlabError("catalogue: stock parts are chosen for the belts' and the pseudobases' springs, whose "
+                             "ends can be re-placed for a part's rate; give --layout belts, pseudobases or auto on an "
+                             "arm with link shapes")
     spatial = layout == "pseudobases"
     if spatial:
         layout = "belts"
@@ -919,7 +966,8 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         share = SHARE if share is None else share
         lay = arrange(model, found, share=share, q=check)
         realised, kinds, coils, origins = realise_layout(lay, check, material=material, cable=cable,
-                                                         pulley_radius=None if sized else pulley_radius, margin=margin)
+                                                         pulley_radius=None if sized else pulley_radius, margin=margin,
+                                                         catalogue=catalogue)
         bare = (model.mass, model.com, model.inertia)
         for _ in range(CARRY_ROUNDS):  # the springs' own steel rides on the links: designed for too
             arm = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2])  # the arm alone, with the belts
@@ -935,7 +983,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                           **({"widths": widths} if spatial else {}))
             realised, kinds, coils, origins = realise_layout(lay, check, material=material, cable=cable,
                                                              pulley_radius=None if sized else pulley_radius,
-                                                             margin=margin, prefer=prefer)
+                                                             margin=margin, prefer=prefer, catalogue=catalogue)
         model, ideal = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2]), lay.springs
         if spatial:
             method = "pseudobases: a vertical line carried to each loaded joint by paper 001's RSSR modules"

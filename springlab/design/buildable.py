@@ -831,7 +831,11 @@ def coil_cells(coil: ExtensionSpring) -> tuple:
 def maker_note(coil: ExtensionSpring, cable: bool = False) -> str:
     """The sheet's note to the maker: how to reach an initial tension below the windable range ('' when
     it lies inside it); for a cable spring (``cable``), also the open-coil alternative
-    (:meth:`ExtensionSpring.open_coil`), which needs no initial tension at all."""
+    (:meth:`ExtensionSpring.open_coil`), which needs no initial tension at all. A stock part
+    (:class:`springlab.design.catalogue.StockSpring`) is bought, not wound: its part number."""
+    part = getattr(coil, "part", None)
+    if part is not None:
+        return f"stock part {part.part_number}: bought as listed, not wound"
     lo, _ = coil.initial_tension_range
     if coil.initial_tension < lo * (1 - 1e-9):
         note = (f"wind at {lo:.2f} N or more, then stress-relieve to {coil.initial_tension:.2f} N (below the windable "

@@ -49,10 +49,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab import _checks
-from springlab.design.buildable import Fitted, wires
+from springlab.design.buildable import STRETCH_MARGIN, Fitted, wires
 from springlab.design.collision import MARGIN, mounting_plane
 from springlab.design.hardware import HOOK_GAP, link_length
-from springlab.design.realise import cable_for, coil_for, length_range
+from springlab.design.realise import BLOCKS, MAX_PARALLEL, cable_for, coil_for, length_range
 from springlab.design.search import END_GRID, RATE_DIGITS, compass_search, sig
 from springlab.design.structure import PARALLEL, Structure, planar_chain, planar_moments
 from springlab.errors import SpringlabError
@@ -430,7 +430,7 @@ def _cable_terms(x, rho: float, theta: np.ndarray, gG: complex,
 
 def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho: float,
                       angles=None, *, turn: bool = True, tilt: float = LEAD_TILT,
-                      at_post: bool = False) -> tuple[complex, complex, float]:
+                      at_post: bool = False, fixed_rate: bool = False) -> tuple[complex, complex, float]:
     """The offsets and rate (c, p, k) that hold the link best with a pulley of radius ``rho`` (m):
     the least mean square of the torque dV/dtheta (in closed form) over the link's angles ``angles`` (rad;
     default a full turn, :data:`ANGLES`; its gravity term and its
@@ -440,7 +440,8 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
     ``turn=False`` keeps both directions (only the rate and the two lengths move: paper 001's post stays on
     the vertical and the point on sigma, 001 Eqs. 13-14); ``tilt`` is the lead's out of the plane (rad);
     ``at_post`` puts the pulley at the post, its coil on a bracket beyond it along the joint's axis (the
-    cable's wrap is then a quarter turn at every angle). The
+    cable's wrap is then a quarter turn at every angle); ``fixed_rate`` keeps the rate (a stock part's: the
+    lengths and directions alone move, which 001 Eq. (16) trades against it). The
     search is a compass search that compares to 9 significant digits
     (:func:`springlab.design.search.compass_search`), so another CPU's round-off takes no other step.
     Returns them unchanged for rho = 0."""
@@ -460,8 +461,9 @@ def compensate_pulley(plane: SpringPlane, c: complex, p: complex, k: float, rho:
 
     start = np.array([1.0, 1.0, np.angle(c), 1.0, np.angle(p)])
     swing = np.pi if turn else 0.0
-    lo = np.array([0.5, 1.0 - REFIT, start[2] - swing, 1.0 - REFIT, start[4] - swing])
-    hi = np.array([2.0, 1.0 + REFIT, start[2] + swing, 1.0 + REFIT, start[4] + swing])
+    rate = (1.0, 1.0) if fixed_rate else (0.5, 2.0)
+    lo = np.array([rate[0], 1.0 - REFIT, start[2] - swing, 1.0 - REFIT, start[4] - swing])
+    hi = np.array([rate[1], 1.0 + REFIT, start[2] + swing, 1.0 + REFIT, start[4] + swing])
 
     def value(trials):  # the compass search maximises: minus the torques' mean square, and a pull to the start
         trials = np.atleast_2d(trials)
@@ -498,8 +500,90 @@ def _better(one: dict, other: dict) -> bool:
     return key(one) > key(other)
 
 
+STOCK_TRIES = 6
+"""How many of a spring's stock candidates (:func:`stock_candidates`, best first) are realised in full, the
+pulley compensated, before the best of those that fit and clear is kept."""
+
+STOCK_SCALE = (0.5, 2.0)
+"""The point's and the post's lengths may each be scaled within these bounds to suit a stock part's rate (the
+point no farther than its link's room)."""
+
+
+def stock_candidates(catalogue, rate: float, c: complex, p: complex, theta, room: float, reach: float,
+                      behind: float, pulley: float | None = None) -> tuple[list, str]:
+    """Stock parts for a cable spring of rate ``rate`` (N/m) from the point c to the post p (complex, m, in its
+    plane) over the link's angles ``theta`` (rad): for each part, block ratio (:data:`~springlab.design.realise.BLOCKS`) and count side by
+    side (up to :data:`~springlab.design.realise.MAX_PARALLEL`) whose rate along the cable, count k / ratio^2, balances with the point's and
+    the post's lengths scaled by a and b (a b = rate / that rate, 001 Eq. (16); each within :data:`STOCK_SCALE`,
+    the point no farther than ``reach``, m) and whose part, with a point pulley, stays stretched past its free
+    length (:data:`~springlab.design.buildable.STRETCH_MARGIN`), within its catalogue's largest extension and
+    load, and no longer than ``room`` (m, less ``behind`` for a block's sheave; with ``pulley``, m, a pulley on
+    the link: no longer than the scaled point's length less that either). Returns them, the fewest parts
+    first, then the least change of the lengths, then the least block: (part, ratio, count, a, b), and why the
+    others failed (the commonest reason)."""
+    parts = list(catalogue)
+    k = np.array([q.rate for q in parts])
+    Fi = np.array([q.initial_tension for q in parts])
+    L0 = np.array([q.free_length for q in parts])
+    Lmax = np.array([q.max_extended_length for q in parts])
+    Fmax = np.array([q.max_load for q in parts])
+    turn = np.exp(1j * np.asarray(theta, dtype=float))
+    lo, hi = STOCK_SCALE
+    found, reasons = [], {}
+    for count in range(1, MAX_PARALLEL + 1):
+        for ratio in BLOCKS:
+            scale = rate / (count * k / ratio**2)  # a b
+            a = np.clip(np.sqrt(scale), lo, min(hi, reach / abs(c)))
+            b = scale / a
+            path = np.abs(p * b[:, None] - c * a[:, None] * turn[None])
+            short, long = path.min(axis=1), path.max(axis=1)
+            longest = L0 + (long - ratio * Fi / k) / ratio
+            checks = (("the lengths would change past their bounds", (b >= lo) & (b <= hi) & (a * abs(c) <= reach)),
+                      ("their initial tension would leave them slack", ratio * Fi / k <= STRETCH_MARGIN * short),
+                      ("stretched past their largest extension", longest <= Lmax),
+                      ("pulling past their largest load", Fi + k * (longest - L0) <= Fmax),
+                      ("too long for the room", longest <= (room if pulley is None else np.minimum(
+                          room, a * abs(c) - pulley)) - (behind if ratio > 1 else 0.0)))
+            ok = np.ones(len(parts), dtype=bool)
+            for why, passes in checks:
+                reasons[why] = reasons.get(why, 0) + int(np.sum(ok & ~passes))
+                ok &= passes
+            found += [((count, sig(abs(np.log(scale[i]))), ratio, i), (parts[i], ratio, count, float(a[i]),
+                                                                       float(b[i]))) for i in np.flatnonzero(ok)]
+    found.sort(key=lambda item: item[0])
+    why = max(reasons, key=reasons.get) if reasons else "the catalogue is empty"
+    return [item[1] for item in found], why
+
+
+def _stocked(got: dict, attempt, catalogue, plane, R) -> dict:
+    """A custom realisation ``got`` made of stock parts where some fit (:func:`stock_candidates`): of the first
+    :data:`STOCK_TRIES` candidates, realised in full by ``attempt`` with the custom coil's placing, the one that
+    fits and clears with the least torque left; else ``got``, saying why none did."""
+    at_post, swap = got["choice"]
+    rho = got["rho"]
+    d = got["chosen"].diameter if rho > 0 else 0.0
+    on_link = None if at_post else rho + HOOK_GAP + d  # the coil between the pulley and the joint
+    tries, why = stock_candidates(catalogue, got["k0"], got["c0"], got["p0"], plane.angles(R),
+                                   got["fits_in"] if at_post else got["reach"], got["reach"], 2 * (rho + d), on_link)
+    best = None
+    for stock in tries[:STOCK_TRIES]:
+        try:
+            other = attempt(at_post, swap, stock)
+        except SpringlabError:
+            continue
+        if "left" in other or not (other["fits"] and other["clear"]):
+            continue
+        if best is None or other["residual"] < best["residual"]:
+            best = other
+    if best is not None:
+        return best
+    why = why if not tries else (f"none of the {min(len(tries), STOCK_TRIES)} nearest choices (part, block, side by "
+                                 "side) fits and clears once its pulley is compensated")
+    return got | {"unstocked": f"no part of the catalogue fits: {why}"}
+
+
 def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: float | None = 0.0,
-                   cable=None, margin: float = MARGIN, prefer=None) -> tuple:
+                   cable=None, margin: float = MARGIN, prefer=None, catalogue=None) -> tuple:
     """Each spring of a layout as a coil on its link behind a pulley at its point, the cable running to the
     post (:func:`springlab.design.buildable.cable_spring`; up to
     :data:`~springlab.design.realise.MAX_PARALLEL` side by side where one wire is too weak, and over a pulley
@@ -525,6 +609,12 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
     as well again, fitting and clearing as it did with no more coils (the design's rounds for the springs'
     own mass).
 
+    With a ``catalogue`` (:class:`springlab.design.catalogue.Catalogue`) each spring is then made of stock
+    parts where some fit (:func:`stock_candidates`, :data:`STOCK_TRIES`): the placing found for its custom
+    coil is kept, and the point's and the post's lengths are scaled so that the parts' rate balances the link
+    (001 Eq. (16): the rate times the two lengths is fixed), the pulley compensated with that rate held.
+    Where none fits, the custom coil stays and its kind says why.
+
     :raises SpringlabError: naming a spring no stocked wire realises or no stocked cable carries, or a given
         cable that a given pulley is too small for
     """
@@ -545,12 +635,16 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
     rooms = layout.rooms or (np.inf,) * len(layout.springs)
     rows = zip(layout.springs, layout.leads, layout.outward, layout.planes, rooms, strict=True)
     for index, (ideal, ideal_towards, (out_a, out_b), plane, room) in enumerate(rows):
-        def attempt(at_post: bool, swap: bool | float = False, ideal=ideal, ideal_towards=ideal_towards, out_a=out_a,
-                    out_b=out_b, plane=plane, room=room, index=index) -> dict:
+        def attempt(at_post: bool, swap: bool | float = False, stock=None, ideal=ideal, ideal_towards=ideal_towards,
+                    out_a=out_a, out_b=out_b, plane=plane, room=room, index=index) -> dict:
             """The spring realised with its pulley on its link (or ``at_post``: on the level frame's bracket;
             ``swap``: with the point's and the post's lengths swapped, the cable's clamp near the joint; a number:
-            the point's length scaled by it and the post's by its inverse)."""
-            pull = ideal.k * length_range(model, ideal, R, o)[1]
+            the point's length scaled by it and the post's by its inverse). ``stock``: (part, ratio, count, a, b),
+            ``count`` of a catalogue's part side by side over a ``ratio``:1 block, the point's length scaled by
+            ``a`` and the post's by ``b`` so that their rate along the cable, count part.rate / ratio^2,
+            balances the link (001 Eq. (16)); the compensation keeps that rate."""
+            rate = ideal.k if stock is None else stock[2] * stock[0].rate / stock[1] ** 2
+            pull = rate * length_range(model, ideal, R, o)[1]
             chosen = cable
             for _ in range(4):  # the cable for the pull, its pulley, the spring re-fitted for it, and again
                 if chosen is None or chosen.working < pull:
@@ -562,6 +656,10 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
                     c0, p0 = c0 * abs(p0) / abs(c0), p0 * abs(c0) / abs(p0)
                 elif swap:  # or their lengths move in inverse proportion
                     c0, p0 = c0 * swap, p0 / swap
+                if stock is not None:  # 001 Eq. (16): K l_CA l_CB fixed, K the parts' rate
+                    c0, p0 = c0 * stock[3], p0 * stock[4]
+                    s = plane.posted(model, c0, p0, rate) if at_post else plane.spring(model, c0, p0, rate)
+                    towards = plane.towards(c0)
                 c, p = c0, p0
                 d = chosen.diameter if rho > 0 else 0.0
                 need = rho + d + margin + TABLE_SLACK  # a pulley's (and its rope's) room above the table
@@ -572,8 +670,10 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
                     except SpringlabError as why:
                         return {"left": f"not realised: spring S{index + 1} ({ideal.label}, k = {ideal.k:.4g} N/m): "
                                         f"{why}"}
+                    if stock is not None and k != rate:
+                        return {"left": "its post would be lowered for the pulley, which changes the rate"}
                     c, p, k = compensate_pulley(plane, c, p, k, rho, plane.angles(R), turn=plane.turn,
-                                                tilt=plane.tilt, at_post=at_post)
+                                                tilt=plane.tilt, at_post=at_post, fixed_rate=stock is not None)
                     if plane.turn:  # clear of the table: the pulley and its rope, and the cable's clamp, with the margin
                         turn = (turned_clear_of_table(plane, R, o, floor, c, p, clamp, need) if at_post else
                                 turned_clear_of_table(plane, R, o, floor, c, p, need))
@@ -589,7 +689,12 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
                 lengths = length_range(model, led, R, o)
                 behind = rho + HOOK_GAP + d
                 fits_in = plane.mast - behind if at_post else plane.coil_room(c0 if rho == 0 else c, room, behind)
-                found = coil_for(s.k, lengths, fits_in, material, block=2 * (rho + d))
+                if stock is None:
+                    found = coil_for(s.k, lengths, fits_in, material, block=2 * (rho + d))
+                else:  # the part at its free length where the path is ratio F_i / k: the force is k / ratio^2 the path
+                    part, ratio, count = stock[:3]
+                    longest = part.free_length + (lengths[1] - ratio * part.initial_tension / part.rate) / ratio
+                    found = part.spring(max(longest, part.free_length)), ratio, count
                 if found[0] is None:
                     raise SpringlabError(f"{s.label} (k = {s.k:.4g} N/m): no stocked {' or '.join(wires(material))} wire realises it, "
                                          f"even side by side or over a pulley block ({found[1]})")
@@ -601,10 +706,18 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
             if plane.turn:
                 point, post = table_room(plane, R, o, floor, c, p)
                 clear = sig(min(post - need, point - clamp) if at_post else min(point, post) - need)
+            fits = coil.max_length <= fits_in - (2 * (rho + d) if ratio > 1 else 0.0)
+            if stock is not None:  # within the vendor's limits, and stretched past its free length everywhere
+                fits = fits and not coil.problems() and (
+                    ratio * coil.initial_tension / coil.rate <= STRETCH_MARGIN * lengths[0])
+            x = np.array([s.k, c.real, c.imag, p.real, p.imag])
+            with np.errstate(all="ignore"):
+                torque = _cable_terms(x, rho, plane.angles(R), plane.gG, plane.tilt, at_post)[1] if rho > 0 else None
             return {"s": s, "lead": lead, "rho": rho, "chosen": chosen, "lengths": lengths, "coil": coil,
                     "ratio": ratio, "parallel": parallel, "room": fits_in if at_post else None,
-                    "fits": coil.max_length <= fits_in - (2 * (rho + d) if ratio > 1 else 0.0), "clear": clear >= 0,
-                    "choice": (at_post, swap)}
+                    "fits": fits, "clear": clear >= 0, "choice": (at_post, swap), "stock": stock,
+                    "c0": c0, "p0": p0, "k0": rate, "fits_in": fits_in, "reach": room,
+                    "residual": 0.0 if torque is None else sig(float(np.sqrt(np.mean(torque**2))) / abs(plane.gG))}
 
         got = None
         if index in prefer:  # the placing the previous round searched for, where it does as well again (fits
@@ -636,6 +749,8 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
                         continue
                     if "left" not in other and _better(other, got):
                         got = other
+        if catalogue is not None and "left" not in got:
+            got = _stocked(got, attempt, catalogue, plane, R)
         left = got.get("left")
         if left is not None:  # no room for its pulley: the design leaves it out and says so
             realised.append(None)
@@ -655,7 +770,12 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
         tension = coil.initial_tension / ratio  # along the cable: the block divides the coil's pull
         block = (" on a bracket of the level frame" if bracket is not None else "") + (
             f", with a {ratio}:1 pulley block" if ratio > 1 else "")
-        single = parallel > 1 and coil_for(s.k, lengths, np.inf, material)[0] is not None
+        stock = got.get("stock")
+        single = stock is None and parallel > 1 and coil_for(s.k, lengths, np.inf, material)[0] is not None
+        if stock is not None:
+            block += f", stock part {stock[0].part_number}"
+        elif got.get("unstocked"):
+            block += f", custom-wound ({got['unstocked']})"
         for m in range(parallel):
             realised.append(PointSpring(s.link_a, s.point_a, s.link_b, s.point_b, k, tension / k, tension, rho,
                                         lead if rho > 0 else None))

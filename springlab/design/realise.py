@@ -444,6 +444,8 @@ def _side_by_side(kind: str) -> str:
     """Why a realised spring is one of several side by side, from its kind
     (:func:`~springlab.design.realise.coil_for`'s order: the fewest that a stocked wire carries and whose
     coil fits its link)."""
+    if "stock part " in kind:
+        return "one stock part is too weak, or too stiff for its lengths, alone"
     return ("one coil would be longer than its link" if "fit its link" in kind else
             "no stocked wire carries its force alone")
 
@@ -474,6 +476,10 @@ def realisation_changes(model: RevoluteChain, ideal, realised, kinds, origins) -
         parts += moves
         why = ("re-balanced for its pulley: the wrap adds about k rho times the change of the wrap angle, which the "
                "ideal springs did not have" if parts else "")
+        stock = re.search(r"stock part (.+?)(?: \(\d+ of \d+ side by side.*)?$", kind)
+        if stock and parts:  # the layout's balance fixes the rate times the two lengths
+            why = (f"re-placed for stock part {stock.group(1)}'s rate, the product of the rate and the two lengths "
+                   "kept, and re-balanced for its pulley")
         how = (f"a cable over a {1e3 * r.pulley_radius:g} mm pulley at end A, its lead (the direction the cable arrives "
                "from) chosen for the least torque left" if r.pulley_radius > 0 else
                "a cable over a point pulley at end A (its coil on link A), the force k times |B - A|")

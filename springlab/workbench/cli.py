@@ -206,10 +206,14 @@ def _design(args) -> int:
     if args.payload_range is not None and path.suffix != ".urdf":
         raise SpringlabError(f"--payload-range = {args.payload_range!r} applies to URDF files, designed on the general "
                              "model with a payload dial (an arm file's payload is its [payload] table)")
+    if args.catalog is not None and path.suffix != ".urdf":
+        raise SpringlabError(f"--catalog {args.catalog}: stock parts are chosen for a URDF arm's belt or pseudobase "
+                             "springs, whose ends are re-placed for a part's rate")
     if args.bom is not None and path.suffix != ".urdf":
         raise SpringlabError(f"--bom {args.bom}: the shopping list is written for a URDF arm's springs, their parts "
                              "placed on its links (an arm file's springs are on its --sheet)")
     if path.suffix == ".urdf" and (args.bom is not None or args.workspace is not None or args.reach is not None
+                                   or args.catalog is not None
                                    or args.package_dir
                                    or args.payload_range is not None or args.margin is not None
                                    or args.layout != "auto" or args.share is not None
@@ -297,6 +301,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     model = read_revolute_chain(text, source=str(path), up=_up(args.up), tip=args.tip, base=args.base,
                                 payload=payload, folder=path.parent, package_dirs=args.package_dir)
     workspace = None if args.workspace is None else parse_workspace(args.workspace)
+    catalogue = None if args.catalog is None else _catalogue(args.catalog)  # read and checked before any work
     out = _writable(Path(args.json or path.with_suffix(".design.json").name), "--json")
     if args.sheet:
         for sheet_path in _sheet_paths(out):
@@ -313,7 +318,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     design = design_model(model, workspace=workspace, seed=args.seed + 1, samples=args.samples or 2000,
                           fit_poses=args.fit_poses or 300, material=args.material, reach=reach,
                           pulley_radius=args.pulley_radius, margin=args.margin, layout=args.layout, share=args.share,
-                          cable=args.cable, **({"audit_samples": args.audit_samples} if args.audit_samples else {}))
+                          cable=args.cable, catalogue=catalogue,
+                          **({"audit_samples": args.audit_samples} if args.audit_samples else {}))
     seconds = time.perf_counter() - started
     tip = (f"the tip {args.tip!r} (fixed to {model.bodies[-1]!r}, the last body a joint moves)"
            if args.tip and args.tip != model.bodies[-1] else repr(model.bodies[-1]))
@@ -357,6 +363,10 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
         print("\nthe parts (springs, cables, pulleys, posts, belts): their sizes, masses and the largest loads over the "
               "check poses, each carried in the balance where it rides:")
         print(design.parts_table())
+    if catalogue is not None and design.realised:
+        print(f"\nthe stock parts ({len(catalogue)} in {catalogue.source}): each spring's part, and its working range "
+              "over the check poses against the catalogue's largest extension and load:")
+        print(design.stock_table())
     if reached is not None and not reached["reached"] and design.realised:
         print(f"\nthe target, {100 * args.target:g} % of each loaded joint's peak, is missed at "
               f"{', '.join(reached['missed'])}; what fewer springs reach (each left out where it costs least; "
@@ -391,7 +401,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
               "cable": None if args.cable is None else args.cable.name, "package_dirs": list(args.package_dir),
               "layout": args.layout, "share": args.share, "margin_m": args.margin,
               "seed": args.seed + 1,
-              "material": args.material}
+              "material": args.material, "catalog": None if catalogue is None else catalogue.source}
     try:
         extra = ({} if study is None else {"payload": study.as_dict()}) | (
             {} if reached is None else {"target": reached | (
@@ -557,7 +567,7 @@ def _design_dh(args, path: Path) -> int:
         raise SpringlabError(f"--mjcf writes a chain of revolute joints with springs between points of its links; "
                              f"{path} is designed by paper 001's pseudobase method, whose springs ride on "
                              "parallelogram auxiliary links (RSSR modules) that springlab does not export: leave out --mjcf")
-    for flag, given in (("--sheet", args.sheet), ("--bom", args.bom), ("--up", args.up), ("--tip", args.tip), ("--base", args.base),
+    for flag, given in (("--sheet", args.sheet), ("--bom", args.bom), ("--catalog", args.catalog), ("--up", args.up), ("--tip", args.tip), ("--base", args.base),
                         ("--payload", args.payload), ("--method", args.method != "fewest springs"),
                         ("--reach", args.reach), ("--package-dir", args.package_dir), ("--workspace", args.workspace),
                         ("--payload-range", args.payload_range)):
@@ -667,6 +677,20 @@ exit status: 0 a design that passes its own checks; 1 no design found; 2 bad inp
 """
 
 
+SHIPPED_CATALOGUE = ""
+"""``--catalog`` given no file: springlab ships no vendor's catalogue yet, so it says to give one."""
+
+
+def _catalogue(given: str):
+    """The catalogue ``--catalog`` names (:func:`springlab.design.catalogue.read_catalogue`), refused in one line."""
+    if given == SHIPPED_CATALOGUE:
+        raise SpringlabError("--catalog: springlab ships no vendor's catalogue of stock springs yet; give your "
+                             "supplier's stock list as --catalog FILE.csv (its format is in the README)")
+    from springlab.design.catalogue import read_catalogue
+
+    return read_catalogue(given)
+
+
 def main(argv=None) -> int:
     started = _STARTED if argv is None else time.perf_counter()  # a console run: from its start
     parser = _Parser(prog="springlab", description="Spring gravity balancing of robot arms.")
@@ -691,6 +715,10 @@ def main(argv=None) -> int:
                    help="URDF arms only: also write the shopping list (a .csv file, replaced if it exists), each part "
                         "with its quantity, what to buy, the link it rides on and where (the springs' and cables' ends "
                         "too)")
+    p.add_argument("--catalog", nargs="?", const=SHIPPED_CATALOGUE, default=None, metavar="FILE.csv",
+                   help="make each spring of stock parts from this catalogue of extension springs where some fit, "
+                        "their ends re-placed for the parts' rates (else wound to order); the CSV format is in the "
+                        "README and springlab.design.catalogue")
     p.add_argument("--material", default="auto", choices=("auto", "music wire", "chrome silicon", "stainless 302"),
                    help="spring wire (default auto: music wire, and for a URDF arm's coils chrome silicon where that "
                         "saves a side-by-side coil or a pulley block; an arm file's --sheet: music wire)")
