@@ -317,3 +317,14 @@ def test_each_chapter_says_how_to_run_it(built):
         assert "Run it yourself" in shown and f"-m papermill notebooks/{stem}.ipynb" in shown and "make lab" in shown
     front = text("index.html")
     assert "Run it yourself" in front and "make figures" in front and "papermill" not in front
+
+
+def test_glued_numbers_are_written_as_powers_of_ten(built):
+    """A number glued into the prose in Python's exponent form ("1e-06") reads "1 × 10⁻⁶"; the control: the
+    rewrite leaves other text (an identifier, a plain number, a version) alone."""
+    assert prose.powers_of_ten("agree to 2e-12 N m, 1.6e-04 and 3e+02") == "agree to 2 × 10⁻¹² N m, 1.6 × 10⁻⁴ and 3 × 10²"
+    assert prose.powers_of_ten("x1e-06, 1.6, v1.2e3x, 12") == "x1e-06, 1.6, v1.2e3x, 12"
+    pasted = [m for page in built.glob("*.html")
+              for m in re.findall(r'<span class="pasted-text">([^<]*)</span>', page.read_text())]
+    assert pasted and any("× 10" in text for text in pasted)
+    assert not [text for text in pasted if re.search(r"\de[+-]?\d", text)]

@@ -153,3 +153,18 @@ def link_html(text: str, here: str | None, names: dict, labels: set, *, page: st
         return f'<a href="{where}#{equation_label(key, number)}">{shown}</a>'
 
     return _outside(text, _PROTECTED_HTML, lambda t: _rewrite(t, here, names, labels, paper, equation))
+
+
+_POWER = re.compile(r"(?<![\w.])(-?\d+(?:\.\d+)?)e([+-]?)0*(\d+)(?![\w.])")
+_SUPERSCRIPT = str.maketrans("0123456789-", "\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079\u207b")
+
+
+def powers_of_ten(text: str) -> str:
+    """A number Python printed in exponent form ("1e-06", "1.6e-04", "2e+03") written as a paper prints it:
+    "1 × 10⁻⁶", "1.6 × 10⁻⁴", "2 × 10³". The book applies it to the numbers glued into its prose."""
+
+    def power(m: re.Match) -> str:
+        exponent = ("-" if m.group(2) == "-" else "") + m.group(3)
+        return f"{m.group(1)} \u00d7 10{exponent.translate(_SUPERSCRIPT)}"
+
+    return _POWER.sub(power, text)

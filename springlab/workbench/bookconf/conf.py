@@ -127,7 +127,21 @@ def _number_figures(app, doctree):
         caption.insert(0, nodes.inline("", f"Figure {k}. ", classes=["caption-number"]))
 
 
+def _glued_powers(app, doctree, docname):
+    """Numbers glued into the prose in Python's exponent form ("1e-06") written as "1 × 10⁻⁶"
+    (:func:`springlab.workbench.prose.powers_of_ten`): myst-nb's glue marks them ``pasted-text``."""
+    from docutils import nodes
+
+    for node in list(doctree.findall(nodes.inline)):
+        if "pasted-text" in node.get("classes", ()):
+            text = node.astext()
+            written = prose.powers_of_ten(text)
+            if written != text and len(node.children) == 1:
+                node.replace(node.children[0], nodes.Text(written))
+
+
 def setup(app):
+    app.connect("doctree-resolved", _glued_powers)
     app.connect("doctree-read", _number_figures)
     app.connect("viewcode-follow-imported", _data_stays_home)
     app.connect("autodoc-process-docstring", _plain_text)
