@@ -294,6 +294,49 @@ def expand_gravity_energy(n: int):
     return sp.expand(total)
 
 
+def planar_symbols(n: int):
+    """sympy symbols (theta, r_1) of 000 Section 2.1's planar arm: theta = (theta_2, ..., theta_n), each link's
+    angle from the one before (rad; link 2's from the horizontal), and the ground link's length r_1, which
+    the planar form of 000 Eqs. (4)-(7) multiplies in and divides out."""
+    n = _checks.links(n, "n")
+    return sp.symbols(f"theta_2:{n + 1}", real=True), sp.Symbol("r_1", positive=True)
+
+
+def planar_gravity_energy(n: int):
+    """U_g of an n-link planar arm from its links' heights (000 Eqs. 1-2), expanded: the centre of mass of
+    link j stands h_j = sum_{w=2}^{j-1} r_w sin(phi_w) + d_j sin(phi_j) high, phi_w = theta_2 + ... + theta_w.
+    Uses no entry of G^p; compare with :func:`planar_gravity_matrix`'s form."""
+    r, d, m, g = chain_symbols(n)
+    theta, _ = planar_symbols(n)
+    phi = [sum(theta[: w - 1]) for w in range(2, n + 1)]  # phi[w - 2]: link w's angle from the horizontal
+    total = 0
+    for j in range(2, n + 1):
+        h = sum(r[w - 2] * sp.sin(phi[w - 2]) for w in range(2, j)) + d[j - 2] * sp.sin(phi[j - 2])  # 000 Eq. (2a)
+        total += m[j - 2] * g * h  # 000 Eq. (1)
+    return sp.expand(total)
+
+
+def planar_gravity_matrix(n: int) -> sp.Matrix:
+    """G^p of an n-link planar arm (000 Eq. 6), nonzero in its first row only:
+    G^p_{1,j} = (m_j g d_j / (r_1 r_j) + g sum_{t>j} m_t / r_1) sin(theta_2 + ... + theta_j) (000 Eqs. 7a-7c),
+    so that U_g = [r_1 .. r_n] G^p [r_1 .. r_n]^T (000 Eq. 5)."""
+    r, d, m, g = chain_symbols(n)
+    theta, r1 = planar_symbols(n)
+    G = sp.zeros(n, n)
+    for j in range(2, n + 1):
+        beyond = sum(m[t - 2] for t in range(j + 1, n + 1))
+        G[0, j - 1] = (m[j - 2] * g * d[j - 2] / (r1 * r[j - 2]) + beyond * g / r1) * sp.sin(sum(theta[: j - 1]))  # 000 Eq. (7a)
+    return G
+
+
+def planar_form(n: int):
+    """[r_1 .. r_n] G^p [r_1 .. r_n]^T (000 Eq. 5) with :func:`planar_gravity_matrix`, expanded."""
+    r, _, _, _ = chain_symbols(n)
+    _, r1 = planar_symbols(n)
+    lengths = sp.Matrix([r1, *r])
+    return sp.expand((lengths.T * planar_gravity_matrix(n) * lengths)[0, 0])
+
+
 def expand_spring_energy(i: int, j: int, n: int, *, on_joint_lines: bool = True):
     """U_S(i,j) = k l^2 / 2 derived from the spring vector of 000 Eq. (19), expanded.
 

@@ -394,6 +394,20 @@ def random_directions(n: int, size: int, rng=None) -> np.ndarray:
     return out
 
 
+def planar_directions(theta) -> np.ndarray:
+    """The link directions X (N, n, 3) of a planar arm at angles ``theta`` (N, n - 1) rad (each link's from the
+    one before, link 2's from the horizontal), in a vertical plane of route 2's chain: x_1 is :data:`UP`, so link j's
+    height per unit length is sin(theta_2 + ... + theta_j), as 000 Eqs. (2a)-(2c) have it."""
+    theta = _checks.real_array("theta", theta)
+    if theta.ndim != 2:
+        raise SpringlabError(f"theta must be (poses, links - 1) angles, got shape {theta.shape}")
+    phi = np.cumsum(theta, axis=1)
+    out = np.zeros((theta.shape[0], theta.shape[1] + 1, 3))
+    out[:, 0, 0] = 1.0
+    out[:, 1:, 0], out[:, 1:, 1] = np.sin(phi), np.cos(phi)
+    return out
+
+
 def _cap(axis: np.ndarray, half_angle: float, rng) -> np.ndarray:
     """Unit vectors uniform on the spherical cap of ``half_angle`` (rad) about each row of ``axis`` (N, 3)."""
     N = axis.shape[0]
