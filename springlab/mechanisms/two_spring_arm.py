@@ -110,13 +110,14 @@ def layout_of(a12: float, b12: float, l1: float, b2: float) -> str:
 
 def energy_symbols():
     """sympy symbols of Lenzo's 004 Eqs. (11)-(15)."""
-    names = "m1 m2 l1 h1 h2 g k2 a2 b2 k12 a12 b12"
+    names = "m1 m2 l1 h1 h2 g k2 a2 b2 k12 a12 b12 k1 a1 b1"
     return dict(zip(names.split(), sp.symbols(names, real=True), strict=True))
 
 
-def derived_conditions() -> dict[str, sp.Expr]:
+def derived_conditions(*, k1: bool = False) -> dict[str, sp.Expr]:
     """004 Eq. (15) derived from the geometry: the coefficients of x1.x0, x2.x0 and x1.x2
-    in the total energy E_g + E_s (004 Eqs. 11-13 without spring k1), which must vanish."""
+    in the total energy E_g + E_s (004 Eqs. 11-13 without spring k1), which must vanish; with ``k1``,
+    Fig. 4b's third spring k1 from a1 x_0 on the frame to b1 x_1 on the upper arm kept (004 Eq. 14)."""
     s = energy_symbols()
     x0, x1, x2 = 0, 1, 2
     com1 = {x1: s["h1"]}
@@ -125,9 +126,21 @@ def derived_conditions() -> dict[str, sp.Expr]:
     k2_vec = {x0: s["a2"], x1: -s["l1"], x2: -s["b2"]}  # QP = a2 x0 - (l1 x1 + b2 x2)
     k12_vec = {x1: s["l1"] - s["b12"], x2: s["a12"]}  # UV = (l1 - b12) x1 + a12 x2
     energy = gravity + s["k2"] / 2 * expand_vectors_dot(k2_vec, k2_vec) + s["k12"] / 2 * expand_vectors_dot(k12_vec, k12_vec)
+    if k1:
+        k1_vec = {x0: s["a1"], x1: -s["b1"]}  # from b1 x_1 to a1 x_0
+        energy += s["k1"] / 2 * expand_vectors_dot(k1_vec, k1_vec)
     energy = sp.expand(energy)
     return {name: sp.expand(energy.coeff(dot_symbol(*pair)))
             for name, pair in (("x1.x0", (x0, x1)), ("x2.x0", (x0, x2)), ("x1.x2", (x1, x2)))}
+
+
+def printed_eq14() -> dict[str, sp.Expr]:
+    """004 Eq. (14) as printed, typed in: the coefficients with Fig. 4b's three springs k1, k2, k12."""
+    s = energy_symbols()
+    return {"x1.x0": s["m1"] * s["g"] * s["h1"] + s["m2"] * s["g"] * s["l1"] - s["k1"] * s["a1"] * s["b1"]
+            - s["k2"] * s["a2"] * s["l1"],  # 004 Eq. (14)
+            "x2.x0": s["m2"] * s["g"] * s["h2"] - s["k2"] * s["a2"] * s["b2"],
+            "x1.x2": s["k2"] * s["b2"] * s["l1"] + s["k12"] * s["a12"] * (s["l1"] - s["b12"])}
 
 
 def printed_eq15() -> dict[str, sp.Expr]:
