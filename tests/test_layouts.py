@@ -215,6 +215,11 @@ def test_the_drawing_shows_each_spring_as_built(ur5):
     labels = {t.get_text() for t in fig.legends[0].get_texts()} if fig.legends else set()
     labels |= {h.get_label() for ax in fig.axes for h in ax.get_lines()}
     assert {"cables", "pulleys (circles of their radius)"} <= labels
+    titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
+    assert titles == ["front view", "side view", "top view"]  # the pose is named once, above them
+    heading = fig._suptitle.get_text()
+    assert f"{ur5.model.name} at (" in heading and all(-180 < float(v) <= 180 for v in
+                                                       heading.split("(")[-1].split(")")[0].split(","))
     plt.close(fig)
 
 

@@ -451,7 +451,8 @@ def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=Non
     if rows not in ("views", "poses"):
         raise SpringlabError(f"rows must be 'views' or 'poses', got {rows!r}")
     views = tuple(views)
-    titles = list(titles) if titles is not None else [f"pose {p + 1}" for p in poses]
+    named = titles is not None
+    titles = list(titles) if named else [f"pose {p + 1}" for p in poses]
     framed = scene if frame == "all" else _at(scene, poses)
     spans = [_limits(framed, v) for v in views]
     label_style = label_style or {}
@@ -473,7 +474,7 @@ def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=Non
         for c, pose in enumerate(poses):
             ax = axes.flat[r] if across else axes[r][c]
             draw(ax, scene, pose, view, labels=False, limits=spans[r])
-            ax.set_title(f"{titles[c]}, {view} view" if (r == 0 or across) else f"{view} view", fontsize=8)
+            ax.set_title(f"{titles[c]}, {view} view" if r == 0 and not across else f"{view} view", fontsize=8)
             if c:
                 ax.set_ylabel("")
             if c == 0 or across:
@@ -481,6 +482,8 @@ def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=Non
     spare = list(axes.flat)[len(views):] if across else []
     for ax in spare:
         ax.set_axis_off()
+    if across and named:  # one pose: named once, under the figure's title, its panels by their view alone
+        title = f"{title}\n{titles[0]}" if title else titles[0]
     fig = _legend_and_title(fig, [axes.flat[0]], title, into=spare[0] if spare else None)
     for ax, pose, view in panels:  # once laid out: the labels' places are in pixels
         label_springs(ax, scene, pose, view, **label_style)

@@ -230,12 +230,13 @@ def real_arm_figure(design, pose=None, *, title: str = "", hardware: bool = Fals
     workspace pose), in front, side and top views at one scale
     (:func:`springlab.workbench.drawing.revolute_scene`); ``hardware=True``: its realised springs as
     built, coils, cables and pulleys (:func:`springlab.workbench.drawing.hardware_scene`). The heading
-    gives the pose: the joint angles (deg, to the nearest degree) from the base out."""
+    gives the pose: the joint angles (deg, to the nearest degree, within -180 to 180) from the base out."""
     from springlab.workbench.drawing import hardware_scene, mechanism_figure, revolute_scene
 
     q = design.q[:1] if pose is None else np.atleast_2d(pose)
     scene = hardware_scene(design, q) if hardware else revolute_scene(design.model, design.ideal, q)
-    angles = ", ".join(f"{v:.0f}" for v in np.round(np.degrees(q[0])) + 0.0)  # + 0.0: no "-0"
+    turned = np.degrees(np.angle(np.exp(1j * q[0])))  # (-180, 180]: 324 deg is drawn, and read, as -36
+    angles = ", ".join(f"{v:.0f}" for v in np.round(turned) + 0.0)  # + 0.0: no "-0"
     return mechanism_figure(scene, [0], views=("front", "side", "top"), columns=2,
                             titles=[f"{design.model.name} at ({angles}) deg"], title=title)
 
