@@ -482,7 +482,7 @@ def mechanism_figure(scene: Scene, poses, *, views=("front", "side"), titles=Non
     spare = list(axes.flat)[len(views):] if across else []
     for ax in spare:
         ax.set_axis_off()
-    if across and named:  # one pose: named once, under the figure's title, its panels by their view alone
+    if across and named and titles[0] not in title:  # one pose: named once, under the figure's title
         title = f"{title}\n{titles[0]}" if title else titles[0]
     fig = _legend_and_title(fig, [axes.flat[0]], title, into=spare[0] if spare else None)
     for ax, pose, view in panels:  # once laid out: the labels' places are in pixels
