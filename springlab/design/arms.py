@@ -972,7 +972,9 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
         for _ in range(CARRY_ROUNDS):  # the springs' own steel rides on the links: designed for too
             arm = replace(lay.model, mass=bare[0], com=bare[1], inertia=bare[2])  # the arm alone, with the belts
             built = [m for m, r in enumerate(realised) if r is not None]
-            prefer = {origins[m]: (coils[m].choice, sum(o == origins[m] for o in origins)) for m in built}
+            prefer = {origins[m]: (coils[m].choice, sum(o == origins[m] for o in origins),
+                                   None if getattr(coils[m].coil, "part", None) is None else
+                                   (coils[m].coil.part.part_number, coils[m].ratio)) for m in built}
             realised, kinds, coils = ([v[m] for m in built] for v in (realised, kinds, coils))
             carried = replace(with_spring_mass(arm, realised, kinds, coils, check), belts=())
             widths = {}  # a pseudobase's C moves beside the links by half its coils' width too

@@ -555,10 +555,12 @@ def stock_candidates(catalogue, rate: float, c: complex, p: complex, theta, room
     return [item[1] for item in found], why
 
 
-def _stocked(got: dict, attempt, catalogue, plane, R) -> dict:
+def _stocked(got: dict, attempt, catalogue, plane, R, before=None) -> dict:
     """A custom realisation ``got`` made of stock parts where some fit (:func:`stock_candidates`): of the first
     :data:`STOCK_TRIES` candidates, realised in full by ``attempt`` with the custom coil's placing, the one that
-    fits and clears with the least torque left; else ``got``, saying why none did."""
+    fits and clears with the least torque left; else ``got``, saying why none did. ``before``: (part number,
+    block ratio) an earlier round chose, tried first and kept where it fits and clears again (the design's
+    rounds for the springs' own mass change the rates a little)."""
     at_post, swap = got["choice"]
     rho = got["rho"]
     d = got["chosen"].diameter if rho > 0 else 0.0
@@ -566,6 +568,14 @@ def _stocked(got: dict, attempt, catalogue, plane, R) -> dict:
     tries, why = stock_candidates(catalogue, got["k0"], got["c0"], got["p0"], plane.angles(R),
                                    got["fits_in"] if at_post else got["reach"], got["reach"], 2 * (rho + d), on_link)
     best = None
+    again = [t for t in tries if before is not None and (t[0].part_number, t[1]) == tuple(before)][:1]
+    for stock in again:  # the earlier round's part, where it does as well again
+        try:
+            other = attempt(at_post, swap, stock)
+        except SpringlabError:
+            continue
+        if "left" not in other and other["fits"] and other["clear"]:
+            return other
     for stock in tries[:STOCK_TRIES]:
         try:
             other = attempt(at_post, swap, stock)
@@ -605,7 +615,7 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
     fits nowhere, its point's and post's lengths are scaled in inverse proportion (:data:`SCALES`), on the
     link and on the bracket, and the first placing that fits and clears with the fewest coils is kept. Each
     coil records its placing (:attr:`~springlab.design.buildable.Fitted.choice`); ``prefer`` maps a layout
-    spring's index to an earlier round's (placing, coils side by side), tried first and kept where it does
+    spring's index to an earlier round's (placing, coils side by side[, (stock part number, block)]), tried first and kept where it does
     as well again, fitting and clearing as it did with no more coils (the design's rounds for the springs'
     own mass).
 
@@ -721,7 +731,7 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
 
         got = None
         if index in prefer:  # the placing the previous round searched for, where it does as well again (fits
-            (at_post, swap, fits, clear), parallel = prefer[index]  # and clears as it did, with no more coils):
+            (at_post, swap, fits, clear), parallel, *_ = prefer[index]  # and clears as it did, with no more coils):
             try:  # the arm carries the hardware it was designed for, and the search is not run again
                 got = attempt(at_post, swap)
             except SpringlabError:
@@ -750,7 +760,8 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
                     if "left" not in other and _better(other, got):
                         got = other
         if catalogue is not None and "left" not in got:
-            got = _stocked(got, attempt, catalogue, plane, R)
+            before = prefer[index][2] if len(prefer.get(index, ())) > 2 else None  # an earlier round's part
+            got = _stocked(got, attempt, catalogue, plane, R, before)
         left = got.get("left")
         if left is not None:  # no room for its pulley: the design leaves it out and says so
             realised.append(None)
