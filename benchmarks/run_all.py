@@ -18,7 +18,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 BENCHES = ("bench_energy", "bench_sim", "bench_efficiency", "bench_design", "bench_figures", "bench_real_arms",
-           "bench_layouts")
+           "bench_layouts", "bench_catalogue")
 """In the order they run: the routes first, then the searches, `make figures`, and the real arms."""
 
 

@@ -1,54 +1,33 @@
 """Stock parts: the catalogue reader against malformed files, and designs made of a catalogue's parts.
 
-The catalogue used here is a series made for the tests from springlab's own winding formulas (Shigley's
-rate, a mid-range initial tension, a body stress of about a third of the wire's strength at the largest
-load), not a vendor's: it exercises the choice, it proves nothing about any vendor's parts.
+The catalogue used here is springlab's made-up series (:func:`springlab.design.catalogue.example_rows`, from
+its own winding formulas), not a vendor's: it exercises the choice, it proves nothing about any vendor's parts.
 """
 
 from __future__ import annotations
 
-import csv
 from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from springlab.design.buildable import ExtensionSpring, initial_tension_stress_range
-from springlab.design.catalogue import CatalogueError, Part, read_catalogue
+from springlab.design.catalogue import (
+    COLUMNS,
+    CatalogueError,
+    Part,
+    example_rows,
+    read_catalogue,
+    write_catalogue,
+)
 from springlab.energy import geometry
-
-COLUMNS = ("part_number", "outer_diameter_mm", "wire_diameter_mm", "free_length_mm", "rate_N_per_mm",
-           "initial_tension_N", "max_load_N", "max_extended_length_mm", "material")
 
 
 def series() -> list[dict]:
-    """Rows of a made-up series of music-wire extension springs (see the module docstring)."""
-    rows = []
-    for d in (0.5, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 2.0):
-        for index in (6, 8, 10):
-            wire, mean = d * 1e-3, index * d * 1e-3
-            lo, hi = initial_tension_stress_range(index)
-            tension = float(0.5 * (lo + hi) * np.pi * wire**3 / (8 * mean))
-            for coils in (10, 15, 20, 30, 40):
-                s = ExtensionSpring("music wire", wire, mean, coils, tension, 1.0)
-                load = 0.7 * 0.45 * s.wire_material.tensile_strength(wire) * np.pi * wire**3 / (8 * mean * 1.2)
-                if load <= 1.2 * tension:
-                    continue
-                rows.append({"part_number": f"T-{len(rows) + 1:03d}", "outer_diameter_mm": round(1e3 * s.outer_diameter, 2),
-                             "wire_diameter_mm": d, "free_length_mm": round(1e3 * s.free_length, 2),
-                             "rate_N_per_mm": round(s.rate / 1e3, 4), "initial_tension_N": round(tension, 2),
-                             "max_load_N": round(load, 2),
-                             "max_extended_length_mm": round(1e3 * (s.free_length + (load - tension) / s.rate), 2),
-                             "material": "music wire"})
-    return rows
+    return example_rows()
 
 
 def write(path, rows, columns=COLUMNS) -> str:
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(columns), extrasaction="ignore")
-        w.writeheader()
-        w.writerows(rows)
-    return str(path)
+    return str(write_catalogue(path, rows, columns))
 
 
 @pytest.fixture(scope="module")

@@ -30,6 +30,8 @@ column's name says would miss by a factor of 4.4 (pounds) or 25.4 (inches). A fi
 row and the column.
 
 springlab ships no vendor's catalogue yet: give your supplier's stock list in this format.
+:func:`example_rows` makes a series in it from springlab's own winding formulas, to try the stock path
+and to test and time it; its parts are no vendor's.
 """
 
 from __future__ import annotations
@@ -266,3 +268,46 @@ def read_catalogue(path) -> Catalogue:
     if not parts:
         raise CatalogueError(f"catalogue {path} has a header but no parts; give one row a part")
     return Catalogue(tuple(parts), str(path))
+
+
+COLUMNS = ("part_number", "outer_diameter_mm", "wire_diameter_mm", "free_length_mm", "rate_N_per_mm",
+           "initial_tension_N", "max_load_N", "max_extended_length_mm", "material")
+"""The format's required columns, metric, in the order :func:`write_catalogue` writes them."""
+
+
+def example_rows() -> list[dict]:
+    """A made-up series of music-wire extension springs in the module's format (no vendor's parts): wires of
+    0.5 to 2 mm, indices 6, 8 and 10, 10 to 40 body coils; the rate from Shigley's formula
+    (:class:`~springlab.design.buildable.ExtensionSpring`), the initial tension in the middle of the windable
+    range, and the largest load where the body's stress reaches 0.7 x 0.45 of the wire's strength over the
+    Wahl factor 1.2, within its hooks' allowables. For trying, testing and timing the stock path."""
+    from springlab.design.buildable import initial_tension_stress_range
+
+    rows = []
+    for d in (0.5, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 2.0):
+        for index in (6, 8, 10):
+            wire, mean = d * 1e-3, index * d * 1e-3
+            lo, hi = initial_tension_stress_range(index)
+            tension = float(0.5 * (lo + hi) * math.pi * wire**3 / (8 * mean))
+            for coils in (10, 15, 20, 30, 40):
+                s = ExtensionSpring("music wire", wire, mean, coils, tension, 1.0)
+                load = 0.7 * 0.45 * s.wire_material.tensile_strength(wire) * math.pi * wire**3 / (8 * mean * 1.2)
+                if load <= 1.2 * tension:
+                    continue
+                rows.append({"part_number": f"T-{len(rows) + 1:03d}", "outer_diameter_mm": round(1e3 * s.outer_diameter, 2),
+                             "wire_diameter_mm": d, "free_length_mm": round(1e3 * s.free_length, 2),
+                             "rate_N_per_mm": round(s.rate / 1e3, 4), "initial_tension_N": round(tension, 2),
+                             "max_load_N": round(load, 2),
+                             "max_extended_length_mm": round(1e3 * (s.free_length + (load - tension) / s.rate), 2),
+                             "material": "music wire"})
+    return rows
+
+
+def write_catalogue(path, rows, columns=COLUMNS) -> Path:
+    """Rows (dicts of the module's columns) written as a catalogue file at ``path``; returns its path."""
+    path = Path(path)
+    with path.open("w", newline="", encoding="utf-8") as f:
+        out = csv.DictWriter(f, fieldnames=list(columns), extrasaction="ignore")
+        out.writeheader()
+        out.writerows(rows)
+    return path

@@ -188,14 +188,30 @@ class SpringClearance:
                       f"clears by {1e3 * self.margin:g} mm", "at the pose (deg)"], out)
 
 
+def _same_place(one, other) -> bool:
+    """Whether two pieces (:class:`~springlab.design.collision.Piece`) occupy the same place at every pose: their
+    names aside, equal in every field."""
+    def same(x, y):
+        return (x is None) == (y is None) and (x is None or np.array_equal(np.asarray(x), np.asarray(y)))
+    return (one.radius == other.radius and one.width == other.width and one.bodies == other.bodies
+            and same(one.a, other.a) and same(one.b, other.b) and same(one.axis, other.axis))
+
+
 def spring_clearance(model: RevoluteChain, realised, kinds, coils, names, q, *, margin: float = MARGIN) -> SpringClearance:
     """Each realised spring's nearest approach to any link over the poses ``q`` (see the module docstring)."""
     pieces = spring_pieces(model, realised, kinds, coils, names, q)
-    found = clearances(model, pieces, q, margin=margin)
+    unique, index = [], []  # coils side by side on the same ends are the same pieces: measured once
+    for piece in pieces:
+        same = next((u for u, other in enumerate(unique) if _same_place(piece, other)), None)
+        if same is None:
+            unique.append(piece)
+            same = len(unique) - 1
+        index.append(same)
+    found = clearances(model, unique, q, margin=margin)
     best: dict = {}
     for k, piece in enumerate(pieces):
         spring, _, part = piece.name.partition(" ")
-        gap, body, pose = found.worst(k)
+        gap, body, pose = found.worst(index[k])
         if spring not in best or gap < best[spring][4]:
             best[spring] = (spring, part, found.links[body], pose, gap)
     return SpringClearance(tuple(best[n] for n in names if n in best), float(margin), int(np.asarray(q).shape[0]))

@@ -501,8 +501,8 @@ def _better(one: dict, other: dict) -> bool:
 
 
 STOCK_TRIES = 6
-"""How many of a spring's stock candidates (:func:`stock_candidates`, best first) are realised in full, the
-pulley compensated, before the best of those that fit and clear is kept."""
+"""How many of a spring's stock candidates (:func:`stock_candidates`, nearest first) are realised in full, the
+pulley compensated, in turn until one fits and clears."""
 
 STOCK_SCALE = (0.5, 2.0)
 """The point's and the post's lengths may each be scaled within these bounds to suit a stock part's rate (the
@@ -556,9 +556,9 @@ def stock_candidates(catalogue, rate: float, c: complex, p: complex, theta, room
 
 
 def _stocked(got: dict, attempt, catalogue, plane, R, before=None) -> dict:
-    """A custom realisation ``got`` made of stock parts where some fit (:func:`stock_candidates`): of the first
-    :data:`STOCK_TRIES` candidates, realised in full by ``attempt`` with the custom coil's placing, the one that
-    fits and clears with the least torque left; else ``got``, saying why none did. ``before``: (part number,
+    """A custom realisation ``got`` made of stock parts where some fit (:func:`stock_candidates`): the first of
+    the nearest :data:`STOCK_TRIES` candidates that, realised in full by ``attempt`` with the custom coil's
+    placing (the pulley compensated at the parts' rate), fits and clears; else ``got``, saying why none did. ``before``: (part number,
     block ratio) an earlier round chose, tried first and kept where it fits and clears again (the design's
     rounds for the springs' own mass change the rates a little)."""
     at_post, swap = got["choice"]
@@ -567,7 +567,6 @@ def _stocked(got: dict, attempt, catalogue, plane, R, before=None) -> dict:
     on_link = None if at_post else rho + HOOK_GAP + d  # the coil between the pulley and the joint
     tries, why = stock_candidates(catalogue, got["k0"], got["c0"], got["p0"], plane.angles(R),
                                    got["fits_in"] if at_post else got["reach"], got["reach"], 2 * (rho + d), on_link)
-    best = None
     again = [t for t in tries if before is not None and (t[0].part_number, t[1]) == tuple(before)][:1]
     for stock in again:  # the earlier round's part, where it does as well again
         try:
@@ -576,17 +575,13 @@ def _stocked(got: dict, attempt, catalogue, plane, R, before=None) -> dict:
             continue
         if "left" not in other and other["fits"] and other["clear"]:
             return other
-    for stock in tries[:STOCK_TRIES]:
+    for stock in tries[:STOCK_TRIES]:  # nearest first: the first that fits and clears once compensated
         try:
             other = attempt(at_post, swap, stock)
         except SpringlabError:
             continue
-        if "left" in other or not (other["fits"] and other["clear"]):
-            continue
-        if best is None or other["residual"] < best["residual"]:
-            best = other
-    if best is not None:
-        return best
+        if "left" not in other and other["fits"] and other["clear"]:
+            return other
     why = why if not tries else (f"none of the {min(len(tries), STOCK_TRIES)} nearest choices (part, block, side by "
                                  "side) fits and clears once its pulley is compensated")
     return got | {"unstocked": f"no part of the catalogue fits: {why}"}
@@ -720,14 +715,10 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
             if stock is not None:  # within the vendor's limits, and stretched past its free length everywhere
                 fits = fits and not coil.problems() and (
                     ratio * coil.initial_tension / coil.rate <= STRETCH_MARGIN * lengths[0])
-            x = np.array([s.k, c.real, c.imag, p.real, p.imag])
-            with np.errstate(all="ignore"):
-                torque = _cable_terms(x, rho, plane.angles(R), plane.gG, plane.tilt, at_post)[1] if rho > 0 else None
             return {"s": s, "lead": lead, "rho": rho, "chosen": chosen, "lengths": lengths, "coil": coil,
                     "ratio": ratio, "parallel": parallel, "room": fits_in if at_post else None,
                     "fits": fits, "clear": clear >= 0, "choice": (at_post, swap), "stock": stock,
-                    "c0": c0, "p0": p0, "k0": rate, "fits_in": fits_in, "reach": room,
-                    "residual": 0.0 if torque is None else sig(float(np.sqrt(np.mean(torque**2))) / abs(plane.gG))}
+                    "c0": c0, "p0": p0, "k0": rate, "fits_in": fits_in, "reach": room}
 
         got = None
         if index in prefer:  # the placing the previous round searched for, where it does as well again (fits
