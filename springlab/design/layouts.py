@@ -558,9 +558,9 @@ def stock_candidates(catalogue, rate: float, c: complex, p: complex, theta, room
 def _stocked(got: dict, attempt, catalogue, plane, R, before=None) -> dict:
     """A custom realisation ``got`` made of stock parts where some fit (:func:`stock_candidates`): the first of
     the nearest :data:`STOCK_TRIES` candidates that, realised in full by ``attempt`` with the custom coil's
-    placing (the pulley compensated at the parts' rate), fits and clears; else ``got``, saying why none did. ``before``: (part number,
-    block ratio) an earlier round chose, tried first and kept where it fits and clears again (the design's
-    rounds for the springs' own mass change the rates a little)."""
+    placing (the pulley compensated at the parts' rate), fits and clears; else ``got``, saying why none did.
+    ``before``: (part number, block ratio) an earlier round chose, tried first and kept where it fits and
+    clears again (the design's rounds for the springs' own mass change the rates a little)."""
     at_post, swap = got["choice"]
     rho = got["rho"]
     d = got["chosen"].diameter if rho > 0 else 0.0
@@ -568,14 +568,7 @@ def _stocked(got: dict, attempt, catalogue, plane, R, before=None) -> dict:
     tries, why = stock_candidates(catalogue, got["k0"], got["c0"], got["p0"], plane.angles(R),
                                    got["fits_in"] if at_post else got["reach"], got["reach"], 2 * (rho + d), on_link)
     again = [t for t in tries if before is not None and (t[0].part_number, t[1]) == tuple(before)][:1]
-    for stock in again:  # the earlier round's part, where it does as well again
-        try:
-            other = attempt(at_post, swap, stock)
-        except SpringlabError:
-            continue
-        if "left" not in other and other["fits"] and other["clear"]:
-            return other
-    for stock in tries[:STOCK_TRIES]:  # nearest first: the first that fits and clears once compensated
+    for stock in again + tries[:STOCK_TRIES]:  # the earlier round's part, then the nearest: the first that fits
         try:
             other = attempt(at_post, swap, stock)
         except SpringlabError:
