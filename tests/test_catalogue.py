@@ -109,8 +109,8 @@ def stocked(catalogue_file):
     from springlab.model.robots import load_robot
 
     catalogue = read_catalogue(catalogue_file)
-    return catalogue, design_model(load_robot("double pendulum"), pulley_radius=None, layout="belts", samples=300,
-                                   audit_samples=200, catalogue=catalogue)
+    return catalogue, design_model(load_robot("double pendulum"), pulley_radius=None, layout="belts", samples=200,
+                                   audit_samples=100, catalogue=catalogue)
 
 
 def _removed(design) -> np.ndarray:
@@ -156,8 +156,8 @@ def test_stock_choice_no_worse_than_the_nearest_single_part(stocked, tmp_path):
         nearest.add(min(catalogue, key=lambda p: abs(np.log(p.rate / s.k))).part_number)
     rows = [row for row in series() if row["part_number"] in nearest]
     alone = read_catalogue(write(tmp_path / "nearest.csv", rows))
-    single = design_model(load_robot("double pendulum"), pulley_radius=None, layout="belts", samples=300,
-                          audit_samples=200, catalogue=alone)
+    single = design_model(load_robot("double pendulum"), pulley_radius=None, layout="belts", samples=200,
+                          audit_samples=100, catalogue=alone)
     assert np.all(_removed(design) >= _removed(single) - 0.05)
 
 
@@ -168,8 +168,8 @@ def test_a_catalogue_with_no_fitting_part_falls_back(tmp_path, stocked):
 
     catalogue, design = stocked
     weak = [row for row in series() if row["max_load_N"] < 12][:3]
-    single = design_model(load_robot("double pendulum"), pulley_radius=None, layout="belts", samples=300,
-                          audit_samples=200, catalogue=read_catalogue(write(tmp_path / "weak.csv", weak)))
+    single = design_model(load_robot("double pendulum"), pulley_radius=None, layout="belts", samples=200,
+                          audit_samples=100, catalogue=read_catalogue(write(tmp_path / "weak.csv", weak)))
     assert all(getattr(fit.coil, "part", None) is None for fit in single.coils)
     assert all("custom-wound (no part of the catalogue fits: " in kind for kind in single.kinds)
     assert all(row[1] == "none: wound to order" for row in single.stock_table().rows)

@@ -89,7 +89,8 @@ def test_a_dial_that_holds_a_sliver_of_the_range_is_none(ur5):
 
 def test_a_dial_that_turns_says_the_range_it_holds():
     # the control: designed at 2.5 kg, the anchors can move towards lighter payloads, down to 0 kg
-    design = design_model(load_robot("UR5", payload=2.5), samples=300, fit_poses=100, collisions=False)
+    design = design_model(load_robot("UR5", payload=2.5), samples=300, fit_poses=100, collisions=False,
+                          audit_samples=500)  # the dial is checked, not the re-check
     study = payload_study(design, ROBOTS["UR5"].tip, [0.0, 3.5], nominal=2.5, dial_poses=100)
     lo, hi = study.holds["ideal"]
     assert study.usable("ideal") and lo == 0.0 and hi == pytest.approx(2.5, abs=1e-6)
@@ -247,7 +248,7 @@ def test_a_spring_left_out_is_named_in_the_changes_and_the_json(monkeypatch):
     monkeypatch.setattr(realise, "_rebalance", lambda m, springs, cable, *a: [
         s.scaled(1e-3) if i == cable[0] else s for i, s in enumerate(springs)])
     design = design_model(load_robot("SO-101"), samples=40, fit_poses=60, max_springs=3, pulley_radius=0.005,
-                          collisions=False)  # what the realisation leaves out: the limits' box will do
+                          collisions=False, audit_samples=500)  # what the realisation leaves out: the box will do
     (index, why), = design.left_out
     assert "carries next to nothing" in why and design.names[index] not in design.realised_names
     assert ["(left out)", design.names[index], why] in [list(row) for row in design.changes_table().rows]
@@ -260,7 +261,7 @@ def test_the_books_two_ur5_designs_name_their_springs_apart():
     loaded = real_arms.payload_study("UR5", samples=100, fit_poses=60, masses=3)
     assert loaded.names["ideal"] == ("P1", "P2", "P3", "P4", "P5", "P6")
     assert all(row[0].startswith("P") for row in loaded.dials["ideal"].table(loaded.names["ideal"]).rows)
-    unloaded = design_model(load_robot("UR5"), samples=100, fit_poses=60, collisions=False)
+    unloaded = design_model(load_robot("UR5"), samples=100, fit_poses=60, collisions=False, audit_samples=500)
     assert unloaded.names[0] == "S1" and not set(unloaded.names) & set(loaded.names["ideal"])
     with pytest.raises(SpringlabError, match="tag"):
         design_model(load_robot("UR5"), samples=10, tag="s1")

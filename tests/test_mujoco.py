@@ -34,8 +34,8 @@ and spring sums in float64 (about 1e-15); the real-arms target is 1e-9."""
 def designs(ur5_two_point):
     """The UR5's and the Panda's designs, the realised cable springs over 5 mm pulleys (the ideal
     springs are the same with or without pulleys)."""
-    panda = design_model(load_robot("Panda"), samples=200, fit_poses=100, pulley_radius=0.005,
-                         collisions=False)  # MuJoCo against route 2: the limits' box will do
+    panda = design_model(load_robot("Panda"), samples=200, fit_poses=100, pulley_radius=0.005, collisions=False,
+                         audit_samples=500)  # MuJoCo against route 2: the limits' box and a short re-check do
     return {"UR5": ur5_two_point, "Panda": panda}
 
 

@@ -42,7 +42,7 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from springlab.design.buildable import MATERIALS, ExtensionSpring
+from springlab.design.buildable import MATERIALS, ExtensionSpring, initial_tension_stress_range
 from springlab.design.cables import INCH, LBF
 from springlab.errors import SpringlabError
 
@@ -281,8 +281,6 @@ def example_rows() -> list[dict]:
     (:class:`~springlab.design.buildable.ExtensionSpring`), the initial tension in the middle of the windable
     range, and the largest load where the body's stress reaches 0.7 x 0.45 of the wire's strength over the
     Wahl factor 1.2, within its hooks' allowables. For trying, testing and timing the stock path."""
-    from springlab.design.buildable import initial_tension_stress_range
-
     rows = []
     for d in (0.5, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6, 2.0):
         for index in (6, 8, 10):
