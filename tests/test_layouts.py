@@ -23,7 +23,7 @@ from springlab.workbench.cli import main
 
 @pytest.fixture(scope="module")
 def ur5():
-    return design_model(load_robot("UR5"), pulley_radius=None, layout="belts", samples=600)
+    return design_model(load_robot("UR5"), pulley_radius=None, layout="belts", samples=600, audit_samples=2000)
 
 
 def test_the_ur5s_belt_springs_clear_its_links_and_hold_it_with_their_own_weight(ur5):
