@@ -21,7 +21,7 @@ figures: $(STAMP)
 	$(BIN)/python -m springlab.workbench.site --notebooks build/notebooks --site build/site --figures figures
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -q -n auto --dist worksteal -m "not extended"
+	$(BIN)/python -m pytest -q -n auto -m "not extended"
 
 # Everything CI runs: the tests, the extended checks, and every notebook on another CPU.
 check-all: test
