@@ -511,11 +511,8 @@ class ArmDesign:
             stretched = float(fit.coil_length(longest)) if kind.startswith("cable") else longest
             part = getattr(fit.coil, "part", None)
             if part is not None:  # a stock part: the vendor's limits, at the poses checked
-                pull = float(fit.coil.force(max(stretched, part.free_length)))
-                if stretched > part.max_extended_length * (1 + 1e-9) or pull > part.max_load * (1 + 1e-9):
-                    out.append(f"the realised spring {name}'s stock part {part.part_number} is stretched to "
-                               f"{1e3 * stretched:.1f} mm at {pull:.1f} N, past its catalogue's "
-                               f"{1e3 * part.max_extended_length:.1f} mm and {part.max_load:.1f} N")
+                out += [f"the realised spring {name}'s stock part {part.part_number} is {why}"
+                        for why in fit.coil.beyond(stretched)]
             stress = float(fit.coil.stress(fit.coil.force(max(stretched, fit.coil.free_length))))
             if longest > fit.span[1] and stress > fit.coil.allowable_stress:
                 out.append(f"the realised spring {name}'s coil is stretched to {1e3 * stretched:.1f} mm at a pose of the "

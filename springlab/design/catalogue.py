@@ -135,16 +135,22 @@ class StockSpring(ExtensionSpring):
         """kg: the catalogue's where it gives one, else its wire's (body coils and two hooks)."""
         return self.part.mass if self.part.mass is not None else ExtensionSpring.mass.fget(self)
 
-    def problems(self) -> list[str]:
-        """The vendor's limits: stretched no further than its largest extension, pulling no more than its
-        largest load (the stresses and fatigue are on the sheet, computed from its wire and coil)."""
+    def beyond(self, length: float) -> list[str]:
+        """What the vendor's limits refuse of the part stretched to ``length`` (m, inside the hooks): past its
+        largest extension, pulling past its largest load (empty: within them)."""
+        pull = float(self.force(max(length, self.free_length)))
         out = []
-        if self.max_length > self.part.max_extended_length * (1 + 1e-9):
-            out.append(f"stretched to {1e3 * self.max_length:.1f} mm, past its catalogue's largest extension "
+        if length > self.part.max_extended_length * (1 + 1e-9):
+            out.append(f"stretched to {1e3 * length:.1f} mm, past its catalogue's largest extension "
                        f"{1e3 * self.part.max_extended_length:.1f} mm")
-        if self.max_force > self.part.max_load * (1 + 1e-9):
-            out.append(f"pulling {self.max_force:.1f} N, past its catalogue's largest load {self.part.max_load:.1f} N")
+        if pull > self.part.max_load * (1 + 1e-9):
+            out.append(f"pulling {pull:.1f} N, past its catalogue's largest load {self.part.max_load:.1f} N")
         return out
+
+    def problems(self) -> list[str]:
+        """The vendor's limits at its longest in service (:meth:`beyond`; the stresses and fatigue are on the
+        sheet, computed from its wire and coil)."""
+        return self.beyond(self.max_length)
 
 
 @dataclass(frozen=True)

@@ -512,9 +512,10 @@ point no farther than its link's room)."""
 def stock_candidates(catalogue, rate: float, c: complex, p: complex, theta, room: float, reach: float,
                       behind: float, pulley: float | None = None) -> tuple[list, str]:
     """Stock parts for a cable spring of rate ``rate`` (N/m) from the point c to the post p (complex, m, in its
-    plane) over the link's angles ``theta`` (rad): for each part, block ratio (:data:`~springlab.design.realise.BLOCKS`) and count side by
-    side (up to :data:`~springlab.design.realise.MAX_PARALLEL`) whose rate along the cable, count k / ratio^2, balances with the point's and
-    the post's lengths scaled by a and b (a b = rate / that rate, 001 Eq. (16); each within :data:`STOCK_SCALE`,
+    plane) over the link's angles ``theta`` (rad): for each part, block ratio
+    (:data:`~springlab.design.realise.BLOCKS`) and count side by side (up to
+    :data:`~springlab.design.realise.MAX_PARALLEL`) whose rate along the cable, count k / ratio^2, balances
+    with the point's and the post's lengths scaled by a and b (a b = rate / that rate, 001 Eq. (16); each within :data:`STOCK_SCALE`,
     the point no farther than ``reach``, m) and whose part, with a point pulley, stays stretched past its free
     length (:data:`~springlab.design.buildable.STRETCH_MARGIN`), within its catalogue's largest extension and
     load, and no longer than ``room`` (m, less ``behind`` for a block's sheave; with ``pulley``, m, a pulley on
@@ -603,9 +604,9 @@ def realise_layout(layout: Layout, q, *, material: str = "auto", pulley_radius: 
     fits nowhere, its point's and post's lengths are scaled in inverse proportion (:data:`SCALES`), on the
     link and on the bracket, and the first placing that fits and clears with the fewest coils is kept. Each
     coil records its placing (:attr:`~springlab.design.buildable.Fitted.choice`); ``prefer`` maps a layout
-    spring's index to an earlier round's (placing, coils side by side[, (stock part number, block)]), tried first and kept where it does
-    as well again, fitting and clearing as it did with no more coils (the design's rounds for the springs'
-    own mass).
+    spring's index to an earlier round's (placing, coils side by side[, (stock part number, block)]), tried
+    first and kept where it does as well again, fitting and clearing as it did with no more coils (the design's
+    rounds for the springs' own mass).
 
     With a ``catalogue`` (:class:`springlab.design.catalogue.Catalogue`) each spring is then made of stock
     parts where some fit (:func:`stock_candidates`, :data:`STOCK_TRIES`): the placing found for its custom
