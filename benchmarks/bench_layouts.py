@@ -6,7 +6,9 @@ joints, the light ones left out, form a planar chain, else paper 001's pseudobas
 stainless rope over a pulley sized to it, with the springs' hardware (coils, ropes, pulleys, brackets,
 posts, belts or RSSR modules) carried. Per arm: the layout, the
 springs, the share of each loaded joint's peak removed by the realised springs carrying their hardware,
-each spring's nearest approach to a link on the URDF's own meshes (coal), the longest coil over the
+each spring's nearest approach to a link on the URDF's own meshes (coal), where it runs into one the
+share of the workspace kept by the narrower ranges on which the same springs clear (springlab.design.narrowing,
+re-measured on fresh poses), the longest coil over the
 length it is held to (its link's; a coil on a bracket of the level frame: the longer link's at its
 joint), the springs' and the hardware's mass beside the arm's, the design's status, and its seconds.
 
@@ -40,10 +42,10 @@ def _row(label: str):
     try:
         design = design_model(model, pulley_radius=None, layout="auto")
     except SpringlabError as err:  # a refusal is the finding here
-        return (label, "REFUSED", 0, str(err), "", "", "", "refused", f"{time.perf_counter() - start:.1f}"), None
+        return (label, "REFUSED", 0, str(err), "", "", "", "", "refused", f"{time.perf_counter() - start:.1f}"), None
     seconds = time.perf_counter() - start
     if not design.realised:
-        return (label, design.method, 0, "", "", "", "", "passed", f"{seconds:.1f}"), design
+        return (label, design.method, 0, "", "", "", "", "", "passed", f"{seconds:.1f}"), design
     peak = np.max(np.abs(geometry.gravity_torques(design.massed, design.q)), axis=0)
     left = np.max(np.abs(geometry.joint_torques(design.massed, design.realised, design.q)), axis=0)
     shares = ", ".join(f"{100 * (1 - left[i] / peak[i]):.1f}" for i in design.structure.loaded)
@@ -54,15 +56,19 @@ def _row(label: str):
     worst = max(fit.coil.max_length / bound if bound > 0 else np.inf  # a link of no length: no room at all
                 for fit, bound in zip(design.coils, bounds, strict=True))
     status = "passed" if not design.flags() else f"flagged ({len(design.flags())})"
+    best = max(design.narrowed, key=lambda n: n.kept, default=None)
+    clear = ("the whole" if not (design.clearance and design.clearance.failing()) else "none found" if best is None
+             else f"{100 * best.kept:.0f} % ({best.workspace(design.model)})")
     return (label, design.method.split(":")[0], len(design.realised), shares,
-            f"{1e3 * min(gaps):.0f}" if gaps else "-", f"{worst:.2f}",
+            f"{1e3 * min(gaps):.0f}" if gaps else "-", clear, f"{worst:.2f}",
             f"{mass:.2f} / {hardware:.2f} / {float(np.sum(model.mass[1:])):.1f}", status, f"{seconds:.1f}"), design
 
 
 def _table(rows) -> None:
     print("| arm | layout | springs | loaded joints' peaks removed, hardware carried (%) | nearest link (mm) "
-          "| longest coil / its room | springs' / hardware's / arm's mass (kg) | status | seconds |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "| workspace the springs clear (kept, narrowed) | longest coil / its room "
+          "| springs' / hardware's / arm's mass (kg) | status | seconds |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for row in rows:
         print("| " + " | ".join(str(v) for v in row) + " |")
 

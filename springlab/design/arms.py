@@ -62,6 +62,7 @@ from springlab.design.hardware import (
     with_spring_mass,
 )
 from springlab.design.layouts import SHARE, belt_layout, realise_layout, without_light
+from springlab.design.narrowing import narrowed
 from springlab.design.pseudobases import pseudobase_layout
 from springlab.design.realise import (
     length_range,
@@ -259,6 +260,9 @@ class ArmDesign:
     :ivar workspace: what the workspace is (:class:`~springlab.design.collision.Sampler`'s note)
     :ivar carried: whether the springs were designed for the arm carrying their hardware (:attr:`massed`;
         the belt layout), so that their checks are made on it
+    :ivar narrowed: where a realised spring runs into a link, the narrower workspaces on which the same springs
+        clear every link (:func:`~springlab.design.narrowing.narrowed`: one joint's range, then two), each
+        re-measured on fresh poses of it; empty when they clear or none was found
     """
 
     model: RevoluteChain
@@ -279,6 +283,7 @@ class ArmDesign:
     massed: RevoluteChain | None = None
     workspace: str = ""
     carried: bool = False
+    narrowed: tuple = ()
 
     @property
     def names(self) -> tuple:
@@ -622,6 +627,17 @@ class ArmDesign:
         rows.append(("0", "none", *("0.0" for _ in names)))
         return Table(["springs", "kept", *(f"{n} removed (%)" for n in names)], rows)
 
+    def narrowed_table(self) -> Table:
+        """The narrower workspaces on which the realised springs clear the links (:attr:`narrowed`): the ranges
+        (as ``--workspace`` takes them), the share of the workspace they keep, the nearest approach over their fresh
+        poses, and each loaded joint's share removed there."""
+        names = [self.model.joints[i] for i in self.structure.loaded]
+        rows = [(n.workspace(self.model), f"{100 * n.kept:.0f}", f"{n.fresh:,}",
+                 f"{1e3 * n.nearest:.1f} ({n.spring}, {n.link})", *(f"{n.removed.get(j, float('nan')):.1f}" for j in names))
+                for n in self.narrowed]
+        return Table(["narrowed (--workspace, deg)", "workspace kept (%)", "fresh poses, all clear",
+                      "nearest link on them (mm)", *(f"{j} removed (%)" for j in names)], rows)
+
     def parts_table(self) -> Table:
         """Every part of the realised springs' hardware (:func:`springlab.design.hardware.parts`): its kind,
         the link it rides on, its mass (g), sizes (mm) and the largest loads over :attr:`q`."""
@@ -783,7 +799,8 @@ class ArmDesign:
                 "workspace": self.workspace,
                 "clearance": None if self.clearance is None else {
                     "margin_m": self.clearance.margin, "poses": self.clearance.poses,
-                    "clears": not self.clearance.failing()},
+                    "clears": not self.clearance.failing(),
+                    "narrowed_workspaces": [n.as_dict(self.model) for n in self.narrowed]},
                 "spring_mass_kg": float(sum(h["mass_kg"] for h in hardware)),
                 "hardware_mass_kg": float(sum(p["mass_kg"] for p in listed)),
                 "parts": listed,
@@ -877,7 +894,7 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                  max_stiffness: float = MAX_STIFFNESS, material: str = "auto",
                  pulley_radius: float | None = 0.0, tag: str = "S", margin: float | None = None,
                  collisions: bool = True, layout: str = "two-point", share: float | None = None,
-                 cable=None, audit_samples: int = AUDIT_SAMPLES, catalogue=None) -> ArmDesign:
+                 cable=None, audit_samples: int = AUDIT_SAMPLES, catalogue=None, narrow: bool = True) -> ArmDesign:
     """Springs for an arm of the general model over its workspace (:func:`workspace_ranges`): its
     structure (:func:`~springlab.design.structure.structure`); the exact planar springs where its loaded joints form a planar
     chain (:func:`~springlab.design.structure.planar_springs`), else the best springs (:func:`~springlab.design.search.best_springs`, fitted on
@@ -891,7 +908,8 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
     plane; ``collisions=False``: the ranges' box), its realised springs' clearance from the links is
     measured against ``margin`` (m, default :data:`~springlab.design.collision.MARGIN`) on the check
     poses, and the arm carrying the springs' own mass is kept beside it
-    (:mod:`springlab.design.hardware`).
+    (:mod:`springlab.design.hardware`). Where a realised spring runs into a link, ``narrow`` (default) seeks the
+    narrower workspaces on which the same springs clear (:func:`~springlab.design.narrowing.narrowed`).
 
     ``layout='auto'`` takes the belts where the loaded joints (the light ones left out) form a planar
     chain and the arm has collision geometry, else the two-point springs.
@@ -1059,9 +1077,14 @@ def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, f
                        tag, left_out)
     if not realised:
         return design
-    clearance = None
+    clearance, narrower = None, ()
+    massed = with_spring_mass(model, realised, kinds, coils, check)
     if sampler is not None:
         clearance = spring_clearance(model, realised, kinds, coils, design.realised_names, check, margin=margin)
-    massed = with_spring_mass(model, realised, kinds, coils, check)
+        if clearance.failing() and narrow:
+            narrower = narrowed(model, realised, kinds, coils, design.realised_names, check, ranges, random=samples,
+                                margin=margin, fresh=min(samples, 2000), seed=seed, loaded=found.loaded,
+                                massed=massed if layout == "belts" else None, limits=workspace_ranges(model))
     workspace = sampler.note() if sampler is not None else "the joint ranges' box (the arm has no collision geometry)"
-    return replace(design, clearance=clearance, massed=massed, workspace=workspace, carried=layout == "belts")
+    return replace(design, clearance=clearance, massed=massed, workspace=workspace, carried=layout == "belts",
+                   narrowed=narrower)

@@ -298,6 +298,12 @@ class Clearances:
         p, b = np.unravel_index(int(np.argmin(g)), g.shape)
         return float(g[p, b]), int(b), int(p)
 
+    def within(self, margin: float = MARGIN) -> np.ndarray:
+        """Per pose, whether any piece comes nearer than ``margin`` (m) to a body or the mounting plane, (N,): exact
+        where the clearances were measured with ``every`` and the same ``margin``, else it may also hold where only
+        a lower bound was below it."""
+        return np.any(self.gaps < margin, axis=(0, 2))
+
     def failures(self, margin: float = MARGIN) -> list[tuple[str, str, int, float]]:
         """(piece, link, pose index, clearance m) for each piece nearer than ``margin`` to a link."""
         out = []
@@ -308,18 +314,21 @@ class Clearances:
         return out
 
 
-def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Clearances:
+def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN, every: bool = False) -> Clearances:
     """Each piece's clearance from each of the model's bodies at the poses ``q`` (N, n) rad: exact at each
     piece's nearest approach (:meth:`Clearances.worst`) and wherever it was measured; elsewhere a lower
     bound (capsules that hold the piece and the shape screen the poses in numpy; coal measures the poses
     in the order of those bounds, until no pose left can come nearer than one measured, or than the
-    ``margin``)."""
+    ``margin``). With ``every``, coal measures every pose whose bound is below the ``margin`` and which no piece
+    was yet found within the margin at: which poses some piece comes within the margin at is then exact
+    (:meth:`Clearances.within`), each piece's nearest approach still exact."""
     coal = _coal()
     q = model.check_q(q)
     pieces = tuple(pieces)
     items = _items(model)
     R, o = body_frames(model, q)
     gaps = np.full((len(pieces), q.shape[0], model.n + 2), np.inf)
+    hit = np.zeros(q.shape[0], dtype=bool)  # the poses found within the margin so far
     plane, up = mounting_plane(model), np.asarray(model.up, dtype=float)
     placed = []
     for item in items:
@@ -345,6 +354,12 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Cl
             Ri, ti = placed[i]
             return _signed(coal, items[i], _transform(coal, Ri[p], ti[p]), solid, _transform(coal, Rs, c), c, near)
 
+        if piece.axis is None:  # a capsule's lowest point; a disc's: its rim's, tilted by its axis
+            gaps[k, :, -1] = np.minimum(a @ up, b @ up) - piece.radius - plane
+        else:
+            tilt = np.sqrt(np.clip(1 - (np.asarray(piece.axis, dtype=float) @ up) ** 2, 0.0, 1.0))
+            gaps[k, :, -1] = a @ up - piece.radius * tilt - 0.5 * piece.width * np.abs(piece.axis @ up) - plane
+        hit |= gaps[k, :, -1] < margin
         G = np.empty((len(items), q.shape[0]))  # per shape and pose: exact below the margin, else a lower bound
         known = np.zeros(G.shape, dtype=bool)
         for i, (item, (Ri, ti)) in enumerate(zip(items, placed, strict=True)):
@@ -352,10 +367,13 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Cl
             G[i] = _segment_gap(a, b, Q0, Q1) - piece.radius - r
             best = np.inf  # the nearest approach to this shape, measured in the order of the screen's bounds
             for p in np.argsort(G[i], kind="stable"):
-                if G[i, p] >= min(best, margin):
+                if G[i, p] >= (margin if every else min(best, margin)):
                     break  # no pose left can come nearer than one measured, or than the margin
+                if every and hit[p]:
+                    continue  # a pose already within the margin: whether it is needs no more measuring
                 G[i, p] = exact(i, p, margin)
                 known[i, p] = G[i, p] < margin
+                hit[p] |= known[i, p]
                 best = min(best, G[i, p])
         while G.size:  # the smallest made exact: its value, link and pose are the piece's worst
             i, p = np.unravel_index(int(np.argmin(G)), G.shape)
@@ -364,11 +382,6 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN) -> Cl
             G[i, p], known[i, p] = exact(i, p, np.inf), True
         for i, item in enumerate(items):
             gaps[k, :, item.body] = np.minimum(gaps[k, :, item.body], G[i])
-        if piece.axis is None:  # a capsule's lowest point; a disc's: its rim's, tilted by its axis
-            gaps[k, :, -1] = np.minimum(a @ up, b @ up) - piece.radius - plane
-        else:
-            tilt = np.sqrt(np.clip(1 - (np.asarray(piece.axis, dtype=float) @ up) ** 2, 0.0, 1.0))
-            gaps[k, :, -1] = a @ up - piece.radius * tilt - 0.5 * piece.width * np.abs(piece.axis @ up) - plane
     return Clearances(pieces, gaps, (*model.bodies, "the mounting plane"))
 
 

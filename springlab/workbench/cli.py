@@ -325,7 +325,8 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
            if args.tip and args.tip != model.bodies[-1] else repr(model.bodies[-1]))
     reached = design.reached(args.target) if design.structure.loaded else None
     print(f"# {model.name}: {model.n} revolute joints from {model.bodies[0]!r} to {tip}"
-          + (f", payload {payload:g} kg at the tip frame" if payload else "") + _reached_line(reached))
+          + (f", payload {payload:g} kg at the tip frame" if payload else "") + _reached_line(reached)
+          + _collision_line(design))
     ranges = workspace_ranges(model, workspace)
     print("workspace (deg): " + ", ".join(f"{name} {np.degrees(lo):.0f}..{np.degrees(hi):.0f}"
                                          for name, (lo, hi) in zip(model.joints, ranges, strict=True))
@@ -355,6 +356,7 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
         print(f"\nclearance of the realised springs (coil, cable) from the links' own shapes (coal), over the "
               f"{design.clearance.poses:,} check poses; {design.workspace}:")
         print(design.clearance.table(design.q))
+        _print_narrowed(design)
     elif design.realised and model.outline:
         print(f"\nclearance of the realised springs from the bodies (their outlines), over "
               f"{min(len(design.q), 100)} workspace poses:")
@@ -438,6 +440,35 @@ def _design_general(args, path: Path, text: str, why: str) -> int:
     print(f"springlab: warning: the design fails {len(flags)} of its own checks (listed under 'status', and in {out}'s "
           f"\"status\"); the files are written; exit status {EXIT_FLAGGED}", file=sys.stderr)
     return EXIT_FLAGGED
+
+
+def _collision_line(design) -> str:
+    """The first line's end where a realised spring runs into a link: which, by how much, and where to look."""
+    failing = design.clearance.failing() if design.realised and design.clearance is not None else ()
+    if not failing:
+        return ""
+    worst = min(failing, key=lambda r: r[4])
+    best = max(design.narrowed, key=lambda n: n.kept, default=None)
+    clear = (f"on a narrower workspace they clear ({best.workspace(design.model)}, {100 * best.kept:.0f} % of it kept): "
+             "see below" if best is not None else "no narrower workspace found where they clear: see below")
+    return (f"; SPRINGS COLLIDE: {', '.join(r[0] for r in failing)} come within the {1e3 * design.clearance.margin:g} "
+            f"mm margin of a link (at worst {worst[0]}'s {worst[1]}, {1e3 * worst[4]:.0f} mm, {worst[2]}); {clear}")
+
+
+def _print_narrowed(design) -> None:
+    """Where the realised springs run into a link: the narrower workspaces on which they clear, or that none was
+    found."""
+    if not design.clearance.failing():
+        return
+    if not design.narrowed:
+        print("\nno narrowing of one joint's range, or of two together, clears the springs while keeping a pose of the "
+              "workspace: another layout, or the ranges the arm's task needs (--workspace)")
+        return
+    print("\nthe same springs (not re-designed) clear the links on a narrower workspace: the ranges of one joint, or of "
+          "two, that hold none of the check poses where a spring comes within the margin and the most of the others, "
+          "each re-measured on fresh poses of it (coal) with the share each loaded joint's peak keeps removed there; "
+          "give it as --workspace to design for it:")
+    print(design.narrowed_table())
 
 
 def _reached_line(reached) -> str:
@@ -647,7 +678,9 @@ def _write_sheet(args, spec, chosen, out: Path) -> None:
 EPILOG = """\
 what a URDF arm's output says:
   the first line: whether the realised springs, carrying their hardware, remove --target of each
-  loaded joint's peak (light joints aside); a missed target prints what fewer springs reach.
+  loaded joint's peak (light joints aside); a missed target prints what fewer springs reach; springs
+  that come within --margin of a link say so too, with the narrower workspace (one joint's range, or
+  two joints') on which the same springs clear, re-measured on fresh poses of it.
   the layout: belts (a level reference carried by 1:1 belts to each joint of a planar chain, one
   spring per link beside the links, its coil along the link) where the arm allows them, else
   pseudobases (paper 001: a vertical line carried to each joint by spatial parallelogram RSSR

@@ -132,7 +132,7 @@ def study(label: str, *, samples: int = 2000, fit_poses: int = 300, sim_poses: i
     model = load_robot(label, payload=payload)
     start = time.perf_counter()
     design = design_model(model, samples=samples, fit_poses=fit_poses, seed=seed, pulley_radius=pulley_radius,
-                          audit_samples=audit_samples)
+                          audit_samples=audit_samples, narrow=False)  # two-point springs: the torques are studied here
     seconds = time.perf_counter() - start
     reference = pinocchio_gravity(robot_urdf(label).read_text(), model, design.q)
     ours = geometry.gravity_torques(model, design.q)
@@ -186,7 +186,7 @@ def payload_study(label: str, *, nominal: float | None = None, masses: int = 11,
     nominal = 0.5 * rated if nominal is None else nominal
     if design is None:
         design = design_model(load_robot(label, payload=nominal), samples=samples, fit_poses=fit_poses, seed=seed,
-                              pulley_radius=PULLEY, tag="P", audit_samples=audit_samples)
+                              pulley_radius=PULLEY, tag="P", audit_samples=audit_samples, narrow=False)
     grid = np.union1d(np.linspace(0.0, rated, masses), [nominal, min(nominal + 1.0, rated)])
     return study_payload(design, ROBOTS[label].tip, grid, nominal=nominal)
 
