@@ -198,3 +198,26 @@ def test_a_size_limit_keeps_the_search_complete_below_it():
     limited = bal.minimal_balanceable(arm, signs="all", most_springs=4)
     assert sorted(map(bal.multiset_label, limited.multisets)) == sorted(bal.multiset_label(c) for c in full.multisets if len(c) <= 4)
     assert limited.complete and limited.nodes < full.nodes
+
+
+LIMIT = ((1, 2, "(+,+)"), (1, 4, "(+,+)"), (1, 5, "(+,+)"), (2, 5, "(+,+)"), (2, 5, "(-,-)"), (3, 5, "(+,+)"),
+         (3, 5, "(-,-)"))
+"""Seven springs on the 000 chapter's n = 5 arm (seed 2023) that balance it only in a limit: an exact degree-2
+certificate refutes them, while a search step reaches S(1,4) with a 3e18 m lever and a 3e-17 N/m rate."""
+
+
+@pytest.mark.parametrize("coretype", [None, "Haswell"])
+def test_a_limit_is_no_design_whatever_the_blas_kernels(coretype):
+    import os
+    import subprocess
+    import sys
+
+    code = ("import numpy as np; from springlab.design import feasibility as bal; from springlab.design.rules import "
+            f"SpringSlot; arm = bal.random_arm(5, np.random.default_rng(2023)); d = bal.decide(arm, [SpringSlot(*s) for s in "
+            f"{LIMIT!r}]); print(d.verdict, d.evidence, d.certificate.check(arm) if d.certificate else None); "
+            f"d = bal.decide(arm, [SpringSlot(*s) for s in {LIMIT[1:]!r}]); print(d.verdict)")
+    env = dict(os.environ) | ({"OPENBLAS_CORETYPE": coretype} if coretype else {})
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True).stdout
+    # on AVX-512 kernels the search once returned the limit as a design ('yes'), on Haswell's the certificate
+    assert out.split("\n")[0] == "no coupling (degree 2) True"
+    assert out.split("\n")[1] == "no"  # a sub-multiset: refuted too (it would make the seven not minimal)

@@ -43,6 +43,14 @@ BOUND = 50.0
 """Largest |quantity| the design search gives a spring, in the same units (a box that keeps its
 linear programmes bounded)."""
 
+LEVER_SPAN = 1e6
+"""A design the searches find is kept only with every lever |a|, |b| within this factor of the mean link
+length, either way. Beyond it a 'design' is a limit, not a solution: a spring's energy k |A - B|^2 is then
+about |a| / length times its variation over the poses, so route 2's check in double precision loses the
+digits it needs (a spring of a 3e18 m lever and a 3e-17 N/m rate, which an exact certificate proves no
+design reaches, passed it with a variation of exactly 0, its own lost to round-off, on one CPU's BLAS
+and not on another's)."""
+
 
 def _quantities(chain: Chain, s: SpringSlot) -> list[tuple[int, dict[tuple[int, int], float]]]:
     """The spring's linear quantities that enter 000 Eqs. (39): (sign, {entry: coefficient}), from
@@ -351,6 +359,9 @@ def design_searches(chain: Chain, slots, *, starts: int = 2, seed=0):
                 k = v[cols[3]] * scale / length**2 if s.j - s.i >= 3 else Av * Bv / Pv  # N/m
                 a, b = Av / k, Bv / k
             out.append(Spring(s.i, s.j, float(a), float(b), float(k)))
+        levers = np.abs([x for sp in out for x in (sp.a, sp.b)]) / length
+        if not np.all((levers >= 1 / LEVER_SPAN) & (levers <= LEVER_SPAN)):
+            return None  # a limit, not a design: route 2 could not check it in double precision
         ok = np.abs(balance_residual(chain, out)).max() <= 1e-9 * scale
         return tuple(out) if ok else None
 
