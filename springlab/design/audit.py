@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from springlab.design.realise import CROSSING, defined_torques, lead_angles, nearest_approach
-from springlab.design.search import compass_search, sig
+from springlab.design.search import compass_search, compass_searches, sig
 from springlab.design.structure import NEGLIGIBLE
 from springlab.model.revolute import RevoluteChain
 
@@ -30,7 +30,7 @@ starts (the worst it reaches joins the check)."""
 class Audit:
     """An independent re-check of a design's peak holding torques: :data:`AUDIT_SAMPLES` random poses of
     the workspace (their own seed), and from the worst of them, per joint and per case (gravity alone,
-    ideal, realised springs), a compass search (``_climb``) that climbs to the nearby worst pose
+    ideal, realised springs), a compass search (``_climbs``) that climbs to the nearby worst pose
     within the workspace. The worst poses found join the design's check poses, so every peak and
     share the design reports holds on them too.
 
@@ -96,13 +96,15 @@ class Audit:
             if largest is None:  # gravity's, the first case, over the workspace's poses
                 largest = max(float(tau[first_free(np.argsort([-sig(v) for v in tau[:, j]], kind="stable"), 1),
                                         j].max(initial=0.0)) for j in range(model.n))
-            for j in range(model.n):
-                if not np.max(tau[:, j]) > 0:
-                    continue
+            loaded = [j for j in range(model.n) if np.max(tau[:, j]) > 0]
+            jobs = [(j, start) for j in loaded
+                    for start in q[first_free(np.argsort([-sig(v) for v in tau[:, j]], kind="stable"), AUDIT_STARTS)]]
+            found = _climbs(model, springs, jobs, lo, hi, None if sampler is None else sampler.free)
+            for j in loaded:
                 climbed = []
-                for start in q[first_free(np.argsort([-sig(v) for v in tau[:, j]], kind="stable"), AUDIT_STARTS)]:
-                    pose, value, broken = _climb(model, springs, start, j, lo, hi,
-                                                 None if sampler is None else sampler.free)
+                for (joint, _), (pose, value, broken) in zip(jobs, found, strict=True):
+                    if joint != j:
+                        continue
                     climbed.append((sig(value), -len(climbed), pose, value))
                     if broken is not None and not any(u[0] == case for u in undefined):
                         undefined.append((case, 0, broken[0].tolist(), broken[1]))
@@ -155,20 +157,33 @@ class Audit:
                            for case, joint, own, value in self.raised]}
 
 
-def _climb(model: RevoluteChain, springs, start, j: int, lo, hi, allowed=None) -> tuple[np.ndarray, float, tuple | None]:
-    """The largest |holding torque| (N m) of joint ``j`` near the pose ``start`` within the bounds [lo, hi]
-    (rad), by :func:`~springlab.design.search.compass_search` on route 2's torques, moving only to poses ``allowed`` (a function of poses
-    (M, n) -> (M,) bool; None: all). Returns the pose, its |torque|, and the first trial pose where a
-    spring had no line of action with the reason (None where every trial had one)."""
-    broken = []
+def _climbs(model: RevoluteChain, springs, jobs, lo, hi, allowed=None) -> list[tuple[np.ndarray, float, tuple | None]]:
+    """Per job (joint ``j``, pose ``start``): the largest |holding torque| (N m) of joint j near that pose within the
+    bounds [lo, hi] (rad), by :func:`~springlab.design.search.compass_searches` on route 2's torques (every job's
+    step in one call), moving only to poses ``allowed`` (a function of poses (M, n) -> (M,) bool; None: all); a
+    job that climbed out of the workspace climbs again from its start, within it. Returns per job the pose, its
+    |torque|, and the first trial pose where a spring had no line of action with the reason (None where every
+    trial had one)."""
+    if not jobs:
+        return []
+    joints = np.array([j for j, _ in jobs], dtype=int)
+    broken: dict = {}
 
-    def value(trials):
-        tau, why = defined_torques(model, springs, trials)
-        if why and not broken:
-            broken.append((trials[int(np.argmax(np.isnan(tau[:, j])))], why))
-        return np.abs(tau[:, j])  # nan where undefined: never chosen
+    def value(trials, which):
+        A, M, n = trials.shape
+        tau = defined_torques(model, springs, trials.reshape(A * M, n))[0].reshape(A, M, -1)
+        picked = tau[np.arange(A), :, joints[which]]  # (A, M): each job's own joint
+        for a in np.flatnonzero(np.isnan(tau[:, :, 0]).any(axis=1)):
+            if which[a] not in broken:  # the job's first trials without a line of action, and why
+                bad = np.isnan(picked[a])
+                broken[which[a]] = (trials[a, int(np.argmax(bad))], defined_torques(model, springs, trials[a])[1])
+        return np.abs(picked)  # nan where undefined: never chosen
 
-    x, best = compass_search(value, start, lo, hi)
-    if allowed is not None and not allowed(x[None])[0]:  # it climbed out of the workspace: again, within it
-        x, best = compass_search(value, start, lo, hi, allowed=allowed)
-    return x, best, broken[0] if broken else None
+    starts = np.array([start for _, start in jobs], dtype=float)
+    X, best = compass_searches(value, starts, lo, hi)
+    if allowed is not None:
+        out = np.flatnonzero(~allowed(X))
+        if len(out):  # those that climbed out of the workspace: again, within it
+            again = lambda trials, which: value(trials, out[which])  # noqa: E731
+            X[out], best[out] = compass_searches(again, starts[out], lo, hi, allowed=allowed)
+    return [(X[s], float(best[s]), broken.get(s)) for s in range(len(jobs))]

@@ -456,6 +456,42 @@ COMPASS_STEPS = (0.05, 1e-5)
 about the square of the last step times the torque's curvature, below the tables' printed digits."""
 
 
+def compass_searches(value, starts, lo, hi, max_steps: int = 400, enough: float = np.inf,
+                     allowed=None) -> tuple[np.ndarray, np.ndarray]:
+    """Several compass searches in lockstep, one from each pose of ``starts`` (S, n) rad, each exactly
+    :func:`compass_search`'s: ``value`` is a function of trial poses (A, M, n) and of the indices (A,) of the
+    searches they belong to, returning (A, M) values, so that one call evaluates a step of every search still
+    running; ``allowed`` (a function of poses (M, n) -> (M,) bool) is asked once a step for every better trial
+    of them all. Returns the poses (S, n) and their values (S,)."""
+    X = np.array(starts, dtype=float)
+    S, n = X.shape
+    best = np.asarray(value(X[:, None, :], np.arange(S)), dtype=float)[:, 0].copy()
+    step, taken = np.full(S, COMPASS_STEPS[0]), np.zeros(S, dtype=int)
+    moves = np.vstack([np.eye(n), -np.eye(n)])
+    while True:
+        running = np.flatnonzero((taken < max_steps) & (step >= COMPASS_STEPS[1]) & ~(best >= enough))
+        if not len(running):
+            return X, best
+        trials = np.clip(X[running][:, None, :] + step[running][:, None, None] * moves[None], lo, hi)
+        values = np.asarray(value(trials, running), dtype=float)
+        better = []
+        for a, s in enumerate(running):
+            keys = [sig(v) if np.isfinite(v) else -np.inf for v in values[a]]
+            floor = sig(best[s]) if np.isfinite(best[s]) else -np.inf
+            better.append([k for k in np.argsort([-v for v in keys], kind="stable") if keys[k] > floor])
+        if allowed is not None:
+            asked = [(a, k) for a, ks in enumerate(better) for k in ks]
+            ok = dict(zip(asked, allowed(np.array([trials[a, k] for a, k in asked]).reshape(-1, n)) if asked else (),
+                          strict=True))
+            better = [[k for k in ks if ok[a, k]][:1] for a, ks in enumerate(better)]
+        for a, s in enumerate(running):
+            if better[a]:
+                X[s], best[s] = trials[a, better[a][0]], float(values[a, better[a][0]])
+            else:
+                step[s] /= 2
+            taken[s] += 1
+
+
 def compass_search(value, start, lo, hi, max_steps: int = 400, enough: float = np.inf,
                    allowed=None) -> tuple[np.ndarray, float]:
     """A compass search for the largest ``value`` (a function of poses (M, n) rad, nan where undefined)
@@ -464,23 +500,7 @@ def compass_search(value, start, lo, hi, max_steps: int = 400, enough: float = n
     significant digits, ties to the first, so that round-off decides nothing), else halves the step,
     from :data:`COMPASS_STEPS`' first to its last, or until the value reaches ``enough``. With ``allowed`` (a
     function of poses (M, n) -> (M,) bool) it moves to the best better trial that is allowed. Returns the
-    pose and its value."""
-    x = np.array(start, dtype=float)
-    best = float(value(x[None])[0])
-    step, n = COMPASS_STEPS[0], len(x)
-    for _ in range(max_steps):
-        if step < COMPASS_STEPS[1] or best >= enough:
-            break
-        trials = np.clip(np.repeat(x[None], 2 * n, axis=0) + step * np.vstack([np.eye(n), -np.eye(n)]), lo, hi)
-        values = value(trials)
-        keys = [sig(v) if np.isfinite(v) else -np.inf for v in values]
-        floor = sig(best) if np.isfinite(best) else -np.inf
-        better = [k for k in np.argsort([-v for v in keys], kind="stable") if keys[k] > floor]
-        if allowed is not None:
-            better = [next((k for k in better if allowed(trials[k][None])[0]), None)]
-            better = [k for k in better if k is not None]
-        if better:
-            x, best = trials[better[0]], float(values[better[0]])
-        else:
-            step /= 2
-    return x, best
+    pose and its value. (:func:`compass_searches` runs several at once.)"""
+    X, best = compass_searches(lambda trials, _: np.stack([value(t) for t in trials]), np.asarray(start)[None], lo,
+                               hi, max_steps=max_steps, enough=enough, allowed=allowed)
+    return X[0], float(best[0])
