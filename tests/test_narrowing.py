@@ -79,8 +79,8 @@ def test_springs_that_clear_need_no_narrowing_and_a_margin_none_keeps_finds_none
 
 def test_the_cli_says_the_springs_collide_in_its_first_line_and_writes_that_no_narrowing_clears(tmp_path, capsys):
     out = tmp_path / "d.json"
-    code = main(["design", str(robot_urdf("double pendulum")), "--layout", "belts", "--samples", "600",
-                 "--audit-samples", "2000", "--margin", "30 mm", "--json", str(out), "--quiet"])
+    code = main(["design", str(robot_urdf("double pendulum")), "--layout", "belts", "--samples", "300",
+                 "--audit-samples", "500", "--margin", "30 mm", "--json", str(out), "--quiet"])
     text = capsys.readouterr().out
     first = text.splitlines()[0]
     assert code == 3 and "SPRINGS COLLIDE: S1, S2 come within the 30 mm margin" in first
