@@ -252,3 +252,18 @@ def test_holding_torques_vanish_for_a_balanced_design_and_not_for_the_control():
     assert np.abs(balanced).max() < 1e-6 * np.abs(bare).max()
     spoiled = [pl.PlanarSpring(s.i, s.j, 0.9 * s.k, s.a, s.b, s.alpha, s.beta) for s in TABLE4]
     assert np.abs(plgeo.holding_torques(ARM, spoiled, theta)).max() > 1e-2 * np.abs(bare).max()
+
+
+def test_the_same_spring_over_more_joints_is_less_efficient_on_average_not_at_every_pose():
+    # 003 Eq. (23): over one joint the efficiency is 1 (Eq. 22); the workspace mean falls with each joint spanned
+    grid = np.stack(np.meshgrid(*WS.grid(10), indexing="ij"), -1).reshape(-1, ARM.n - 1)
+    eff = ef.spans(ARM, 1, grid, k=500.0, A=0.3, B=0.5, alpha=90.0, beta=0.0)
+    assert sorted(eff) == [2, 3, 4] and np.allclose(eff[2], 1.0)
+    assert eff[2].mean() > eff[3].mean() > eff[4].mean()
+    assert 0 < np.mean(eff[4] > eff[3]) < 0.2  # pose by pose S(1,4) is the more efficient somewhere
+    rows, changes = ef.span_rows(ARM, {"ground": (1, dict(k=500.0, A=0.3, B=0.5, alpha=90.0, beta=0.0))}, grid)
+    assert [r[1] for r in rows] == ["S(1,2)", "S(1,3)", "S(1,4)"] and set(changes) == {("ground", 1, 3), ("ground", 1, 4)}
+    assert all(change < 0 for change, _ in changes.values())
+    assert changes["ground", 1, 4][1] == pytest.approx(np.mean(eff[4] > eff[3] + 1e-12))
+    with pytest.raises(SpringlabError, match="C1"):  # the control: a ground spring over one joint needs alpha - beta = 90
+        ef.spans(ARM, 1, grid, k=500.0, A=0.3, B=0.5, alpha=0.0, beta=0.0)

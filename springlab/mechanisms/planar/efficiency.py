@@ -88,6 +88,35 @@ def spring_efficiency(arm: PlanarArm, spring: PlanarSpring, theta) -> np.ndarray
     return x / (x + y)
 
 
+def spans(arm: PlanarArm, i: int, theta, *, k: float, A: float, B: float, alpha: float, beta: float) -> dict:
+    """003 Eq. (23)'s comparison: the same spring (rate ``k`` N/m, attachment parameters ``A``, ``B`` (003 Eqs.
+    12a-b), angles ``alpha``, ``beta`` deg) from link ``i`` to each later link j, its efficiency (003 Eq. 18) at
+    the poses ``theta`` (N, n - 1) rad: {j: (N,) efficiencies}, j = i + 1 .. n."""
+    out = {}
+    for j in range(i + 1, arm.n + 1):
+        spring = PlanarSpring(i, j, k, A * arm.r[i - 1], B * arm.r[j - 1], alpha, beta)  # 003 Eqs. (12a-b)
+        out[j] = spring_efficiency(arm, spring, theta)  # 003 Eq. (18)
+    return out
+
+
+def span_rows(arm: PlanarArm, families: dict, theta) -> tuple[list, dict]:
+    """For each family (label -> (i, dict of :func:`spans`' keywords)), each span's mean efficiency over the poses
+    ``theta`` (rad) beside one joint fewer: the rows (label, spring, joints spanned, mean efficiency, the share
+    of poses where it is lower, higher than one joint fewer), and per (family, i, j) the change of the mean from
+    S(i, j - 1) to S(i, j) and the share of poses where S(i, j) is the more efficient."""
+    rows, changes = [], {}
+    for label, (i, kw) in families.items():
+        eff = spans(arm, i, theta, **kw)
+        for j, e in eff.items():
+            fewer = eff.get(j - 1)
+            lower = "" if fewer is None else f"{100 * np.mean(e < fewer - 1e-12):.1f}"
+            higher = "" if fewer is None else f"{100 * np.mean(e > fewer + 1e-12):.1f}"
+            rows.append((label, f"S({i},{j})", j - i, f"{e.mean():.4f}", lower, higher))
+            if fewer is not None:
+                changes[label, i, j] = (float(e.mean() - fewer.mean()), float(np.mean(e > fewer + 1e-12)))
+    return rows, changes
+
+
 RATE = 2e6
 """Poses per second the index evaluates by Monte Carlo on one core, about (for the refusal of
 requests that would run for hours: :func:`springlab._checks.poses`)."""
