@@ -23,7 +23,7 @@ R = (1.000, 0.360, 0.445, 0.300)  # m
 M = (25.0, 26.0, 18.0)  # m_2..m_4 (kg)
 WORKSPACE = Workspace(low=(-20.0, -140.0, -140.0), high=(180.0, 140.0, 140.0))  # theta_2..theta_4 (deg)
 G_PRINTED = (553.7, 303.8, 88.2)  # |G_12|, |G_13|, |G_14| (N/m), Section 5, one decimal
-EQ31 = 100.0  # %: Eq. (31), a 1-DOF manipulator's system spring efficiency, Section 4.2
+EQ31 = 100.0  # %: 003 Eq. (31), a 1-DOF manipulator's system spring efficiency, Section 4.2
 
 # Not printed: the COM distances and g that give G_PRINTED (found in the notebook):
 S = (0.180, 0.2225, 0.150)  # s_2..s_4 = r_j / 2 (m)
