@@ -58,7 +58,7 @@ def package_modules(root: Path) -> set[str]:
 
 def layout_block(text: str) -> str:
     section = text[text.index("\n## Layout"):]
-    return re.search(r"```\n(springlab/.*?)```", section, flags=re.S).group(1)
+    return re.search(r"```(?:text)?\n(springlab/.*?)```", section, flags=re.S).group(1)
 
 
 def test_the_layout_lists_every_module_and_no_other():

@@ -225,7 +225,7 @@ const texts = new Map(mj ? Array.from(mj.math).map(m => [m.typesetRoot, m.math])
 const cut = Array.from(article.querySelectorAll('mjx-container[display="true"]')).filter(
     c => c.querySelector('[data-mml-node="mlabeledtr"]') && c.scrollWidth > c.parentElement.clientWidth + 1).map(
     c => [c.scrollWidth, c.parentElement.clientWidth, (texts.get(c) || '').trim().slice(0, 60)]);
-const sideways = Array.from(article.querySelectorAll('.cell_input pre')).filter(
+const sideways = Array.from(article.querySelectorAll('pre')).filter(p => !p.closest('.cell_output')).filter(
     p => p.scrollWidth > p.clientWidth + 1).map(p => p.textContent.trim().split('\n')[0].slice(0, 60));
 const internal = [];
 const name = /^(?:[A-Za-z_]\w*\.)*[a-z_][a-z0-9]*_[a-z0-9_]*(?:\(\))?$|^(?:[a-z_]\w*\.)+[A-Za-z_]\w*(?:\(\))?$|^[\w.-]+\/[\w.\/-]*\.\w+$|^[\w-]+\.(?:toml|json|py|urdf|csv|ipynb|md)$/;
