@@ -11,6 +11,10 @@ measures the same springs on them. Poses there that still collide join the pool 
 at most :data:`ROUNDS` times. The springs are not re-designed: the balance on the narrower workspace is
 measured on the fresh poses too, and the design itself is not changed.
 
+A narrowing is offered only where it keeps at least a tenth of the workspace (:data:`LEAST_KEPT`); where the springs
+come within the margin at nearly every pose (the Panda's pseudobase springs, at 99 %), a first look at
+:data:`PROBE` poses says so, and none is sought.
+
 Each range is bounded by the outermost clear pose inside it, rounded inwards to a whole degree: between it and the
 nearest colliding pose the sample says nothing, so the bound stays on the side it has seen clear.
 
@@ -31,6 +35,14 @@ from springlab.model.revolute import RevoluteChain
 
 ROUNDS = 5
 """The most times fresh poses of a narrowed workspace are drawn and the ranges found again."""
+
+LEAST_KEPT = 0.1
+"""The least share of the workspace a narrowing must keep to be offered: where the springs come within the margin
+at more than 1 - this share of the first :data:`PROBE` random check poses, none could, and none is sought."""
+
+PROBE = 200
+"""The random check poses measured first, to tell whether a narrowing could keep :data:`LEAST_KEPT` at all (where
+nearly every pose collides, measuring them all costs as much as the design)."""
 
 GRID = 12
 """Steps across the first joint's range among which a two-joint narrowing's first range is sought (then refined
@@ -160,17 +172,21 @@ def narrowed(model: RevoluteChain, realised, kinds, coils, names, q, ranges, *, 
              loaded=(), limits=None) -> tuple[Narrowing, ...]:
     """The narrower workspaces on which the realised springs clear the links (see the module docstring): the best
     narrowing of one joint's range, and, where it keeps less than half of the poses, the best of two joints'
-    ranges, each kept only where ``fresh`` poses drawn within it all clear (within :data:`ROUNDS` rounds); empty
-    when the springs clear every pose of ``q`` (N, n) rad or no such narrowing was found. ``ranges``: the design's workspace (n, 2) rad; ``random``: how
+    ranges, each kept only where it holds at least :data:`LEAST_KEPT` of the workspace's poses and ``fresh`` poses
+    drawn within it all clear (within :data:`ROUNDS` rounds); empty when the springs clear every pose of ``q``
+    (N, n) rad or no such narrowing was found. ``ranges``: the design's workspace (n, 2) rad; ``random``: how
     many of ``q``'s first poses are random draws of it (the share kept is counted on them; default all);
     ``massed``: the arm carrying the springs' hardware, on which ``loaded`` joints' shares are measured;
     ``limits``: the joints' whole ranges, for the :class:`~springlab.design.collision.Sampler`."""
     q = np.asarray(q, dtype=float)
     ranges = np.asarray(ranges, dtype=float)
     random = q.shape[0] if random is None else int(random)
+    probe = colliding(model, realised, kinds, coils, names, q[:min(random, PROBE)], margin=margin)
+    if np.mean(~probe) < LEAST_KEPT:
+        return ()  # no narrowing could keep a tenth of the workspace
     bad = colliding(model, realised, kinds, coils, names, q, margin=margin)
-    if not bad.any():
-        return ()
+    if not bad.any() or np.mean(~bad[:random]) < LEAST_KEPT:
+        return ()  # nothing to narrow, or no narrowing could keep a tenth of the workspace
     found: list[Narrowing] = []
     singles = [(j,) for j in range(model.n)]
     pairs = [(i, j) for i in range(model.n) for j in range(model.n) if i != j]
@@ -179,9 +195,10 @@ def narrowed(model: RevoluteChain, realised, kinds, coils, names, q, ranges, *, 
         rng = np.random.default_rng([seed, 29, size])  # each family its own poses: one's rounds move none of the other's
         for rounds in range(1, ROUNDS + 1):
             boxes = [(b, js) for js in family if (b := _box(pool, hit, ranges, js)) is not None]
-            if not boxes:
-                break
-            box, joints = max(boxes, key=lambda bj: (int(np.sum(_held(q[:random], bj[0]))), -sum(bj[1])))
+            box, joints = max(boxes, key=lambda bj: (int(np.sum(_held(q[:random], bj[0]))), -sum(bj[1])),
+                              default=(None, ()))
+            if box is None or np.mean(_held(q[:random], box)) < LEAST_KEPT:
+                break  # none left, or none that keeps a tenth of the workspace
             try:
                 poses = Sampler(model, box, np.random.default_rng([seed, 31, size, rounds]), limits=limits).draw(fresh, rng)
             except SpringlabError:  # no pose of the narrowed ranges is free

@@ -461,8 +461,8 @@ def _print_narrowed(design) -> None:
     if not design.clearance.failing():
         return
     if not design.narrowed:
-        print("\nno narrowing of one joint's range, or of two together, clears the springs while keeping a pose of the "
-              "workspace: another layout, or the ranges the arm's task needs (--workspace)")
+        print("\nno narrowing of one joint's range, or of two together, that keeps a tenth of the workspace clears the "
+              "springs: another layout, or the ranges the arm's task needs (--workspace)")
         return
     print("\nthe same springs (not re-designed) clear the links on a narrower workspace: the ranges of one joint, or of "
           "two, that hold none of the check poses where a spring comes within the margin and the most of the others, "
