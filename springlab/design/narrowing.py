@@ -184,7 +184,8 @@ def narrowed(model: RevoluteChain, realised, kinds, coils, names, q, ranges, *, 
     probe = colliding(model, realised, kinds, coils, names, q[:min(random, PROBE)], margin=margin)
     if np.mean(~probe) < LEAST_KEPT:
         return ()  # no narrowing could keep a tenth of the workspace
-    bad = colliding(model, realised, kinds, coils, names, q, margin=margin)
+    rest = colliding(model, realised, kinds, coils, names, q[len(probe):], margin=margin) if len(q) > len(probe) else []
+    bad = np.concatenate([probe, rest]).astype(bool)
     if not bad.any() or np.mean(~bad[:random]) < LEAST_KEPT:
         return ()  # nothing to narrow, or no narrowing could keep a tenth of the workspace
     found: list[Narrowing] = []
