@@ -21,6 +21,7 @@ from springlab.design.hardware import HOOK_GAP
 from springlab.design.search import (
     MAX_STIFFNESS,
     compass_search,
+    compass_searches,
     faces,
     minimax,
     sig,
@@ -274,8 +275,32 @@ def nearest_approach(model: RevoluteChain, spring, q, lo, hi, frames=None, enoug
 def _lead_clearance(model: RevoluteChain, spring, dense) -> float:
     """rad: how near B comes to a cable spring's lead line over the poses of ``dense`` (``_dense``),
     refined towards it (:func:`nearest_approach`) until it is taken to cross (:data:`CROSSING`)."""
+    return _lead_clearances(model, [spring], dense)[0]
+
+
+def _lead_clearances(model: RevoluteChain, springs, dense) -> list[float]:
+    """:func:`_lead_clearance` of each of ``springs``, value for value: B - A is computed once per spring's ends
+    (whatever its lead), and the refining searches run in lockstep
+    (:func:`~springlab.design.search.compass_searches`), one call of the body frames a step for them all."""
     q, frames, lo, hi = dense
-    return sig(nearest_approach(model, spring, q, lo, hi, frames, enough=CROSSING)[1])
+    ends = [(s.link_a, s.point_a, s.link_b, s.point_b) for s in springs]
+    spans = {e: _span(model, s, *frames) for e, s in zip(ends, springs, strict=True)}
+    angles = [_lead_angles(model, s, spans[e]) for e, s in zip(ends, springs, strict=True)]
+    found = [float(a.min()) for a in angles]
+    search = [m for m, a in enumerate(found) if not a < CROSSING]  # already near enough: no need to refine
+    if search:
+        def value(trials, which):  # -angle at each trial pose of each search still running
+            A, M, n = trials.shape
+            R, o = body_frames(model, trials.reshape(A * M, n))
+            return np.stack([-_lead_angles(model, springs[search[w]],
+                                           _span(model, springs[search[w]], R[a * M:(a + 1) * M], o[a * M:(a + 1) * M]))
+                             for a, w in enumerate(which)])
+
+        starts = np.array([q[int(np.argmin(angles[m]))] for m in search])
+        best = compass_searches(value, starts, lo, hi, enough=-CROSSING)[1]
+        for m, v in zip(search, best, strict=True):
+            found[m] = -float(v)
+    return [sig(v) for v in found]
 
 
 def _leads(model: RevoluteChain, springs, cable, q, radius: float, scale, clear_q=None) -> list:
@@ -302,8 +327,9 @@ def _leads(model: RevoluteChain, springs, cable, q, radius: float, scale, clear_
         candidates[i] = [tuple(rotation.T @ (u / np.linalg.norm(u))) for u in found if np.linalg.norm(u) > 1e-9]
         out[i] = with_changes(s, pulley_radius=radius, lead=candidates[i][-1 - LEAD_AXES])  # link_a's origin to A, or -towards
     dense = _dense(model, clear_q)
-    crosses = {i: [_lead_tier(_lead_clearance(model, with_changes(out[i], lead=u), dense)) for u in candidates[i]]
-               for i in cable}
+    trying = [(i, with_changes(out[i], lead=u)) for i in cable for u in candidates[i]]
+    tiers = iter(_lead_tier(v) for v in _lead_clearances(model, [s for _, s in trying], dense))
+    crosses = {i: [next(tiers) for _ in candidates[i]] for i in cable}
     for _ in range(2):
         for i in cable:
             trials = [(crosses[i][c], out[:i] + [with_changes(out[i], lead=u)] + out[i + 1:]) for c, u in enumerate(candidates[i])]
@@ -385,7 +411,11 @@ def lead_angles(model: RevoluteChain, spring, q, frames=None) -> np.ndarray:
     must turn half a turn at once, and the cable's line of action jumps (route 2's
     :func:`springlab.energy.geometry.cable_geometry` is discontinuous there). ``frames``: the poses'
     body frames (:func:`springlab.model.revolute.body_frames`), where already computed."""
-    d = _span(model, spring, *(body_frames(model, q) if frames is None else frames))
+    return _lead_angles(model, spring, _span(model, spring, *(body_frames(model, q) if frames is None else frames)))
+
+
+def _lead_angles(model: RevoluteChain, spring, d) -> np.ndarray:
+    """:func:`lead_angles` from B - A, ``d`` (N, 3) m in body a's frame (:func:`_span`)."""
     u = np.asarray(model.direction(spring.link_a, spring.lead)[1])
     along = np.abs(d @ u)
     across = np.linalg.norm(np.cross(d, u), axis=1)
