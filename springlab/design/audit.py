@@ -11,8 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from springlab.design.realise import CROSSING, defined_torques, lead_angles, nearest_approach
-from springlab.design.search import compass_search, compass_searches, sig
+from springlab.design.realise import CROSSING, defined_torques, lead_angles, towards_leads
+from springlab.design.search import compass_searches, sig
 from springlab.design.structure import NEGLIGIBLE
 from springlab.model.revolute import RevoluteChain
 
@@ -113,18 +113,20 @@ class Audit:
                 if sig(value, 3) > sig(own[j], 3) and value > NEGLIGIBLE * largest:
                     raised.append((case, model.joints[j], float(own[j]), float(value)))
         crossings = []
-        for m, spring in enumerate(dict(cases).get("realised", ())):
-            if spring.pulley_radius > 0:
+        led = [(m, s) for m, s in enumerate(dict(cases).get("realised", ())) if s.pulley_radius > 0]
+        if led:  # each cable's end climbs towards its lead's line, the searches in lockstep
+            starts = []
+            for _, spring in led:
+                angle = lead_angles(model, spring, q)
                 if sampler is None:
-                    pose, angle = nearest_approach(model, spring, q, lo, hi)
+                    starts.append(q[int(np.argmin(angle))])
                 else:  # from the nearest free pose, through free poses
-                    order = np.argsort([sig(v) for v in lead_angles(model, spring, q)], kind="stable")
-                    start = q[first_free(order, 1)[0]]
-                    pose, value = compass_search(lambda t, s=spring: -lead_angles(model, s, t), start, lo, hi,
-                                           allowed=sampler.free)
-                    angle = -value
-                if angle < CROSSING / 3:
-                    crossings.append((m, float(angle), pose.tolist()))
+                    starts.append(q[first_free(np.argsort([sig(v) for v in angle], kind="stable"), 1)[0]])
+            poses, values = compass_searches(towards_leads(model, [s for _, s in led]), np.array(starts), lo, hi,
+                                             enough=0.0, allowed=None if sampler is None else sampler.free)
+            for (m, _), pose, value in zip(led, poses, values, strict=True):
+                if -value < CROSSING / 3:
+                    crossings.append((m, float(-value), pose.tolist()))
         unique = np.unique(np.array(worst).reshape(-1, model.n), axis=0)
         keep = np.ones(len(unique), dtype=bool)  # a pose one case climbed to may leave another's spring undefined
         for case, springs in dict(cases).items():

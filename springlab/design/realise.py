@@ -20,7 +20,6 @@ from springlab.design.cables import CABLES, choose_cable
 from springlab.design.hardware import HOOK_GAP
 from springlab.design.search import (
     MAX_STIFFNESS,
-    compass_search,
     compass_searches,
     faces,
     minimax,
@@ -260,21 +259,10 @@ def _dense(model: RevoluteChain, q):
     return dense, body_frames(model, dense), lo, hi
 
 
-def nearest_approach(model: RevoluteChain, spring, q, lo, hi, frames=None, enough: float = 0.0):
-    """The pose (rad) and angle (rad) where B comes nearest a cable spring's lead line
-    (:func:`lead_angles`): the nearest of the poses ``q`` (``frames``: their body frames, where already
-    computed), refined by :func:`~springlab.design.search.compass_search` within [lo, hi] until the angle is below ``enough``."""
-    angle = lead_angles(model, spring, q, frames)
-    start = q[int(np.argmin(angle))]
-    if angle.min() < enough:  # already near enough: no need to refine
-        return start, float(angle.min())
-    pose, value = compass_search(lambda t: -lead_angles(model, spring, t), start, lo, hi, enough=-enough)
-    return pose, -value
-
-
 def _lead_clearance(model: RevoluteChain, spring, dense) -> float:
-    """rad: how near B comes to a cable spring's lead line over the poses of ``dense`` (``_dense``),
-    refined towards it (:func:`nearest_approach`) until it is taken to cross (:data:`CROSSING`)."""
+    """rad: how near B comes to a cable spring's lead line over the poses of ``dense`` (``_dense``): the
+    nearest of them, refined by a compass search towards the line within their box until it is taken to cross
+    (:data:`CROSSING`)."""
     return _lead_clearances(model, [spring], dense)[0]
 
 
@@ -289,15 +277,8 @@ def _lead_clearances(model: RevoluteChain, springs, dense) -> list[float]:
     found = [float(a.min()) for a in angles]
     search = [m for m, a in enumerate(found) if not a < CROSSING]  # already near enough: no need to refine
     if search:
-        def value(trials, which):  # -angle at each trial pose of each search still running
-            A, M, n = trials.shape
-            R, o = body_frames(model, trials.reshape(A * M, n))
-            return np.stack([-_lead_angles(model, springs[search[w]],
-                                           _span(model, springs[search[w]], R[a * M:(a + 1) * M], o[a * M:(a + 1) * M]))
-                             for a, w in enumerate(which)])
-
         starts = np.array([q[int(np.argmin(angles[m]))] for m in search])
-        best = compass_searches(value, starts, lo, hi, enough=-CROSSING)[1]
+        best = compass_searches(towards_leads(model, [springs[m] for m in search]), starts, lo, hi, enough=-CROSSING)[1]
         for m, v in zip(search, best, strict=True):
             found[m] = -float(v)
     return [sig(v) for v in found]
@@ -412,6 +393,20 @@ def lead_angles(model: RevoluteChain, spring, q, frames=None) -> np.ndarray:
     :func:`springlab.energy.geometry.cable_geometry` is discontinuous there). ``frames``: the poses'
     body frames (:func:`springlab.model.revolute.body_frames`), where already computed."""
     return _lead_angles(model, spring, _span(model, spring, *(body_frames(model, q) if frames is None else frames)))
+
+
+def towards_leads(model: RevoluteChain, springs):
+    """The value :func:`~springlab.design.search.compass_searches` climbs towards each of ``springs``' lead
+    line, search s towards ``springs[s]``'s: minus :func:`lead_angles` at each trial pose, the body frames
+    of every search's trials computed in one call."""
+
+    def value(trials, which):
+        A, M, n = trials.shape
+        R, o = body_frames(model, trials.reshape(A * M, n))
+        return np.stack([-_lead_angles(model, springs[s], _span(model, springs[s], R[a * M:(a + 1) * M], o[a * M:(a + 1) * M]))
+                         for a, s in enumerate(which)])
+
+    return value
 
 
 def _lead_angles(model: RevoluteChain, spring, d) -> np.ndarray:
