@@ -475,10 +475,16 @@ def compass_searches(value, starts, lo, hi, max_steps: int = 400, enough: float 
         trials = np.clip(X[running][:, None, :] + step[running][:, None, None] * moves[None], lo, hi)
         values = np.asarray(value(trials, running), dtype=float)
         better = []
-        for a, s in enumerate(running):
-            keys = [sig(v) if np.isfinite(v) else -np.inf for v in values[a]]
-            floor = sig(best[s]) if np.isfinite(best[s]) else -np.inf
-            better.append([k for k in np.argsort([-v for v in keys], kind="stable") if keys[k] > floor])
+        for a, s in enumerate(running):  # the trials whose key beats the current one's, best first (ties: first)
+            finite = np.isfinite(values[a])
+            if np.isfinite(best[s]):  # sig is monotonic: only a trial above the current value can beat its key
+                floor = sig(best[s])
+                finite &= values[a] > best[s]
+            else:
+                floor = -np.inf
+            near = np.flatnonzero(finite)
+            keys = [sig(v) for v in values[a, near]]
+            better.append([int(near[k]) for k in np.argsort([-v for v in keys], kind="stable") if keys[k] > floor])
         if allowed is not None:
             asked = [(a, k) for a, ks in enumerate(better) for k in ks]
             ok = dict(zip(asked, allowed(np.array([trials[a, k] for a, k in asked]).reshape(-1, n)) if asked else (),
