@@ -108,3 +108,16 @@ def test_a_workspace_where_every_pose_collides_is_refused(tmp_path, capsys):
     assert main(["design", str(robot_urdf("UR5")), "--workspace", down, "--json", str(out), "--quiet"]) == 2
     err = capsys.readouterr().err
     assert "no pose of the workspace is free" in err and err.count("\n") == 1 and not out.exists()
+
+
+def test_a_hull_corner_with_hundreds_of_neighbours_falls_back_to_the_triangles():
+    # a cone of 300 rim points: its apex has 300 neighbours on the hull, more than coal's hull takes (255);
+    # the mesh is still measured (by its triangles), and the control, a cone of 30, gets its convex hull
+    from springlab.design.collision import _mesh_geometry
+
+    for rim, convex in ((300, False), (30, True)):
+        a = np.linspace(0.0, 2 * np.pi, rim, endpoint=False)
+        v = np.vstack([np.c_[np.cos(a), np.sin(a), np.zeros(rim)], [[0.0, 0.0, 1.0], [0.0, 0.0, -0.01]]])
+        f = np.array([(k, (k + 1) % rim, rim) for k in range(rim)] + [((k + 1) % rim, k, rim + 1) for k in range(rim)])
+        hull, bvh, points = _mesh_geometry(np.ascontiguousarray(v).tobytes(), np.ascontiguousarray(f, dtype=np.int64).tobytes())
+        assert (hull is not bvh) == convex and len(points) == rim + 2

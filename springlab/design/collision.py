@@ -141,7 +141,14 @@ def _mesh_geometry(vertices: bytes, faces: bytes) -> tuple:
         return bvh, bvh, v
     corners = coal.StdVec_Vec3s()  # coal's hull of the hull's corners alone: the same solid, built from
     corners.extend(list(points))  # a few hundred points, not the mesh's (the SO-101's: 1.2 million)
-    return coal.ConvexBase.convexHull(corners, False, "Qt"), bvh, points
+    try:
+        return coal.ConvexBase.convexHull(corners, False, "Qt"), bvh, points
+    except RuntimeError:  # coal refuses a corner with more than 255 neighbours: its hull of the whole mesh, if it can
+        try:
+            bvh.buildConvexHull(False, "Qt")
+            return bvh.convex, bvh, points
+        except RuntimeError:  # else the triangles alone bound it
+            return bvh, bvh, points
 
 
 def _outer_points(kind: str, size) -> tuple[np.ndarray, float]:
