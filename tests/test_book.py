@@ -188,11 +188,13 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
     def page(name, body):
         path = tmp_path / name
         path.write_text('<html><head><script>window.MathJax = {options: {processHtmlClass: "math"}};</script>'
-                        f'<script src="{mathjax}"></script></head><body><article class="bd-article" style="width: 600px">'
+                        "<style>img { max-width: 100%; } .cell_output { overflow-x: auto; }</style>"  # as the book's theme
+                        f'<script src="{mathjax}"></script></head><body><article class="bd-article" style="max-width: 600px">'
                         f"{body}</article></body></html>")
         return path
 
     broken = page("broken.html",
+                  "<p>doi:10.1016/j.mechmachtheory." + "2023" * 30 + "</p>"  # one word wider than a phone
                   "<p>| quantity | paper | |---|---| | k | 718.67 |</p>"  # a table left as pipes
                   "<p>the energy $\\tfrac12 k|AB|^2$ as text</p>"  # TeX outside the math
                   '<p><span class="math">\\(\\\\tfrac12 k\\)</span></p>'  # a doubled backslash
@@ -217,7 +219,8 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                              '<div class="admonition"><p><code>notebooks/a.ipynb</code></p></div>'
                              '<figure><img src="ok.png" alt="drawn"><figcaption><p>Figure 1. The arm.</p></figcaption>'
                              '</figure><table class="coverage"><tr data-item="Eq. (1)"><td>Eq. (1)</td></tr>'
-                             '<tr data-item="Eq. (2)"><td>Eq. (2)</td></tr></table>' + view.html())
+                             '<tr data-item="Eq. (2)"><td>Eq. (2)</td></tr></table>'
+                             '<div class="cell_output">' + view.html() + "</div>")
     bare = page("bare.html", "<p>A chapter without its coverage table.</p>")
     wide = page("wide.html", '<div class="math">\\[' + " + ".join(f"k_{{{i}}} a_{{{i}}} b_{{{i}}}" for i in range(40))
                 + ' = 0 \\tag{9}\\]</div>')  # a numbered display wider than the column
@@ -239,7 +242,8 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                      "an internal name in the prose: expand_gravity_energy",
                      "an internal name in the prose: arms/paper000_arm.toml", "does for the issue, see",
                      "see 000 Table",
-                     "request left the machine: https://cdn.example.invalid/plotly.min.js"):
+                     "request left the machine: https://cdn.example.invalid/plotly.min.js",
+                     "the page scrolls sideways on a phone (390 px wide) by", "px: p: doi:10.1016/j.mechmachtheory.2023"):
         assert expected in problems, (expected, problems)
     assert result["good.html"] == []
 
@@ -299,6 +303,41 @@ def test_each_chapter_defines_its_statuses_above_its_first_claims_table(built):
         assert used and all(f"<strong>{s}</strong>" in legend for s in used), (stem, used)
         assert 'href="report.html#statuses"' in legend
     assert shown_any >= 5  # every paper chapter shows claims
+
+
+def _coverage_legend_problems(page: str) -> list[str]:
+    """What a reader of a chapter's coverage table would meet undefined: each status its verdicts use that no
+    legend above the table defines."""
+    from springlab.workbench.claims import REPORT_COLUMNS
+
+    start = page.find('<table class="coverage">')
+    if start < 0:
+        return []
+    table = page[start:page.index("</table>", start)]
+    verdicts = re.findall(r'<tr [^>]*data-how="compared">.*?<td>([^<]*)</td></tr>', table)  # a compared row's last cell
+    used = {re.sub(r" \(\d+ claims\)$", "", s) for v in verdicts for s in v.split("; ")}
+    assert used <= set(REPORT_COLUMNS), used  # a verdict is its claims' statuses
+    legend = page.rfind('class="coverage-legend"', 0, start)
+    above = page[legend:start] if legend >= 0 else ""
+    return [f"{s!r} used before any legend defines it" for s in sorted(used) if f"<strong>{s}</strong>" not in above]
+
+
+def test_each_chapter_defines_the_statuses_of_its_coverage_table_above_it(built):
+    checked = 0
+    for stem in ALL_STEMS:
+        page = (built / f"{stem}.html").read_text()
+        if '<table class="coverage">' in page:
+            checked += 1
+            assert _coverage_legend_problems(page) == [], stem
+    assert checked >= 5  # every paper chapter opens with its coverage
+    page = (built / "juang2023_spatial_balance.html").read_text()  # the control: its legend taken out
+    cut = re.sub(r'<div class="coverage-legend">.*?</div>', "", page, count=1, flags=re.S)
+    assert cut != page and _coverage_legend_problems(cut)
+
+
+def test_the_api_pages_show_no_path_of_the_machine_that_built_them(built):
+    pages = sorted((built / "api").glob("*.html"))
+    assert pages and all(str(ROOT) not in p.read_text() for p in pages), [p.name for p in pages if str(ROOT) in p.read_text()]
 
 
 def test_the_glossary_defines_the_routes_and_links_the_statuses(built):

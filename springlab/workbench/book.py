@@ -53,7 +53,10 @@ PAGES = {"using": ROOT / "notebooks" / "using_springlab.md", "glossary": ROOT / 
          "performance": ROOT / "benchmarks" / "RESULTS.md"}
 """The book's pages that are not notebooks: the user's guide (the command line, arm files, the springs made
 real, what to do when something goes wrong, the package's layout), the glossary of the words the chapters
-use, and the benchmarks' results."""
+use, and the benchmarks' results (their paths in the project's checkout).
+
+:meta hide-value:
+"""
 MATHJAX_SCRIPT = "tex-svg-full.js"
 """MathJax 3's component the book loads from ``_static/mathjax``: TeX in (every extension
 preloaded, so nothing is fetched on demand), SVG out."""
@@ -283,10 +286,13 @@ def coverage_markdown(stem: str, notebook: dict, records: list[dict]) -> str:
              "shown": "shows {} as printed", "not covered": "leaves {} out, each with its reason"}
     said = [verbs[h].format(counts[h]) for h in coverage.HOWS if counts[h]]
     sentence = ", ".join(said[:-1]) + (" and " if len(said) > 1 else "") + said[-1]
+    compared = [r for i in items for r in by_item[i.item]]  # a reader meets these statuses here first
+    legend = legend_html(compared, lead="How to read the verdicts: a compared item's verdict is the status of its "
+                         "claims", css="coverage-legend") if compared else ""
     return (f"**What this chapter covers.** Of the paper's {_kinds(items)}, the chapter {sentence} "
             "({ref}`how and verdict <coverage>`):\n\n"
             '<details class="coverage"><summary>Every numbered item of the paper, where the chapter treats it, '
-            "and its verdict</summary>" + coverage.table_html(items, by_item, anchors, shown) + "</details>")
+            "and its verdict</summary>" + legend + coverage.table_html(items, by_item, anchors, shown) + "</details>")
 
 
 def _coverage_report(stems: list[str], claims: dict[str, list[dict]]) -> list[str]:

@@ -109,9 +109,15 @@ def check_statuses(records) -> None:
                              "define it there before a claim uses it")
 
 
-def legend_html(records, report: str = "report.html#statuses") -> str:
-    """A short legend (HTML) of the statuses claim ``records`` use, in :data:`REPORT_COLUMNS`' order, each with
-    its meaning, linking to ``report`` where every status is defined.
+LEGEND_LEAD = "How to read the claims below: each row gives the paper's value, ours, their difference and a status"
+"""The sentence that opens a chapter's legend above its first claims table."""
+
+
+def legend_html(records, report: str = "report.html#statuses", *, lead: str = LEGEND_LEAD,
+                css: str = "claims-legend") -> str:
+    """A short legend (HTML, a ``div`` of class ``css``) of the statuses claim ``records`` use, in
+    :data:`REPORT_COLUMNS`' order, each with its meaning, after the sentence ``lead``, linking to ``report``
+    where every status is defined.
 
     :raises SpringlabError: naming a status that :data:`MEANINGS` does not define
     """
@@ -122,8 +128,8 @@ def legend_html(records, report: str = "report.html#statuses") -> str:
     shown = [s for s in REPORT_COLUMNS if s in used]
     items = "".join(f"<li><strong>{escape(s)}</strong>: {escape(MEANINGS[s])}{'.' if k == len(shown) - 1 else ';'}</li>"
                     for k, s in enumerate(shown))
-    return (f'<div class="claims-legend"><p>How to read the claims below: each row gives the paper\'s value, ours, '
-            f'their difference and a status (<a href="{escape(report)}">every status</a>):</p><ul>{items}</ul></div>')
+    return (f'<div class="{escape(css)}"><p>{escape(lead)} (<a href="{escape(report)}">every status</a>):</p>'
+            f'<ul>{items}</ul></div>')
 
 
 @dataclass(frozen=True)

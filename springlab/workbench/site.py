@@ -292,6 +292,28 @@ def _wait(driver, script: str, timeout: float):
         time.sleep(0.1)
 
 
+PHONE = (390, 844)
+"""px: the phone the browser check also reads each page on (an iPhone 12's viewport)."""
+
+_PHONE = """
+const de = document.documentElement, W = de.clientWidth;
+const free = e => {  // not inside a box that scrolls (or clips) on its own
+    for (let p = e.parentElement; p && p !== document.body; p = p.parentElement)
+        if (getComputedStyle(p).overflowX !== 'visible') return false;
+    return true;
+};
+const wide = [];
+for (const e of document.querySelectorAll('article *')) {
+    const r = e.getBoundingClientRect();
+    const spills = e.clientWidth > 0 && e.scrollWidth > e.clientWidth + 1 && getComputedStyle(e).overflowX === 'visible';
+    if (r.width > 0 && (r.right > W + 1 || spills) && free(e)) wide.push(e);
+}
+const named = wide.filter(e => !wide.some(o => o !== e && e.contains(o)))  // the innermost: what is too wide
+    .map(e => e.tagName.toLowerCase() + ': ' + (e.textContent || '').trim().replace(/\\s+/g, ' ').slice(0, 60));
+return {over: de.scrollWidth - W, wide: named.slice(0, 3)};
+"""
+
+
 def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, search=None, numbered=(),
                   captioned=(), covered=None, prose=(), math_timeout: float = 30.0) -> dict[str, list[str]]:
     """Open each page in headless Chromium and list what a reader would see broken: an image
@@ -302,8 +324,9 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
     prose and in outputs), an output (or a display equation) more than twice as wide as the
     text column, a code cell that scrolls sideways, a numbered display equation wider than its column
     (its tag out of sight), a 3-D view
-    (:mod:`springlab.workbench.view3d`) that did not draw, and any request that
-    leaves the machine (Chromium's network log: every request must be ``file://`` or inline).
+    (:mod:`springlab.workbench.view3d`) that did not draw, a page that scrolls sideways on a phone
+    (:data:`PHONE`: the page's own text wider than the screen; a table or display scrolls in its own box),
+    and any request that leaves the machine (Chromium's network log: every request must be ``file://`` or inline).
 
     :param screenshots: {page: png path}: screenshots to save (the page as a reader first sees it)
     :param network_log: a file to write every request to, page by page
@@ -382,6 +405,12 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
             if page in shots:
                 shots[page].parent.mkdir(parents=True, exist_ok=True)
                 driver.save_screenshot(str(shots[page]))
+            driver.set_window_size(*PHONE)  # the same page on a phone
+            phone = driver.execute_script(_PHONE)
+            driver.set_window_size(1280, 1000)
+            if phone["over"] > 1:
+                problems.append(f"the page scrolls sideways on a phone ({PHONE[0]} px wide) by {phone['over']} px: "
+                                + "; ".join(phone["wide"]))
             problems += _network_problems(driver, page.name, log)
             out[os.path.relpath(page, pages[0].parent)] = problems
         if search is not None:
