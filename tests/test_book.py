@@ -354,6 +354,10 @@ def test_each_chapter_says_how_to_run_it(built):
     for stem in ALL_STEMS:
         shown = text(f"{stem}.html")
         assert "Run it yourself" in shown and f"-m papermill notebooks/{stem}.ipynb" in shown and "make lab" in shown
+        assert "--cwd notebooks" in shown  # run from notebooks/, as the book ran it:
+        cells = json.loads((ROOT / "notebooks" / f"{stem}.ipynb").read_text())["cells"]
+        given = re.search(r'^figures_dir = "([^"]+)"', "".join(next(c for c in cells if c["cell_type"] == "code")["source"]), re.M)
+        assert (ROOT / "notebooks" / given.group(1)).resolve() == ROOT / "figures" / stem  # its figures where it says
     front = text("index.html")
     assert "Run it yourself" in front and "make figures" in front and "papermill" not in front
 

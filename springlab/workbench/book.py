@@ -434,8 +434,8 @@ def run_yourself(stem: str | None = None) -> str:
              "every chapter; `make test` runs the tests."]
     if stem is not None:
         lines += ["", f"This chapter is `notebooks/{stem}.ipynb`: `make lab` opens it in JupyterLab, and",
-                  "", f"`.venv/bin/python -m papermill notebooks/{stem}.ipynb {stem}.run.ipynb`", "",
-                  "runs it as the book did, its figures written to `figures/" + stem + "/`; its parameters, in its "
+                  "", f"`.venv/bin/python -m papermill notebooks/{stem}.ipynb {stem}.run.ipynb --cwd notebooks`", "",
+                  "runs it as the book did, from `notebooks/`, its figures written to `figures/" + stem + "/`; its parameters, in its "
                   "first code cell, are papermill's `-p name value` (`-p figures_dir elsewhere` keeps the book's "
                   "figures). The download button above gives the notebook as the book ran it."]
     return "\n".join([*lines, "```", ""])
