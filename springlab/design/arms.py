@@ -552,11 +552,18 @@ class ArmDesign:
             behind = r.pulley_radius + HOOK_GAP + block_room(fit, r.pulley_radius)
             bracket = fit.bracket
             if bracket is not None:  # on a bracket of the level frame: the room its layout gave it
-                room = bracket - block_room(fit, r.pulley_radius)
+                block = block_room(fit, r.pulley_radius)
+                room = bracket - block
                 if fit.coil.max_length > room * (1 + 1e-9):
+                    if room > 0:
+                        has = f"longer than the {1e3 * room:.0f} mm its bracket has beyond its post within its link's length"
+                    elif bracket > 0:
+                        has = (f"and its pulley block alone takes {1e3 * block:.0f} mm of the {1e3 * bracket:.0f} mm its "
+                               "bracket has beyond its post within its link's length")
+                    else:  # the post and its pulley already reach past the link's length
+                        has = f"and its post and pulley already reach {-1e3 * bracket:.0f} mm past its link's length"
                     out.append(f"the realised spring {name}'s coil is {1e3 * fit.coil.max_length:.0f} mm long in "
-                               f"service, longer than the {1e3 * room:.0f} mm its bracket has beyond its post within "
-                               "its link's length: the bracket would outgrow the arm")
+                               f"service, {has}: the bracket would outgrow the arm")
                 continue
             if 0 < body <= self.model.n:  # in the plane of its joint's turning (an axial offset is no room)
                 w = np.asarray(self.model.axes[body - 1], dtype=float)
