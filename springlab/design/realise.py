@@ -308,8 +308,8 @@ def _leads(model: RevoluteChain, springs, cable, q, radius: float, scale, clear_
         candidates[i] = [tuple(rotation.T @ (u / np.linalg.norm(u))) for u in found if np.linalg.norm(u) > 1e-9]
         out[i] = with_changes(s, pulley_radius=radius, lead=candidates[i][-1 - LEAD_AXES])  # link_a's origin to A, or -towards
     dense = _dense(model, clear_q)
-    trying = [(i, with_changes(out[i], lead=u)) for i in cable for u in candidates[i]]
-    tiers = iter(_lead_tier(v) for v in _lead_clearances(model, [s for _, s in trying], dense))
+    trying = [with_changes(out[i], lead=u) for i in cable for u in candidates[i]]
+    tiers = iter(_lead_tier(v) for v in _lead_clearances(model, trying, dense))
     crosses = {i: [next(tiers) for _ in candidates[i]] for i in cable}
     for _ in range(2):
         for i in cable:

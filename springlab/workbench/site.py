@@ -241,6 +241,10 @@ return {column, pipes, leaks, wide, numbered, uncaptioned, covered, undrawn, cut
 """
 
 
+DESKTOP = (1280, 1000)
+"""px: the window the browser check reads each page in first, as a reader at a desk does."""
+
+
 def _driver(found):
     from selenium import webdriver
     from selenium.webdriver.chrome.options import Options
@@ -250,7 +254,7 @@ def _driver(found):
     options.binary_location = found[0]
     for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                "--no-first-run", "--window-size=1280,1000", "--allow-file-access-from-files"):
+                "--no-first-run", f"--window-size={DESKTOP[0]},{DESKTOP[1]}", "--allow-file-access-from-files"):
         options.add_argument(arg)
     options.set_capability("goog:loggingPrefs", {"performance": "ALL"})  # the network log
     return webdriver.Chrome(service=Service(found[1]), options=options)
@@ -293,7 +297,7 @@ def _wait(driver, script: str, timeout: float):
 
 
 PHONE = (390, 844)
-"""px: the phone the browser check also reads each page on (an iPhone 12's viewport)."""
+"""px: the phone the browser check also reads each page on (an iPhone 12's viewport), after :data:`DESKTOP`."""
 
 _PHONE = """
 const de = document.documentElement, W = de.clientWidth;
@@ -407,7 +411,7 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
                 driver.save_screenshot(str(shots[page]))
             driver.set_window_size(*PHONE)  # the same page on a phone
             phone = driver.execute_script(_PHONE)
-            driver.set_window_size(1280, 1000)
+            driver.set_window_size(*DESKTOP)
             if phone["over"] > 1:
                 problems.append(f"the page scrolls sideways on a phone ({PHONE[0]} px wide) by {phone['over']} px: "
                                 + "; ".join(phone["wide"]))
