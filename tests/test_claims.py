@@ -224,3 +224,24 @@ def test_a_literal_reading_and_a_corrected_input_are_filed_as_what_they_are():
         claims.compare("C, example A", "Sec. V.A", 184.0, 150.0, unit="J", tolerance=0.05, tolerance_basis="half",
                        expect="reproduced with corrected input", corrected="positions")
     assert check_records(claims.to_records()[:3], "t") == []
+
+
+def test_a_paper_value_shows_the_decimals_the_paper_prints():
+    from springlab.workbench.claims import html_table, markdown_table
+
+    c = Claims("t")
+    c.compare("k", "Table 3", 2156.0, 2156.001, unit="N/m", tolerance=0.005, tolerance_basis="half a unit",
+              decimals=2)
+    c.compare("sigma", "Table 2", 0.0, 0.001, unit="m", tolerance=0.005, tolerance_basis="half a unit",
+              rounding=0.006, band_basis="inputs rounded", printed_decimals=2)
+    c.input("m", "Table 1", 1.5, 1.5, unit="kg", note="fed in", printed_decimals=2)
+    c.compare("n", "Table 1", 15, 15, unit="configurations", tolerance=0, tolerance_basis="a count: exact")
+    records = c.to_records()
+    for table in (html_table(records), markdown_table(records)):
+        assert "2156.00" in table and "0.00" in table and "1.50" in table
+    # the control: a claim that does not know its printed decimals shows the number as stored
+    assert [r["paper_decimals"] for r in records] == [2, 2, 2, None] and "| 15 |" in markdown_table(records)
+    with pytest.raises(SpringlabError, match="printed decimals must be a whole number"):
+        c.compare("k", "Table 3", 1.0, 1.0, unit="m", tolerance=0.1, tolerance_basis="b", printed_decimals=-1)
+    with pytest.raises(SpringlabError, match="got 2.5"):
+        c.input("m", "Table 1", 1.5, 1.5, unit="kg", note="fed in", printed_decimals=2.5)

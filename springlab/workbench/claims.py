@@ -49,6 +49,7 @@ from __future__ import annotations
 
 import json
 import math
+import numbers
 import sys
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
@@ -147,6 +148,7 @@ class Claim:
     cause: str = ""  # a discrepancy's cause, when one was found
     cell: int | None = None  # the execution count of the notebook cell that recorded it (the book links it)
     resolution: float | None = None  # the quantum ours is stored at (module docstring); None: 12 digits
+    paper_decimals: int | None = None  # the decimals the paper prints its value with (1.50, not 1.5); None: unknown
 
     def __post_init__(self):
         object.__setattr__(self, "ours", stored(self.ours, self.resolution))
@@ -242,6 +244,19 @@ def number_text(value, resolution: float | None = None) -> str:
     return f"{value:.6g}"
 
 
+def paper_text(record: dict) -> str:
+    """A claim's paper value as the paper prints it: to its printed decimals where the claim knows
+    them (2156.00, not 2156), else as :func:`number_text`.
+
+    >>> paper_text({"paper": 2156.0, "paper_decimals": 2}), paper_text({"paper": 0.5})
+    ('2156.00', '0.5')
+    """
+    decimals = record.get("paper_decimals")
+    if record.get("paper") is None or decimals is None:
+        return number_text(record.get("paper"))
+    return f"{record['paper']:.{decimals}f}"
+
+
 def markdown_table(records: list[dict]) -> str:
     """Claim records (as in claims.json) as a Markdown table: paper, ours, difference, status."""
     rows = []
@@ -249,7 +264,7 @@ def markdown_table(records: list[dict]) -> str:
         band = f"; band {number_text(r['band']['value'])} ({r['band']['basis']})" if r.get("band") else ""
         cause = f" Cause: {r['cause']}" if r.get("cause") else ""
         res = r.get("resolution")
-        rows.append((r["quantity"], r["where"], number_text(r["paper"]), number_text(r["ours"], res),
+        rows.append((r["quantity"], r["where"], paper_text(r), number_text(r["ours"], res),
                      number_text(r["difference"], res),
                      r["unit"], f"{number_text(r['tolerance'])} ({r.get('tolerance_basis', '')}{band})",
                      f"**{r['status']}**", f"{r['note']}{cause}"))
@@ -293,7 +308,7 @@ def html_table(records: list[dict], made_in: list | None = None) -> str:
     for k, r in enumerate(records):
         status = report_column(r)  # a discrepancy says whether its cause was found
         cells = [f'{escape(r["quantity"])}<br><span class="claim-where">{escape(r["where"])}</span>',
-                 escape(number_text(r["paper"])), escape(number_text(r["ours"], r.get("resolution"))),
+                 escape(paper_text(r)), escape(number_text(r["ours"], r.get("resolution"))),
                  escape(number_text(r.get("difference"), r.get("resolution"))),
                  escape(r["unit"]), f"<strong>{escape(status)}</strong>"]
         if made_in is not None:
@@ -317,6 +332,16 @@ def _finite(name: str, value, quantity: str) -> float:
         raise SpringlabError(f"claim {quantity!r}: {name} is {value}; a claim records finite numbers only "
                              "(record a value that cannot be computed with Claims.not_reproducible)")
     return value
+
+
+def _printed(quantity: str, decimals) -> int | None:
+    """A paper value's printed decimals, checked: None or a whole number from 0 to 15."""
+    if decimals is None:
+        return None
+    if isinstance(decimals, bool) or not isinstance(decimals, numbers.Integral) or not 0 <= decimals <= 15:
+        raise SpringlabError(f"claim {quantity!r}: printed decimals must be a whole number from 0 to 15, got "
+                             f"{decimals!r}")
+    return int(decimals)
 
 
 class Claims:
@@ -361,7 +386,7 @@ class Claims:
                 tolerance: float, tolerance_basis: str, decimals: int | None = None,
                 rounding: float | None = None, band_basis: str | None = None,
                 expect: str = "reproduced", note: str = "", cause: str = "", reading: str = "",
-                corrected: str = "") -> Claim:
+                corrected: str = "", printed_decimals: int | None = None) -> Claim:
         """Record ours against the paper's printed value and assert the status.
 
         :param tolerance: absolute tolerance for 'reproduced', in ``unit``
@@ -378,6 +403,8 @@ class Claims:
             (its own claim); a discrepancy is then an 'alternative reading'
         :param corrected: the input changed from the paper's printed one (both values) and how the change
             was chosen; a claim reproduced only with it is 'reproduced with corrected input'
+        :param printed_decimals: the decimals the paper prints ``paper`` with, for the tables (default
+            ``decimals``)
         :raises SpringlabError: for NaN or infinite numbers, a negative tolerance, an
             unknown status, or a claim without ``tolerance_basis``
         """
@@ -392,7 +419,8 @@ class Claims:
             status, cause = "reproduced with corrected input", f"input corrected: {corrected}"
         kept = status in ("discrepancy", "alternative reading", "reproduced with corrected input")
         claim = Claim(quantity, where, paper, ours, unit, tolerance, status, note, tolerance_basis,
-                      band, cause if kept else "", resolution=resolution(tolerance))
+                      band, cause if kept else "", resolution=resolution(tolerance),
+                      paper_decimals=_printed(quantity, decimals if printed_decimals is None else printed_decimals))
         self.records.append(claim := replace(claim, cell=_current_cell()))
         assert status == expect, (
             f"{quantity} ({where}): paper {paper}, ours {ours:.10g}, |difference| {diff:.3g} {unit}: "
@@ -413,7 +441,7 @@ class Claims:
             quantity, paper, recomputed, tolerance, decimals, rounding, band_basis)
         status = "inconsistent" if status == "discrepancy" else "consistent"
         claim = Claim(quantity, where, paper, ours, unit, tolerance, status, note, tolerance_basis, band,
-                      resolution=resolution(tolerance))
+                      resolution=resolution(tolerance), paper_decimals=_printed(quantity, decimals))
         self.records.append(claim := replace(claim, cell=_current_cell()))
         assert status == expect, (
             f"{quantity} ({where}): paper {paper}, from its own numbers {ours:.10g}, |difference| "
@@ -421,13 +449,14 @@ class Claims:
         return claim
 
     def input(self, quantity: str, where: str, paper: float | None, ours: float, *, unit: str,
-              note: str) -> Claim:
+              note: str, printed_decimals: int | None = None) -> Claim:
         """Record a value the notebook chose or fed in (a design's free choice, a value equal
-        by construction): shown beside the paper's, not counted as reproduced."""
+        by construction): shown beside the paper's (to its ``printed_decimals``), not counted as reproduced."""
         ours = _finite("ours", ours, quantity)
         paper = None if paper is None else _finite("paper", paper, quantity)
         claim = Claim(quantity, where, paper, ours, unit, None, "input", note,
-                      "none: a value fed in is shown, not compared")
+                      "none: a value fed in is shown, not compared",
+                      paper_decimals=_printed(quantity, printed_decimals))
         self.records.append(claim := replace(claim, cell=_current_cell()))
         return claim
 
