@@ -200,6 +200,7 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                   '<p><span class="math">\\(\\\\tfrac12 k\\)</span></p>'  # a doubled backslash
                   '<p><span class="math">\\(\\frac{a}\\)</span></p>'  # TeX MathJax cannot parse
                   '<div class="cell_input"><pre style="white-space: pre">' + "x = 1; " * 200 + "</pre></div>"  # scrolls
+                  '<div class="cell_input" style="width: 400px"><pre>z = 3</pre></div>'  # holds 88 characters? no
                   '<div class="cell_output"><pre style="white-space: pre">' + "Claim(quantity=...) " * 120 + "</pre></div>"
                   '<a href="_sources/">.ipynb</a>'  # a download of a folder
                   "<p>as <code>expand_gravity_energy</code> in <code>arms/paper000_arm.toml</code> does for the "
@@ -214,7 +215,7 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                              '<p><span class="math">\\(\\tfrac12 k\\)</span></p>'
                              '<div class="math">\\[h_j = d_j \\tag{8}\\]</div>'
                              '<div class="cell_output"><pre>short</pre></div>'
-                             '<div class="cell_input"><pre>y = 2</pre></div>'
+                             '<div class="cell_input"><pre style="font-size: 10px">y = 2</pre></div>'  # 88 fit
                              "<p>run <code>make figures</code>; Table 3 prints 0.004 m</p>"  # words for readers
                              '<div class="admonition"><p><code>notebooks/a.ipynb</code></p></div>'
                              '<figure><img src="ok.png" alt="drawn"><figcaption><p>Figure 1. The arm.</p></figcaption>'
@@ -239,6 +240,7 @@ def test_the_browser_check_catches_what_a_reader_would_see_broken(tmp_path, buil
                      "a paper item missing from the coverage table: Eq. (2)",
                      "a 3-D view that did not draw: a tetrahedron", "a 3-D view that did not draw: a view from a network",
                      "a code cell that scrolls sideways: x = 1;",
+                     "a code cell narrower than the 88 characters code is formatted to: z = 3",
                      "an internal name in the prose: expand_gravity_energy",
                      "an internal name in the prose: arms/paper000_arm.toml", "does for the issue, see",
                      "see 000 Table",

@@ -227,6 +227,16 @@ const cut = Array.from(article.querySelectorAll('mjx-container[display="true"]')
     c => [c.scrollWidth, c.parentElement.clientWidth, (texts.get(c) || '').trim().slice(0, 60)]);
 const sideways = Array.from(article.querySelectorAll('pre')).filter(p => !p.closest('.cell_output')).filter(
     p => p.scrollWidth > p.clientWidth + 1).map(p => p.textContent.trim().split('\n')[0].slice(0, 60));
+const narrow = Array.from(article.querySelectorAll('.cell_input pre')).filter(p => p.clientWidth > 0).filter(p => {
+    const probe = document.createElement('span');  // a line of the width the chapters are formatted to
+    probe.textContent = 'x'.repeat(CODE_COLUMN);
+    probe.style.whiteSpace = 'pre';
+    p.appendChild(probe);
+    const need = probe.getBoundingClientRect().width;
+    probe.remove();
+    const style = getComputedStyle(p);
+    return need > p.clientWidth - parseFloat(style.paddingLeft) - parseFloat(style.paddingRight) + 0.5;
+}).map(p => p.textContent.trim().split('\n')[0].slice(0, 60));
 const internal = [];
 const name = /^(?:[A-Za-z_]\w*\.)*[a-z_][a-z0-9]*_[a-z0-9_]*(?:\(\))?$|^(?:[a-z_]\w*\.)+[A-Za-z_]\w*(?:\(\))?$|^[\w.-]+\/[\w.\/-]*\.\w+$|^[\w-]+\.(?:toml|json|py|urdf|csv|ipynb|md)$/;
 for (const el of article.querySelectorAll('p, li, figcaption')) {
@@ -237,8 +247,12 @@ for (const el of article.querySelectorAll('p, li, figcaption')) {
     if (key) internal.push(text.slice(Math.max(0, key.index - 30), key.index + 20).trim());
     if (issue) internal.push(text.slice(Math.max(0, issue.index - 30), issue.index + 20).trim());
 }
-return {column, pipes, leaks, wide, numbered, uncaptioned, covered, undrawn, cut, sideways, internal};
+return {column, pipes, leaks, wide, numbered, uncaptioned, covered, undrawn, cut, sideways, narrow, internal};
 """
+
+CODE_COLUMN = 88
+"""Characters a line of a chapter's code may hold (notebooks/ruff.toml's line length): the browser check
+fails on a code cell too narrow to show them without wrapping."""
 
 
 DESKTOP = (1280, 1000)
@@ -326,8 +340,8 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
     not parse, TeX with a doubled backslash (``\\\\tfrac``), a paragraph that is a raw Markdown
     table (pipes and ``---``), TeX shown as text outside the math (``\\frac``, ``$...$``, in
     prose and in outputs), an output (or a display equation) more than twice as wide as the
-    text column, a code cell that scrolls sideways, a numbered display equation wider than its column
-    (its tag out of sight), a 3-D view
+    text column, a code cell that scrolls sideways or holds fewer than :data:`CODE_COLUMN`
+    characters, a numbered display equation wider than its column (its tag out of sight), a 3-D view
     (:mod:`springlab.workbench.view3d`) that did not draw, a page that scrolls sideways on a phone
     (:data:`PHONE`: the page's own text wider than the screen; a table or display scrolls in its own box),
     and any request that leaves the machine (Chromium's network log: every request must be ``file://`` or inline).
@@ -384,7 +398,7 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
             problems += [f"TeX with a doubled backslash (a command read as a line break): {t}" for t in math["doubled"]]
             _wait(driver, "return Array.from(document.querySelectorAll('.springlab-view3d'))"
                           ".every(v => v.querySelector('canvas') || v.dataset.failed)", 20)  # drawn once plotly.js loads
-            reader = driver.execute_script(_READER)
+            reader = driver.execute_script(_READER.replace("CODE_COLUMN", str(CODE_COLUMN)))
             problems += [f"a raw Markdown table in a paragraph: {t}" for t in reader["pipes"]]
             problems += [f"TeX left as text: {t}" for t in reader["leaks"]]
             problems += [f"an output {w} px wide in a {reader['column']} px column: {t}" for w, t in reader["wide"]]
@@ -394,6 +408,8 @@ def browser_check(pages, *, screenshots=None, network_log=None, chapters=None, s
                 problems += [f"a figure with no numbered caption: {t}" for t in reader["uncaptioned"]]
             problems += [f"a 3-D view that did not draw: {v}" for v in reader["undrawn"]]
             problems += [f"a code cell that scrolls sideways: {t}" for t in reader["sideways"]]
+            problems += [f"a code cell narrower than the {CODE_COLUMN} characters code is formatted to: {t}"
+                         for t in reader["narrow"]]
             if page.name in prose:
                 problems += [f"an internal name in the prose: {t}" for t in reader["internal"]]
             problems += [f"an equation tag outside the column (a numbered display {w} px wide in {c} px): {t}"
