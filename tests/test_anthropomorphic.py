@@ -24,6 +24,27 @@ def test_eq15_derived_from_the_geometry_equals_the_printed_one():
         assert sp.expand(derived[key] - printed[key]) == 0
 
 
+def test_eqs_7_10_and_14_derived_equal_the_printed_ones_and_fig_4a_has_no_rates():
+    _, eq7 = an.one_link_condition()
+    assert sp.expand(eq7 - an.printed_eq7()) == 0 and sp.expand(eq7 + an.printed_eq7()) != 0
+    eq10 = an.two_link_conditions()
+    assert [sp.expand(d - p) for d, p in zip(eq10, an.printed_eq10(), strict=True)] == [0, 0]
+    assert sp.expand(eq10[0] - an.printed_eq10()[1]) != 0  # the control: the lines are not interchangeable
+    kept, printed = an.derived_conditions(k1=True), an.printed_eq14()
+    assert all(sp.expand(kept[key] - printed[key]) == 0 for key in kept)
+    assert an.rates_without_k12() == []  # Fig. 4a: k1 and k2 alone cannot balance the arm
+    s = an.energy_symbols()  # the control: with k12 kept, the same solve finds rates
+    assert sp.solve(list(kept.values()), [s["k1"], s["k2"], s["k12"]], dict=True) != []
+
+
+def test_the_layouts_tables_hold_every_layout_and_000s_solver_agrees_on_a_and_b():
+    designs = paper.designs()
+    assert [d.layout for _, d in designs.values()] == ["a", "b", "c", "d"]
+    assert len(paper.design_table(designs).rows) == 4
+    table, agreement = paper.enumeration_table(designs)
+    assert [r[3] for r in table.rows] == ["yes", "yes", "no", "no"] and max(agreement) < 1e-12
+
+
 @pytest.mark.parametrize("layout", ["a", "b", "c", "d"])
 @pytest.mark.parametrize("elbow_axis", [(0, 0, 1), (0, 1, 1)])
 def test_each_layout_balances_for_any_elbow_axis(layout, elbow_axis):
