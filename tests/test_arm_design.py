@@ -129,9 +129,17 @@ def test_planar_three_link_arm_contains_003s_configurations():
     configs = {d.configuration for d in report.designs}
     for name in ("Λ3-1", "Λ3-2"):
         _, springs = pl.to_spatial(arm, plsyn.design(arm, name, {"Λ3-1": juang2022.FREE_CHOICES,
-                                                              "Λ3-2": {"A_S14": 0.1, "B_S24": 0.5, "A_S12": 0.1, "B_S12": 0.5,
-                                                                       "A_S23": 0.5, "B_S23": 0.8}}[name]))
+                                                              "Λ3-2": juang2022.SECOND_CHOICES}[name]))
         assert ad.configuration_of(springs) in configs, name
+    ranks = juang2022.ranks_in(report)  # the book's table of the same
+    assert [row[0] for row in ranks.rows] == ["Λ3-1", "Λ3-2"] and all(row[2] for row in ranks.rows)
+    assert all(row[3] == len(report.designs) for row in ranks.rows)
+    # the control: in a list without them, neither is found
+    short = ad.DesignReport(report.spec, designs=[d for d in report.designs if d.configuration not in {
+        ad.configuration_of(pl.to_spatial(arm, plsyn.design(arm, "Λ3-1", juang2022.FREE_CHOICES))[1])}])
+    assert juang2022.ranks_in(short).rows[0][2] is None
+    table = report.criteria_table()
+    assert len(table.rows) == len(report.designs) and table.rows[0][0] == 1
 
 
 def test_a_design_that_fails_verification_is_never_returned(monkeypatch):
@@ -208,6 +216,10 @@ def test_tolerance_study():
     assert 0 < pay.torques["payload"].max() <= dm * chain.g * reach * (1 + 1e-9)
     both = tl.tolerance_study(chain, springs, X, tl.Tolerances(attachment=1e-3, free_length=1e-3), samples=20, progress=False)
     assert set(both.torques) == {"attachment", "free_length", "all"} and "| all |" in str(both.table())
+    pair = tl.side_by_side(small, large, "1 %", "2 %")
+    assert pair.rows[0][0] == "stiffness" and float(pair.rows[0][1]) < float(pair.rows[0][3])  # 1 % beats 2 %
+    with pytest.raises(ValueError):  # the control: studies of different errors do not line up
+        tl.side_by_side(small, both, "stiffness", "ends")
     with pytest.raises(SpringlabError, match="nothing to study"):
         tl.tolerance_study(chain, springs, X, tl.Tolerances(), progress=False)
     with pytest.raises(SpringlabError, match=r"tolerance stiffness must be finite and >= 0 \(relative\), got -0.1"):
@@ -225,6 +237,8 @@ def test_three_springs_balance_the_paper000_arm_with_a_forbidden_pattern():
     assert found and all(d.spring_count == 3 and d.energy_variation < ad.VERIFY_TOLERANCE for d in found)
     assert all(rule_violations(spec.n, d.configuration) for d in found)  # the paper's criteria reject them
     assert fewer.fewer_springs(spec, 2) == []
+    table = fewer.designs_table(found)
+    assert [row[1] for row in table.rows] == [d.label() for d in found] and table.rows[0][0] == 1
     chain = spec.chain()
     hold = sim.hold_test(chain, list(found[0].springs), random_directions(chain.n, 2, 5), duration=1.0)
     assert hold.balanced.max_tip_drift < 1e-8 < 1e-3 < hold.control.max_tip_drift

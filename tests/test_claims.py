@@ -245,3 +245,15 @@ def test_a_paper_value_shows_the_decimals_the_paper_prints():
         c.compare("k", "Table 3", 1.0, 1.0, unit="m", tolerance=0.1, tolerance_basis="b", printed_decimals=-1)
     with pytest.raises(SpringlabError, match="got 2.5"):
         c.input("m", "Table 1", 1.5, 1.5, unit="kg", note="fed in", printed_decimals=2.5)
+
+
+def test_compare_printed_takes_half_a_unit_of_the_printed_digit_and_shows_those_digits():
+    c = Claims("t")
+    claim = c.compare_printed("r", "Section V.B", (0.125, 3), 0.12549, unit="m")
+    assert claim.status == "reproduced" and claim.tolerance == 0.0005 and claim.paper_decimals == 3
+    assert "3 decimals" in claim.tolerance_basis
+    # the control: just past half a unit it is no longer reproduced
+    assert c.compare_printed("r", "Section V.B", (0.125, 3), 0.12551, unit="m",
+                             expect="discrepancy").status == "discrepancy"
+    with pytest.raises(SpringlabError, match="printed decimals must be a whole number"):
+        c.compare_printed("r", "Section V.B", (0.125, 3.5), 0.125, unit="m")

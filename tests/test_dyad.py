@@ -159,3 +159,21 @@ def test_batch_moments_and_selection_agree_with_the_single_dyad_versions():
     assert np.allclose([path["r"][0], path["l"][0], path["beta"][0]], [d.r, d.l, d.beta], rtol=1e-12)
     grid_C = dysyn.select_C(comp, positions, "maximum magnitude", step=0.01)
     assert abs(grid_C - dysyn.choose_C(comp, positions, "maximum magnitude")) < 0.02
+
+
+def test_the_printed_closure_forms_restate_the_loop_and_a_flipped_angle_does_not():
+    import sympy as sp
+
+    forms = paper.closure_forms()
+    assert sorted(forms.printed) == [8, 9, 10, 11, 15, 16, 21, 22, 23]
+    for number, form in forms.printed.items():
+        assert sp.simplify(sp.expand_trig(form.subs(forms.z) - forms.closure)) == 0, number
+    assert sp.simplify(forms.closure.subs(forms.y, forms.eq24)) == 0  # Eq. (24) closes the loop
+    flipped = forms.printed[9].subs(forms.phi, forms.phi + 2 * forms.beta)  # the control: phi + beta
+    assert sp.simplify(sp.expand_trig(flipped - forms.closure)) != 0
+
+
+def test_example_bs_table_ends_with_the_printed_dyad_to_its_printed_digits():
+    table = paper.example_b_table({"a reading": (195.2, paper.printed_dyad("B"))})
+    assert list(table.rows[-1]) == ["**printed**", "195", "0.125", "0.502", "0.08"]
+    assert list(table.rows[0][:2]) == ["a reading", "195.200"]

@@ -193,3 +193,11 @@ def springs_per_n_table(rows: list[SpringsPerN]) -> Table:
                    f"{r.ground.max_force:.0f} ({r.ratio:.2f})", f"{r.ground.energy_variation:.0e}",
                    f"{r.hold_drift:.0e} / {r.control_drift:.2f}",
                    f"{r.screen[0]:,} sets, {r.screen[1]} pass: impossible" if r.screen else "not screened") for r in rows])
+
+
+def designs_table(designs) -> Table:
+    """Designs found by :func:`fewer_springs`, best first: their springs, largest force (N), sum of k
+    (N/m) and route 2's energy variation (relative to gravity's range)."""
+    return Table(["rank", "springs", "largest force (N)", "sum of k (N/m)", "route 2 variation"],
+                 [(k, d.label(), f"{d.max_force:.0f}", f"{d.stiffness_sum:.0f}", f"{d.energy_variation:.0e}")
+                  for k, d in enumerate(designs, start=1)])

@@ -169,6 +169,15 @@ class DesignReport:
                        f"{d.efficiency:.4f}", f"{d.energy_variation:.1e}")
                       for rank, d in enumerate(self.designs, start=1)])
 
+    def criteria_table(self) -> Table:
+        """The ranked designs by the criteria the methods are compared on: springs, joints spanned, sum
+        of k (N/m), largest spring force (N), mass added (kg: none without auxiliary links) and
+        efficiency."""
+        return Table(["rank", "springs", "joints spanned", "sum of k (N/m)", "largest spring force (N)",
+                      "added mass (kg)", "efficiency"],
+                     [(rank, d.spring_count, d.spans, f"{d.stiffness_sum:.0f}", f"{d.max_force:.1f}", "0",
+                       f"{d.efficiency:.3f}") for rank, d in enumerate(self.designs, start=1)])
+
     def csv(self) -> str:
         """Every ranked design as CSV for a spreadsheet: one row a design (rank, family, largest
         force N, clearance m, sum of k N/m, efficiency, energy variation), then one column group

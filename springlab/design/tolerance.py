@@ -95,6 +95,14 @@ class ToleranceResult:
                      [(n, f"{a:.3g}", f"{b:.3g}", f"{c:.3g}") for n, a, b, c in self.summary()])
 
 
+def side_by_side(first: ToleranceResult, second: ToleranceResult, first_label: str, second_label: str) -> Table:
+    """Two designs' tolerance studies, error by error: each one's median and 95th percentile of the
+    largest holding torque (N m)."""
+    rows = [(name, f"{a:.3g}", f"{b:.3g}", f"{c:.3g}", f"{d:.3g}")
+            for (name, a, b, _), (_, c, d, _) in zip(first.summary(), second.summary(), strict=True)]
+    return Table(["error", f"{first_label}: median", "95th pct", f"{second_label}: median", "95th pct"], rows)
+
+
 def _study_factor(chain: Chain, springs, X, tol: Tolerances, seed_sequence, samples: int, step=None) -> np.ndarray:
     """One factor's built arms, seeded by its own SeedSequence: the largest holding torque of each (N m)."""
     rng = np.random.default_rng(seed_sequence)

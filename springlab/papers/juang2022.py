@@ -12,9 +12,10 @@ joints only. Mechanical Sciences (2022).
 
 from __future__ import annotations
 
+from springlab.design.rank import configuration_of, rank_of
 from springlab.errors import SpringlabError
-from springlab.mechanisms.planar.model import PlanarArm, PlanarSpring, Workspace
-from springlab.mechanisms.planar.synthesis import solve_configuration
+from springlab.mechanisms.planar.model import PlanarArm, PlanarSpring, Workspace, to_spatial
+from springlab.mechanisms.planar.synthesis import design, solve_configuration
 from springlab.model.armfile import arm_from_dict
 from springlab.tables import Table
 
@@ -123,3 +124,21 @@ def table_3() -> Table:
         rows.append([i + 2, f"{R[i + 1]:.3f}" + (" (an additional link)" if i == 2 else ""), f"{M[i]:g}",
                      f"theta_{i + 2}: {hi:+g}° to {lo:+g}°"])
     return Table(["link", "length r_i (m)", "mass m_i (kg)", "workspace"], rows)
+
+
+SECOND_CHOICES = {"A_S14": 0.1, "B_S24": 0.5, "A_S12": 0.1, "B_S12": 0.5, "A_S23": 0.5, "B_S23": 0.8}
+"""Free choices (m) for configuration Λ3-2, ours: the paper gives the other configurations none."""
+
+
+def ranks_in(report) -> Table:
+    """Where the paper's configurations Λ3-1 (with its free choices) and Λ3-2 (with
+    :data:`SECOND_CHOICES`) stand among a ranked list of designs for this arm (a
+    :class:`springlab.design.rank.DesignReport`), as paper 000's springs: rank (None when
+    missing) and the largest force (N) of the ranked design."""
+    rows = []
+    for name, free in {"Λ3-1": FREE_CHOICES, "Λ3-2": SECOND_CHOICES}.items():
+        configuration = configuration_of(to_spatial(ARM, design(ARM, name, free))[1])
+        found = rank_of(report, configuration)
+        force = f"{report.designs[found - 1].max_force:.0f}" if found else "-"
+        rows.append((name, " ".join(map(str, configuration)), found, len(report.designs), force))
+    return Table(["003", "as 000's springs", "rank", "of", "largest force (N)"], rows)

@@ -6,7 +6,10 @@ SI units: N, m, N/m, J, rad (the paper prints degrees, converted here).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
+import sympy as sp
 
 from springlab.mechanisms.dyad.model import Compensator, Dyad
 from springlab.tables import Table
@@ -64,3 +67,48 @@ def inputs() -> Table:
         ["prescribed positions, example B", "n = 120 positions between 30° and 150°, a step of one degree",
          "Section V.B (quoted: 120 positions and a 1° step cannot both hold)"],
     ])
+
+
+@dataclass(frozen=True)
+class ClosureForms:
+    """The dyad's loop closure and the paper's restatements of it, in sympy: ``closure`` is
+    |B - A|^2 - l^2 with u = phi - beta; ``printed`` maps 002's equation numbers 8-11, 15-16 and 21-23 to
+    each as printed (each = 0); ``z`` is Eqs. (12)-(14)'s substitution; ``eq24`` the slider height y."""
+
+    r: sp.Symbol
+    length: sp.Symbol  # l, the rod
+    beta: sp.Symbol
+    phi: sp.Symbol
+    y: sp.Symbol
+    closure: sp.Expr
+    printed: dict
+    z: dict
+    eq24: sp.Expr
+
+
+def closure_forms() -> ClosureForms:
+    """002 Eqs. (8)-(16) and (21)-(24) as printed, typed in, beside the loop closure they restate."""
+    r, ell, beta, phi, y, z1, z2, z3 = sp.symbols("r l beta varphi y z_1:4", real=True)
+    u, cos, sin = phi - beta, sp.cos, sp.sin
+    closure = (r * sin(u)) ** 2 + (y - r * cos(u)) ** 2 - ell**2  # |B - A|^2 - l^2
+    printed = {
+        8: (y - r * cos(u)) ** 2 + r**2 * sin(u) ** 2 - ell**2,  # 002 Eq. (8)
+        9: y**2 - 2 * y * r * cos(u) + r**2 - ell**2,  # 002 Eq. (9)
+        10: y**2 - 2 * y * r * (cos(phi) * cos(beta) + sin(phi) * sin(beta)) - (ell**2 - r**2),  # 002 Eq. (10)
+        11: y**2 - 2 * y * r * cos(phi) * cos(beta) - 2 * y * r * sin(phi) * sin(beta) - (ell**2 - r**2),  # 002 Eq. (11)
+        15: y**2 - 2 * y * cos(phi) * z1 - 2 * y * sin(phi) * z2 - z3,  # 002 Eq. (15)
+        16: -(2 * y * cos(phi) * z1 + 2 * y * sin(phi) * z2 + z3 - y**2),  # 002 Eq. (16)
+        21: r**2 + y**2 - ell**2 - 2 * r * y * cos(u),  # 002 Eq. (21)
+        22: y**2 - 2 * r * y * cos(u) + r**2 * (cos(u) ** 2 + sin(u) ** 2) - ell**2,  # 002 Eq. (22)
+        23: (y - r * cos(u)) ** 2 - (ell**2 - r**2 * sin(u) ** 2),  # 002 Eq. (23)
+    }
+    z = {z1: r * cos(beta), z2: r * sin(beta), z3: ell**2 - r**2}  # 002 Eqs. (12)-(14)
+    eq24 = r * cos(u) + sp.sqrt(ell**2 - r**2 * sin(u) ** 2)  # 002 Eq. (24)
+    return ClosureForms(r, ell, beta, phi, y, closure, printed, z, eq24)
+
+
+def example_b_table(fits: dict) -> Table:
+    """Example B's dyad for each reading of its positions, {label: (C (J), Dyad)}, above the printed one."""
+    rows = [(k, f"{c:.3f}", f"{d.r:.5f}", f"{d.l:.5f}", f"{np.degrees(d.beta):.4f}") for k, (c, d) in fits.items()]
+    printed = [f"{PRINTED['B'][k][0]:.{PRINTED['B'][k][1]}f}" for k in ("C", "r", "l", "beta_deg")]
+    return Table(["positions", "C (J)", "r (m)", "l (m)", "beta (deg)"], rows + [("**printed**", *printed)])

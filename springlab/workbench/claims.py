@@ -427,6 +427,17 @@ class Claims:
             f"status {status}, expected {expect} (tolerance {tolerance:g})")
         return claim
 
+    def compare_printed(self, quantity: str, where: str, printed: tuple[float, int], ours: float, *,
+                        unit: str, **kwargs) -> Claim:
+        """:meth:`compare` against a value the paper prints to a number of decimals, ``printed`` =
+        (value, decimals): reproduced within half a unit of its last digit (the tolerance and its basis),
+        and shown to those decimals. ``kwargs`` go to :meth:`compare` (expect, note, cause, ...)."""
+        value, decimals = printed
+        decimals = _printed(quantity, decimals)
+        return self.compare(quantity, where, value, ours, unit=unit, tolerance=half_unit(decimals),
+                            tolerance_basis=f"half a unit of the printed last digit ({decimals} decimals)",
+                            printed_decimals=decimals, **kwargs)
+
     def consistency(self, quantity: str, where: str, paper: float, recomputed: float, *, unit: str,
                     tolerance: float, tolerance_basis: str, decimals: int | None = None,
                     rounding: float | None = None, band_basis: str | None = None,
