@@ -275,3 +275,33 @@ def test_crank_margins_are_the_turned_arms_fold_margins_to_the_last_bit():
         assert np.ptp(together[0]) > 0.1  # the turn moves the margin
     with pytest.raises(SpringlabError, match="no module"):
         pb.crank_margins(ARM, 1, q, turns)
+
+
+def test_the_equilibrator_forms_agree_and_a_spring_off_sigma_is_caught():
+    forms = paper.equilibrator_forms()
+    assert sp.expand(forms["9a"] - forms["9b"]) == 0
+    left, right = forms["12"]
+    assert sp.simplify(left - right) == 0 and sp.simplify(right - forms["15"]) == 0
+    assert sp.simplify(forms["15"] - forms["9a"]) != 0  # the control: (15) is (9a) only once (13)-(14) hold
+    spreads = paper.single_link_spreads(turns=500)
+    assert spreads["Eq. (10) met"] < 1e-12 < 0.1 < spreads["control"]  # the control: B' off sigma
+
+
+def test_the_chapters_tables_show_each_row_given():
+    arm = paper.arm()
+    rows = paper.table2_rows(arm)
+    table = paper.table2_table([(r, r["ours"] - r["paper"], "reproduced") for r in rows])
+    assert len(table.rows) == len(rows) and table.rows[0][0] == "mu~_2 (kg)"
+    springs = subs.design_equilibrators(arm, paper.K, paper.L_CA)
+    l_cb = [r for r in paper.table3_rows(arm, springs) if r["kind"] == "l_CB"]
+    assert [row[0] for row in paper.table3_table([(r, "reproduced") for r in l_cb]).rows] == list(paper.LINKS)
+    printed = PiecewiseCubic(paper.TABLE4[:, :4], paper.TABLE4[:, 4:])
+    jumps = printed.endpoint_errors()
+    assert len(paper.endpoint_table(jumps).rows) == 6 and abs(jumps[5]).max() > 0.02  # row 6: its misprint
+
+
+def test_the_runs_table_reports_each_run_against_the_gravity_range():
+    traj = PiecewiseCubic(paper.TABLE4[:, :4])
+    run = ps.follow(ARM, SPRINGS, traj.angles, 1.0, model="ideal", step=1e-2, samples=11)
+    table = ps.runs_table([(run, "ideal, 0-1 s")], run.gravity_range)
+    assert table.rows[0][0] == "ideal, 0-1 s" and float(table.rows[0][2]) < 1e-6

@@ -15,6 +15,7 @@ serial-type manipulator. Journal of Mechanisms and Robotics 2(3), 031003. doi:10
 from __future__ import annotations
 
 import numpy as np
+import sympy as sp
 
 from springlab.mechanisms.pseudobase.model import (
     DH,
@@ -196,3 +197,65 @@ def table_2() -> Table:
             ("r^_i", [vec(v) for v in R_HAT]), ("c_i", [vec(v) for v in C]),
             ("mu~_i", [f"{x:.2f}" for x in MU_TILDE]), ("sigma~_i", [vec(v) for v in SIGMA_TILDE])]
     return Table(["link i", *map(str, LINKS)], [[name, *cells] for name, cells in rows])
+
+
+def table2_table(results) -> Table:
+    """Table 2's combined masses and vectors beside ours: ``results`` holds, per row of
+    :func:`table2_rows`, (row, ours minus the paper's, status)."""
+    return Table(["quantity", "paper", "ours", "difference", "rounding bound", "status"],
+                 [(f"{r['quantity']} ({r['unit']})", f"{r['paper']:.2f}", f"{r['ours']:.4f}", f"{diff:+.4f}",
+                   f"{r['band']:.4f}", status) for r, diff, status in results])
+
+
+def table3_table(results) -> Table:
+    """Each spring's l_CB (001 Eq. 16) beside Table 3's, with the printed K l_CA l_CB against the
+    mu~ g |sigma~| it must equal (N m) and our b_i (m): ``results`` holds, per l_CB row of
+    :func:`table3_rows`, (row, status)."""
+    return Table(["spring", "K l_CA l_CB, printed (N m)", "mu~ g abs(sigma~) (N m)", "mismatch", "l_CB paper (m)",
+                  "l_CB ours (m)", "b ours (m)", "status"],
+                 [(r["spring"], f"{r['printed']:.2f}", f"{r['need']:.2f}", f"{100 * (r['printed'] / r['need'] - 1):+.1f} %",
+                   f"{r['paper']:.2f}", f"{r['ours']:.4f}", np.round(r["b"], 4).tolist(), status)
+                  for r, status in results])
+
+
+def endpoint_table(jumps) -> Table:
+    """How far each printed cubic of Table 4 misses its own end points (rad): ``jumps`` (joints, 2),
+    at t_I and t_F."""
+    return Table(["joint", "printed cubic(t_I) - theta_I (rad)", "printed cubic(t_F) - theta_F (rad)"],
+                 [(j + 1, f"{a:+.4f}", f"{b:+.4f}") for j, (a, b) in enumerate(jumps)])
+
+
+def equilibrator_forms() -> dict:
+    """001 Eqs. (9a), (9b), (12) and (15) in sympy, for one equilibrator: a spring K from A to B, a
+    subsystem of mass mu at sigma, gravity g (3-vectors of symbols). Eq. (12)'s two sides come with
+    Eqs. (13)-(14) substituted: a - c along -g at l_CA, b - c along sigma at l_CB."""
+    def vec(name):
+        return sp.Matrix(sp.symbols(f"{name}_x {name}_y {name}_z", real=True))
+
+    a, b, g, s = (vec(v) for v in ("a", "b", "g", "sigma"))
+    K, mu, l_CA, l_CB = sp.symbols("K mu l_CA l_CB", positive=True)
+    ac, bc = -l_CA / g.norm() * g, l_CB / s.norm() * s  # 001 Eqs. (13), (14): a_i - c_i, b_i - c_i
+    return {"9a": K / 2 * (b - a).dot(b - a) - mu * g.dot(s),  # 001 Eq. (9a)
+            "9b": -K * b.dot(a) + K / 2 * (a.dot(a) + b.dot(b)) - mu * g.dot(s),  # 001 Eq. (9b)
+            "12": (K / 2 * (bc - ac).dot(bc - ac), -K * ac.dot(bc) + K / 2 * (l_CA**2 + l_CB**2)),  # 001 Eq. (12)
+            "15": K * l_CA * l_CB / (g.norm() * s.norm()) * g.dot(s) + K / 2 * (l_CA**2 + l_CB**2)}  # 001 Eq. (15)
+
+
+def single_link_spreads(*, turns: int = 2000, seed: int = 3) -> dict[str, float]:
+    """One link on a spherical joint at O with one spring: the total energy's range over gravity's,
+    over ``turns`` random orientations, with OB' along sigma as Eq. (10) asks ('Eq. (10) met') and
+    off it ('control'). Illustrative numbers: mu 2 kg, sigma (0.3, 0.1, 0.2) m, K 400 N/m, l_CA 0.1 m,
+    l_CB from 001 Eq. (16)."""
+    from scipy.spatial.transform import Rotation
+
+    rotations = Rotation.random(turns, random_state=seed).as_matrix()
+    mu, sigma, g, k, a_len = 2.0, np.array([0.3, 0.1, 0.2]), np.array([0.0, 0.0, -9.81]), 400.0, 0.1
+    b_len = mu * 9.81 * np.linalg.norm(sigma) / (k * a_len)  # 001 Eq. (16): K l_CA l_CB = mu g sigma
+    a = -a_len * g / 9.81  # 001 Eq. (13): OA' along -g, up
+    ends = {"Eq. (10) met": b_len * sigma / np.linalg.norm(sigma), "control": b_len * np.array([1.0, 0.0, 0.0])}
+    spread = {}
+    for label, b0 in ends.items():  # OB' along sigma (001 Eq. 14), and off it
+        b, s = rotations @ b0, rotations @ sigma
+        total = 0.5 * k * np.sum((b - a) ** 2, axis=1) - mu * s @ g  # 001 Eq. (9a), J
+        spread[label] = float(np.ptp(total) / np.ptp(-mu * s @ g))
+    return spread

@@ -49,6 +49,7 @@ from springlab.energy.multibody import (
 from springlab.errors import SpringlabError
 from springlab.mechanisms.pseudobase.geometry import energies, positions
 from springlab.mechanisms.pseudobase.model import PseudobaseArm
+from springlab.tables import Table
 
 MODELS = ("rssr", "ideal")
 _SETTINGS = SimSettings()
@@ -248,3 +249,15 @@ def holding_torques(arm: PseudobaseArm, springs, poses, *, model: str = "ideal",
         m.mbs.SolveDynamic(solver_settings(settings, hold))
         out[k] = [_LOCKED_Z_SIGN * m.mbs.GetObjectOutput(j, exu.OutputVariableType.TorqueLocal)[2] for j in m.drives]
     return out
+
+
+def runs_table(runs, gravity_range: float):
+    """Runs of :func:`follow`, ``runs`` = [(run, label)], as a table: the total energy's variation (J, and
+    of ``gravity_range``), the largest pseudobase tilt (rad), exudyn's gravity and spring energies against
+    route 2's (J) and the CPU time (s)."""
+    return Table(["run", "total energy varies (J)", "of the gravity range", "largest pseudobase tilt (rad)",
+                  "exudyn - route 2, gravity (J)", "exudyn - route 2, springs (J)", "CPU (s)"],
+                 [(label, f"{run.total_variation:.1e}", f"{run.total_variation / gravity_range:.1e}",
+                   f"{run.tilt.max():.1e}", f"{np.max(np.abs(run.gravity - run.route2['gravity'])):.1e}",
+                   f"{np.max(np.abs(run.springs - run.route2['springs'])):.1e}", f"{run.cpu_seconds:.1f}")
+                  for run, label in runs])
