@@ -267,3 +267,22 @@ def test_the_same_spring_over_more_joints_is_less_efficient_on_average_not_at_ev
     assert changes["ground", 1, 4][1] == pytest.approx(np.mean(eff[4] > eff[3] + 1e-12))
     with pytest.raises(SpringlabError, match="C1"):  # the control: a ground spring over one joint needs alpha - beta = 90
         ef.spans(ARM, 1, grid, k=500.0, A=0.3, B=0.5, alpha=0.0, beta=0.0)
+
+
+def test_the_chapters_tables_of_paper_003():
+    import sympy as sp
+
+    from springlab.mechanisms.planar import synthesis as plsyn
+
+    table = paper.com_table((9.8, 9.81))
+    assert [float(x) for x in table.rows[0][4:]] == [0.5, 0.5, 0.5]  # g = 9.8: every COM at mid-link
+    assert [float(x) for x in table.rows[1][4:]] != [0.5, 0.5, 0.5]  # the control: 9.81 does not fit
+    sol = {k.name: v for k, v in plsyn.solve_configuration(
+        "Λ3-1", ["A_S14", "A_S24", "A_S12", "B_S12", "A_S34", "B_S34"]).items()}
+    assert all(sp.simplify(sol[n] - e) == 0 for n, e in paper.printed_eq27().items())
+    _, same, derived = paper.table2_check()
+    assert same[("Λ3-2", "B'_S24")] is False and same[("Λ3-1", "B'_S14")] is True
+    setups = paper.configurations()
+    table, designed = paper.configurations_table(setups)
+    assert [row[0] for row in table.rows] == ["Λ1", "Λ2", "Λ3-1", "Λ3-2"] and table.rows[0][5] == "1.0000"
+    assert set(designed) == set(setups)

@@ -1,3 +1,4 @@
+import json
 import shutil
 import subprocess
 import sys
@@ -17,8 +18,8 @@ def test_ruff_is_clean():
     assert result.returncode == 0, result.stdout + result.stderr
 
 
-FORMATTED = ("lenzo2017_two_spring_arm", "lin2010_pseudobases", "springlab_design_your_arm", "springlab_real_arms",
-             "zhang2023_dyad")
+FORMATTED = ("juang2022_spring_efficiency", "lenzo2017_two_spring_arm", "lin2010_pseudobases",
+             "springlab_design_your_arm", "springlab_real_arms", "zhang2023_dyad")
 """The chapters whose code cells are formatted to the book's column (``ruff format notebooks``, at
 notebooks/ruff.toml's line length): each cell as ruff writes it, and none over a dozen lines once it is
 (tests/test_notebooks.py). The other chapters' cells still need their logic moved into the library
@@ -64,3 +65,23 @@ def test_the_book_sets_code_at_the_width_it_is_formatted_to():
     from springlab.workbench.site import CODE_COLUMN
 
     assert tomllib.loads((ROOT / "notebooks" / "ruff.toml").read_text())["line-length"] == CODE_COLUMN
+
+
+def _pyflakes(path: Path) -> str:
+    """ruff's pyflakes findings (unused imports and names, undefined names) in a notebook; empty when none."""
+    result = subprocess.run([_ruff(), "check", "--select", "F", "--output-format", "concise", str(path)], cwd=ROOT,
+                            capture_output=True, text=True)
+    return result.stdout + result.stderr if result.returncode else ""
+
+
+@pytest.mark.skipif(shutil.which("ruff") is None and not (Path(sys.prefix) / "bin" / "ruff").exists(),
+                    reason="ruff is not installed (dev extra)")
+@pytest.mark.parametrize("path", sorted((ROOT / "notebooks").glob("*.ipynb")), ids=lambda p: p.stem)
+def test_no_chapter_imports_what_it_does_not_use_or_uses_what_it_never_defines(path, tmp_path):
+    assert _pyflakes(path) == ""
+    notebook = json.loads(path.read_text())  # the control: an unused import is named
+    notebook["cells"].append({"cell_type": "code", "execution_count": None, "id": "control", "metadata": {},
+                              "outputs": [], "source": ["import colorsys\n"]})
+    control = tmp_path / path.name
+    control.write_text(json.dumps(notebook, indent=1))
+    assert "colorsys" in _pyflakes(control)

@@ -12,10 +12,14 @@ joints only. Mechanical Sciences (2022).
 
 from __future__ import annotations
 
+import numpy as np
+import sympy as sp
+
 from springlab.design.rank import configuration_of, rank_of
 from springlab.errors import SpringlabError
+from springlab.mechanisms.planar.efficiency import efficiency_index, spring_efficiency
 from springlab.mechanisms.planar.model import PlanarArm, PlanarSpring, Workspace, to_spatial
-from springlab.mechanisms.planar.synthesis import design, solve_configuration
+from springlab.mechanisms.planar.synthesis import com_distances, design, solve_configuration
 from springlab.model.armfile import arm_from_dict
 from springlab.tables import Table
 
@@ -127,7 +131,7 @@ def table_3() -> Table:
 
 
 SECOND_CHOICES = {"A_S14": 0.1, "B_S24": 0.5, "A_S12": 0.1, "B_S12": 0.5, "A_S23": 0.5, "B_S23": 0.8}
-"""Free choices (m) for configuration Λ3-2, ours: the paper gives the other configurations none."""
+"""Free choices (A = a / r_i, B = b / r_j) for configuration Λ3-2, ours: the paper gives it none."""
 
 
 def ranks_in(report) -> Table:
@@ -142,3 +146,108 @@ def ranks_in(report) -> Table:
         force = f"{report.designs[found - 1].max_force:.0f}" if found else "-"
         rows.append((name, " ".join(map(str, configuration)), found, len(report.designs), force))
     return Table(["003", "as 000's springs", "rank", "of", "largest force (N)"], rows)
+
+
+def com_table(gs) -> Table:
+    """The COM distances s_2..s_4 (m) that give the printed |G_1j| (003 Eq. 7) at each g (m/s^2) of
+    ``gs``, and their ratios to the links' lengths."""
+    rows = []
+    for g in gs:
+        s = com_distances(R, M, G_PRINTED, g)
+        rows.append((g, *np.round(s, 5), *np.round(s / np.array(R[1:]), 5)))
+    return Table(["g (m/s^2)", "s_2 (m)", "s_3 (m)", "s_4 (m)", "s_2/r_2", "s_3/r_3", "s_4/r_4"], rows)
+
+
+def printed_eq27() -> dict:
+    """003 Eqs. (27a-e) as printed, typed in (sympy): B_S14, k_S14, B_S24, k_S24 and k_S34 in the
+    |G_1j| and the free choices; (27e) as printed gives (k A B)_S34, here divided by A_S34 B_S34."""
+    G13, G14, A14, A24, A34, B34 = sp.symbols("G_13 G_14 A_S14 A_S24 A_S34 B_S34", positive=True)
+    return {"B_S14": G14 / G13,  # 003 Eq. (27a)
+            "k_S14": G13 / A14,  # 003 Eq. (27b)
+            "B_S24": G14 / G13,  # 003 Eq. (27c)
+            "k_S24": G13 / (A14 * A24),  # 003 Eq. (27d)
+            "k_S34": (G13 / A14 + G13 / (A14 * A24)) * G14 / G13 / (A34 * B34)}  # 003 Eq. (27e)
+
+
+def table4_table(results) -> Table:
+    """Table 4 beside ours: ``results`` holds, per entry of :func:`table4_entries`, (spring label, name,
+    the paper's value, ours, ours minus the paper's, status)."""
+    return Table(["spring", "", "paper", "ours", "difference", "status"],
+                 [(label, name, paper, f"{ours:.5g}", f"{diff:+.2g}", status)
+                  for label, name, paper, ours, diff, status in results])
+
+
+def table2_check() -> tuple[Table, dict, dict]:
+    """Table 2's printed payload-adjustment formulas beside the ones derived from 003 Eqs. (16)
+    (:func:`table2_comparisons`): the table (LaTeX in its cells), and per (configuration, parameter)
+    whether they agree (None: not printed) and the derived expression."""
+    rows, same, derived = [], {}, {}
+    for config, label, expr, printed in table2_comparisons():
+        derived[config, label] = expr
+        same[config, label] = None if printed is None else sp.simplify(expr - printed) == 0
+        shown = f"${sp.latex(printed)}$" if printed is not None else "(not printed)"
+        verdict = {True: "equal", False: "**differs**", None: "**missing**"}[same[config, label]]
+        rows.append((config, label, shown, f"${sp.latex(sp.simplify(expr))}$", verdict))
+    return Table(["configuration", "parameter", "Table 2", "derived from Eqs. (16)", ""], rows), same, derived
+
+
+def index_table(indices: dict, printed: dict, readings) -> Table:
+    """Each design's efficiency index (003 Eq. 24) by each reading of X and Y beside the printed one:
+    ``indices`` {case: {reading: index}}, ``printed`` {case: Table 5's index}."""
+    heads = {"magnitudes": "magnitudes (Sec. 4.1)", "literal": "literal (Eqs. 30a-b)", "direct": "direct (Eq. 24)"}
+    return Table(["case", "paper", *(heads.get(r, r) for r in readings)],
+                 [(case, value, *(f"{indices[case][r]:.4f}" for r in readings)) for case, value in printed.items()])
+
+
+def resolution_table(steps, sizes, curves: dict, literal) -> Table:
+    """The index on each grid: ``steps`` (deg), ``sizes`` (poses), ``curves`` {case: [index per step]},
+    ``literal`` [Table 4's index read literally, per step]."""
+    return Table(["grid step (deg)", "poses", *curves, "before, literal"],
+                 [(f"{step:g}", size, *(f"{curve[k]:.4f}" for curve in curves.values()), f"{literal[k]:.4f}")
+                  for k, (step, size) in enumerate(zip(steps, sizes, strict=True))])
+
+
+def payload_table(ratios, indices: dict) -> Table:
+    """The index against the payload (a fraction of m_4) under each rebalancing rule: ``indices``
+    {rule: [index per ratio]}."""
+    return Table(["payload / m_4", *indices],
+                 [(f"{r:g}", *(f"{v[k]:.4f}" for v in indices.values())) for k, r in enumerate(ratios)])
+
+
+def configurations(arm: PlanarArm = ARM, workspace: Workspace = WORKSPACE) -> dict:
+    """Table 1's configurations on Table 3's arm, {name: (arm, workspace, free choices)}: Λ1 on link 2
+    alone, Λ2 on links 2-3, Λ3-1 and Λ3-2 on the whole arm (Λ1's and Λ2's choices, and Λ3-2's, ours)."""
+    def first(n):
+        return PlanarArm(r=arm.r[:n], s=arm.s[:n], m=arm.m[:n], g=arm.g)
+
+    low, high = workspace.low, workspace.high
+    return {"Λ1": (first(2), Workspace(low[:1], high[:1]), {"A_S12": 0.1, "B_S12": 0.5}),
+            "Λ2": (first(3), Workspace(low[:2], high[:2]), {"A_S13": 0.1, "A_S23": 0.5, "B_S23": 0.8}),
+            "Λ3-1": (arm, workspace, FREE_CHOICES),
+            "Λ3-2": (arm, workspace, SECOND_CHOICES)}
+
+
+def configurations_table(setups: dict, step: float = 5.0) -> tuple[Table, dict]:
+    """Each configuration of :func:`configurations` designed: its DOF, springs, joints spanned, sum of
+    k (N/m), index and each spring's mean efficiency on a ``step`` (deg) grid; with the designs,
+    {name: (arm, workspace, springs)}."""
+    rows, designed = [], {}
+    for name, (a, w, choice) in setups.items():
+        springs = design(a, name, choice)
+        designed[name] = (a, w, springs)
+        grid = np.stack(np.meshgrid(*w.grid(step), indexing="ij"), -1).reshape(-1, a.n - 1)
+        means = ", ".join(f"{s.label} {spring_efficiency(a, s, grid).mean():.3f}" for s in springs)
+        rows.append((name, a.n - 1, len(springs), sum(s.j - s.i for s in springs), f"{sum(s.k for s in springs):.0f}",
+                     f"{efficiency_index(a, springs, w, step=step):.4f}", means))
+    return Table(["configuration", "DOF", "springs", "joints spanned", "sum of k (N/m)", f"index ({step:g} deg)",
+                  "spring efficiencies (means)"], rows), designed
+
+
+def optimum_table(best: dict, reference: float) -> Table:
+    """Each configuration's best design by the index (:func:`springlab.mechanisms.planar.synthesis.optimise_index`
+    results, {name: result}) against ``reference``, the best index the paper prints."""
+    return Table(["configuration", "best free parameters", "stiffnesses (N/m)", "index", f"/ {reference:g}",
+                  "evaluations"],
+                 [(name, ", ".join(f"{k} = {v:.3f}" for k, v in o.parameters.items()),
+                   ", ".join(f"{s.label} {s.k:.0f}" for s in o.design), f"{o.value:.4f}", f"{o.value / reference:.3f}",
+                   o.evaluations) for name, o in best.items()])
