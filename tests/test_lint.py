@@ -18,12 +18,10 @@ def test_ruff_is_clean():
     assert result.returncode == 0, result.stdout + result.stderr
 
 
-FORMATTED = ("juang2022_spring_efficiency", "lenzo2017_two_spring_arm", "lin2010_pseudobases",
-             "springlab_design_your_arm", "springlab_real_arms", "zhang2023_dyad")
-"""The chapters whose code cells are formatted to the book's column (``ruff format notebooks``, at
-notebooks/ruff.toml's line length): each cell as ruff writes it, and none over a dozen lines once it is
-(tests/test_notebooks.py). The other chapters' cells still need their logic moved into the library
-first: formatted as they stand, many would pass a dozen lines."""
+CHAPTERS = sorted((ROOT / "notebooks").glob("*.ipynb"))
+"""Every chapter's code cells are formatted to the book's column (``ruff format notebooks``, at
+notebooks/ruff.toml's line length), and none passes a dozen lines once they are
+(tests/test_notebooks.py): logic that would lives in the library."""
 
 
 def _ruff() -> str:
@@ -39,17 +37,15 @@ def _unformatted(path: Path) -> str:
 
 @pytest.mark.skipif(shutil.which("ruff") is None and not (Path(sys.prefix) / "bin" / "ruff").exists(),
                     reason="ruff is not installed (dev extra)")
-@pytest.mark.parametrize("stem", FORMATTED)
-def test_the_chapters_code_is_formatted_to_the_column(stem):
-    assert _unformatted(ROOT / "notebooks" / f"{stem}.ipynb") == ""
+@pytest.mark.parametrize("path", CHAPTERS, ids=lambda p: p.stem)
+def test_the_chapters_code_is_formatted_to_the_column(path):
+    assert _unformatted(path) == ""
 
 
 @pytest.mark.skipif(shutil.which("ruff") is None and not (Path(sys.prefix) / "bin" / "ruff").exists(),
                     reason="ruff is not installed (dev extra)")
 def test_the_format_check_catches_a_line_wider_than_the_column(tmp_path):
-    import json
-
-    notebook = json.loads((ROOT / "notebooks" / f"{FORMATTED[0]}.ipynb").read_text())
+    notebook = json.loads(CHAPTERS[0].read_text())
     cell = next(c for c in notebook["cells"] if c["cell_type"] == "code")
     cell["source"] = ["x = {" + ", ".join(f'"key{k}": {k}' for k in range(12)) + "}\n"]  # 120 characters
     control = tmp_path / "control.ipynb"
@@ -76,7 +72,7 @@ def _pyflakes(path: Path) -> str:
 
 @pytest.mark.skipif(shutil.which("ruff") is None and not (Path(sys.prefix) / "bin" / "ruff").exists(),
                     reason="ruff is not installed (dev extra)")
-@pytest.mark.parametrize("path", sorted((ROOT / "notebooks").glob("*.ipynb")), ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", CHAPTERS, ids=lambda p: p.stem)
 def test_no_chapter_imports_what_it_does_not_use_or_uses_what_it_never_defines(path, tmp_path):
     assert _pyflakes(path) == ""
     notebook = json.loads(path.read_text())  # the control: an unused import is named

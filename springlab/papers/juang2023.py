@@ -16,8 +16,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import sympy as sp
 
 from springlab.design.rules import SpringSlot
+from springlab.energy import quadratic as q
 from springlab.errors import SpringlabError
 from springlab.model.chain import serial_chain
 from springlab.model.springs import Spring
@@ -182,3 +184,83 @@ def table_4() -> Table:
 def table_5() -> Table:
     """Table 5 as the paper prints it: the planar trajectory's initial posture and rotations (deg)."""
     return _trajectory(TABLE_5_INITIAL, TABLE_5_ROTATION)
+
+
+def printed_planar() -> dict:
+    """000 Eqs. (3), (4) and (7) as printed, typed in (sympy, in :func:`springlab.energy.quadratic.chain_symbols`
+    and :func:`~springlab.energy.quadratic.planar_symbols` for n = 4): the planar arm's gravity energy in
+    the joint angles (Eq. 3), the entries G^p_{1,j} (Eq. 7, {j: entry}) and the energy as their sum (Eq. 4)."""
+    (r2, r3, r4), (d2, d3, d4), (m2, m3, m4), g = q.chain_symbols(4)
+    (t2, t3, t4), r1 = q.planar_symbols(4)
+    s2, s23, s234 = sp.sin(t2), sp.sin(t2 + t3), sp.sin(t2 + t3 + t4)
+    eq3 = g * (d2 * m2 + r2 * (m3 + m4)) * s2 + g * (d3 * m3 + r3 * m4) * s23 + g * d4 * m4 * s234  # 000 Eq. (3)
+    eq7 = {2: (m2 * g * d2 / (r1 * r2) + (m3 + m4) * g / r1) * s2,  # 000 Eq. (7a)
+           3: (m3 * g * d3 / (r1 * r3) + m4 * g / r1) * s23,  # 000 Eq. (7b)
+           4: m4 * g * d4 / (r1 * r4) * s234}  # 000 Eq. (7c)
+    eq4 = r1 * eq7[2] * r2 + r1 * eq7[3] * r3 + r1 * eq7[4] * r4  # 000 Eq. (4)
+    return {"3": eq3, "4": eq4, "7": eq7}
+
+
+def printed_eq13() -> dict:
+    """000 Eq. (13) as printed, typed in: the gravity matrix's entries G_{1,j} of a 4-link chain."""
+    (r2, r3, _), (d2, d3, d4), (m2, m3, m4), g = q.chain_symbols(4)
+    return {(1, 2): m2 * g * d2 + (m3 + m4) * r2 * g,  # 000 Eq. (13)
+            (1, 3): m3 * g * d3 + m4 * r3 * g,
+            (1, 4): m4 * g * d4}
+
+
+def printed_eq28() -> dict:
+    """000 Eq. (28) as printed, typed in: spring S(1,4)'s matrix on a 4-link chain, its entries by
+    (u, v) and its constant term ("C", the trace)."""
+    (r2, r3, _), _, _, _ = q.chain_symbols(4)
+    a, b, k = q.spring_symbols(1, 4)
+    return {"C": k * (a**2 + b**2 + r2**2 + r3**2) / 2,  # 000 Eq. (28)
+            (1, 4): -k * a * b, (1, 3): -k * a * r3, (1, 2): -k * a * r2,
+            (2, 4): k * r2 * b, (3, 4): k * r3 * b, (2, 3): k * r2 * r3}
+
+
+def printed_eq48() -> dict:
+    """000 Eqs. (48a-f) as printed, typed in: the balancing equations of the example configuration
+    (each = 0), by entry (u, v)."""
+    (r2, r3, _), (d2, d3, d4), (m2, m3, m4), g = q.chain_symbols(4)
+    (a14, b14, k14), (a12, b12, k12), (a24, b24, k24), (a34, b34, k34) = (
+        q.spring_symbols(*p) for p in [(1, 4), (1, 2), (2, 4), (3, 4)])
+    return {(1, 4): k14 * a14 * b14 - m4 * g * d4,  # 000 Eq. (48a)
+            (1, 3): k14 * a14 * r3 - (m3 * g * d3 + m4 * r3 * g),  # 000 Eq. (48b)
+            (1, 2): k14 * a14 * r2 + k12 * a12 * b12 - (m2 * g * d2 + (m3 + m4) * r2 * g),  # 000 Eq. (48c)
+            (2, 4): k14 * r2 * b14 - k24 * a24 * b24,  # 000 Eq. (48d)
+            (2, 3): k14 * r2 * r3 - k24 * a24 * r3,  # 000 Eq. (48e)
+            (3, 4): k14 * r3 * b14 + k24 * r3 * b24 - k34 * a34 * b34}  # 000 Eq. (48f)
+
+
+def mono_articulated_lengths(arm, poses: int, seed) -> dict:
+    """Fig. 12's mono-articulated spring S(2,3) (k 100 N/m), its ends a = 0.08 m before and b = 0.1 m
+    past joint 2, turned about z by (alpha, beta) = (0, 0), (45, 45) and (45, 30) deg, on the first two
+    links of ``arm`` with planar joints and with spherical ones: {joints: {(alpha, beta): lengths (m)
+    at ``poses`` random poses}}. On a planar arm, turning both ends by the same angle keeps every length
+    (000 Eq. 45)."""
+    from springlab.energy.geometry import spring_lengths
+    from springlab.model.revolute import body_frames
+    from springlab.model.springs import PointSpring
+
+    def turned(deg):
+        c, s = np.cos(np.radians(deg)), np.sin(np.radians(deg))
+        return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+    def mono(alpha, beta, a=0.08, b=0.1):
+        start = np.array([arm.r[0], 0, 0]) + turned(alpha) @ [-a, 0, 0]
+        return PointSpring("link 2", tuple(start), "link 3", tuple(turned(beta) @ [b, 0, 0]), 100.0)
+
+    lengths = {}
+    for label, joints in (("planar", [(0.0, 0.0, 1.0)] * 2), ("spherical", None)):
+        two = serial_chain(arm.r[:2], arm.d[:2], arm.m[:2], g=arm.g, joints=joints).revolute_chain()
+        R, o = body_frames(two, two.random_q(poses, seed))
+        lengths[label] = {ab: spring_lengths(two, [mono(*ab)], R, o)[0] for ab in ((0, 0), (45, 45), (45, 30))}
+    return lengths
+
+
+TRAJECTORIES = {
+    "fig16_spatial": (TABLE_4_INITIAL, TABLE_4_ROTATION, "Fig. 16: spatial trajectory (Table 4)"),
+    "fig17_planar": (TABLE_5_INITIAL, TABLE_5_ROTATION, "Fig. 17: planar trajectory (Table 5)"),
+}
+"""The paper's two trajectories by the figure that draws them: (initial angles, rotation, title)."""
