@@ -9,7 +9,7 @@ export OMP_NUM_THREADS := 1
 export OPENBLAS_NUM_THREADS := 1
 export MKL_NUM_THREADS := 1
 
-.PHONY: figures test check-all bench lab clean
+.PHONY: figures test check-all bench lab format clean
 
 $(STAMP): pyproject.toml constraints.txt
 	$(PYTHON) -m venv $(VENV)
@@ -37,6 +37,10 @@ bench: $(VENV)/.bench-installed
 
 lab: $(STAMP)
 	$(BIN)/jupyter lab notebooks/
+
+# The chapters' code, formatted to the book's column (notebooks/ruff.toml); `make test` checks it.
+format: $(STAMP)
+	$(BIN)/ruff format notebooks
 
 clean:
 	rm -rf $(VENV) build .pytest_cache .hypothesis

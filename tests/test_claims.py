@@ -251,7 +251,10 @@ def test_compare_printed_takes_half_a_unit_of_the_printed_digit_and_shows_those_
     c = Claims("t")
     claim = c.compare_printed("r", "Section V.B", (0.125, 3), 0.12549, unit="m")
     assert claim.status == "reproduced" and claim.tolerance == 0.0005 and claim.paper_decimals == 3
-    assert "3 decimals" in claim.tolerance_basis
+    assert "(3 decimals)" in claim.tolerance_basis
+    words = [c.compare_printed("n", "T", (4.0, d), 4.0, unit="-").tolerance_basis for d in (0, 1)]
+    assert words == ["half a unit of the printed last digit (integers)",
+                     "half a unit of the printed last digit (1 decimal)"]
     # the control: just past half a unit it is no longer reproduced
     assert c.compare_printed("r", "Section V.B", (0.125, 3), 0.12551, unit="m",
                              expect="discrepancy").status == "discrepancy"

@@ -434,8 +434,9 @@ class Claims:
         and shown to those decimals. ``kwargs`` go to :meth:`compare` (expect, note, cause, ...)."""
         value, decimals = printed
         decimals = _printed(quantity, decimals)
+        digits = {0: "integers", 1: "1 decimal"}.get(decimals, f"{decimals} decimals")
         return self.compare(quantity, where, value, ours, unit=unit, tolerance=half_unit(decimals),
-                            tolerance_basis=f"half a unit of the printed last digit ({decimals} decimals)",
+                            tolerance_basis=f"half a unit of the printed last digit ({digits})",
                             printed_decimals=decimals, **kwargs)
 
     def consistency(self, quantity: str, where: str, paper: float, recomputed: float, *, unit: str,
