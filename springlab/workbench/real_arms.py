@@ -278,7 +278,7 @@ def record(claims, studies) -> None:
                        unit="m", tolerance=3e-4, tolerance_basis="meshes: the same vertices, round-off; round "
                        "shapes: 64 points per circle lie inside by r (1 - cos(pi/64)) < 3e-4 m for r < 0.25 m")
         claims.compare(f"{st.label}: spring ends outside their link's outline box and bracket",
-                       "every end on its link (springlab.design.arms)", 0.0, st.outside, unit="m", tolerance=1e-9,
+                       "every end on its link (the design's own check)", 0.0, st.outside, unit="m", tolerance=1e-9,
                        tolerance_basis="the ends are bounded by the boxes in the search and the construction; "
                        "round-off")
         claims.compare(f"{st.label}: holding torques with the springs, MuJoCo - route 2, relative to the largest gravity "
@@ -292,13 +292,13 @@ def record(claims, studies) -> None:
                        note=f"over the design's poses but {st.lead_band_poses} where a cable's end lies within "
                        f"{LEAD_BAND:g} rad of its lead's line (the design is flagged there)" if st.lead_band_poses else "",
                        tolerance_basis="the same wrapped path (arc and "
-                       "tangent runs in the plane of the lead and B, MuJoCo's sphere wrapping, springlab.model.mjcf) and "
+                       "tangent runs in the plane of the lead and B, MuJoCo's sphere wrapping, as the exported MJCF writes it) and "
                        "forces in float64: round-off, about 1e-14")
         if st.design.method.startswith("exact"):
             designed, control = st.design.control()
             peak = float(np.max(st.design.structure.peak))
             claims.compare(f"{st.label}: largest holding torque left by the exact springs, relative to gravity's peak",
-                           "exact balance of a planar chain (springlab.design.arms)", 0.0, designed / peak, unit="-",
+                           "exact balance of a planar chain (the design's method)", 0.0, designed / peak, unit="-",
                            tolerance=1e-12, tolerance_basis="round-off of route 2's torques (about 1e-15 relative) "
                            "summed over six springs", note=f"the 0.9-rate control leaves {control / peak:.2g}")
 
@@ -312,7 +312,7 @@ def record_payload(claims, study, label: str) -> None:
     n = int(np.argmin(np.abs(study.masses - study.nominal)))
     claims.compare(f"{label}: payload dial, largest torque the ideal springs leave with the dial turned, "
                    f"{study.masses[0]:g}-{study.masses[-1]:g} kg, relative to gravity's peak",
-                   "exact balance restored by moving the springs' base anchors (springlab.design.payload)", 0.0,
+                   "exact balance restored by moving the springs' base anchors (the payload dial)", 0.0,
                    float(np.max(study.left())), unit="-", tolerance=1e-10,
                    tolerance_basis="the moves' torques are linear in the moves for zero-free-length springs, so "
                    "the dial is exact up to the round-off of route 2's torques (about 1e-14 relative)",
