@@ -188,13 +188,14 @@ def table2_check() -> tuple[Table, dict, dict]:
         shown = f"${sp.latex(printed)}$" if printed is not None else "(not printed)"
         verdict = {True: "equal", False: "**differs**", None: "**missing**"}[same[config, label]]
         rows.append((config, label, shown, f"${sp.latex(sp.simplify(expr))}$", verdict))
-    return Table(["configuration", "parameter", "Table 2", "derived from Eqs. (16)", ""], rows), same, derived
+    return Table(["configuration", "parameter", "Table 2", "derived (balance equations)", ""], rows), same, derived
 
 
 def index_table(indices: dict, printed: dict, readings) -> Table:
     """Each design's efficiency index (003 Eq. 24) by each reading of X and Y beside the printed one:
     ``indices`` {case: {reading: index}}, ``printed`` {case: Table 5's index}."""
-    heads = {"magnitudes": "magnitudes (Sec. 4.1)", "literal": "literal (Eqs. 30a-b)", "direct": "direct (Eq. 24)"}
+    heads = {"magnitudes": "magnitudes (Section 4.1)", "literal": "literal (X, Y as printed)",
+             "direct": "direct (the definition)"}
     return Table(["case", "paper", *(heads.get(r, r) for r in readings)],
                  [(case, value, *(f"{indices[case][r]:.4f}" for r in readings)) for case, value in printed.items()])
 

@@ -189,7 +189,8 @@ def table_5() -> Table:
 def printed_planar() -> dict:
     """000 Eqs. (3), (4) and (7) as printed, typed in (sympy, in :func:`springlab.energy.quadratic.chain_symbols`
     and :func:`~springlab.energy.quadratic.planar_symbols` for n = 4): the planar arm's gravity energy in
-    the joint angles (Eq. 3), the entries G^p_{1,j} (Eq. 7, {j: entry}) and the energy as their sum (Eq. 4)."""
+    the joint angles (000 Eq. 3), the entries G^p_{1,j} (000 Eq. 7, {j: entry}) and the energy as their sum
+    (000 Eq. 4)."""
     (r2, r3, r4), (d2, d3, d4), (m2, m3, m4), g = q.chain_symbols(4)
     (t2, t3, t4), r1 = q.planar_symbols(4)
     s2, s23, s234 = sp.sin(t2), sp.sin(t2 + t3), sp.sin(t2 + t3 + t4)

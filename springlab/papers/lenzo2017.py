@@ -5,6 +5,11 @@ The paper gives no numerical example. The arm below is illustrative, of the size
 of an adult human arm (upper arm 0.30 m, forearm and hand 0.35 m; masses and COM
 positions of the order of the usual anthropometric tables); the free choices
 are ours. SI units.
+
+References
+----------
+Lenzo, B. (2017). Gravity balancing of a spatial serial 4-dof arm without auxiliary links
+using minimum number of springs. AIMETA 2017.
 """
 
 from __future__ import annotations

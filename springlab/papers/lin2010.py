@@ -227,8 +227,8 @@ def endpoint_table(jumps) -> Table:
 
 def equilibrator_forms() -> dict:
     """001 Eqs. (9a), (9b), (12) and (15) in sympy, for one equilibrator: a spring K from A to B, a
-    subsystem of mass mu at sigma, gravity g (3-vectors of symbols). Eq. (12)'s two sides come with
-    Eqs. (13)-(14) substituted: a - c along -g at l_CA, b - c along sigma at l_CB."""
+    subsystem of mass mu at sigma, gravity g (3-vectors of symbols). 001 Eq. (12)'s two sides come with
+    001 Eqs. (13)-(14) substituted: a - c along -g at l_CA, b - c along sigma at l_CB."""
     def vec(name):
         return sp.Matrix(sp.symbols(f"{name}_x {name}_y {name}_z", real=True))
 
@@ -243,7 +243,7 @@ def equilibrator_forms() -> dict:
 
 def single_link_spreads(*, turns: int = 2000, seed: int = 3) -> dict[str, float]:
     """One link on a spherical joint at O with one spring: the total energy's range over gravity's,
-    over ``turns`` random orientations, with OB' along sigma as Eq. (10) asks ('Eq. (10) met') and
+    over ``turns`` random orientations, with OB' along sigma as 001 Eq. (10) asks ('met') and
     off it ('control'). Illustrative numbers: mu 2 kg, sigma (0.3, 0.1, 0.2) m, K 400 N/m, l_CA 0.1 m,
     l_CB from 001 Eq. (16)."""
     from scipy.spatial.transform import Rotation
@@ -252,7 +252,7 @@ def single_link_spreads(*, turns: int = 2000, seed: int = 3) -> dict[str, float]
     mu, sigma, g, k, a_len = 2.0, np.array([0.3, 0.1, 0.2]), np.array([0.0, 0.0, -9.81]), 400.0, 0.1
     b_len = mu * 9.81 * np.linalg.norm(sigma) / (k * a_len)  # 001 Eq. (16): K l_CA l_CB = mu g sigma
     a = -a_len * g / 9.81  # 001 Eq. (13): OA' along -g, up
-    ends = {"Eq. (10) met": b_len * sigma / np.linalg.norm(sigma), "control": b_len * np.array([1.0, 0.0, 0.0])}
+    ends = {"met": b_len * sigma / np.linalg.norm(sigma), "control": b_len * np.array([1.0, 0.0, 0.0])}
     spread = {}
     for label, b0 in ends.items():  # OB' along sigma (001 Eq. 14), and off it
         b, s = rotations @ b0, rotations @ sigma

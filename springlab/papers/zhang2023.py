@@ -2,6 +2,11 @@
 with a Non-zero Length Spring* (paper 002). Section V's examples, as printed.
 
 SI units: N, m, N/m, J, rad (the paper prints degrees, converted here).
+
+References
+----------
+Zhang, Y., Arakelian, V. (2023). Design and Synthesis of the Gravity Compensator with a Non-zero
+Length Spring.
 """
 
 from __future__ import annotations
@@ -73,7 +78,7 @@ def inputs() -> Table:
 class ClosureForms:
     """The dyad's loop closure and the paper's restatements of it, in sympy: ``closure`` is
     |B - A|^2 - l^2 with u = phi - beta; ``printed`` maps 002's equation numbers 8-11, 15-16 and 21-23 to
-    each as printed (each = 0); ``z`` is Eqs. (12)-(14)'s substitution; ``eq24`` the slider height y."""
+    each as printed (each = 0); ``z`` is 002 Eqs. (12)-(14)'s substitution; ``eq24`` the slider height y."""
 
     r: sp.Symbol
     length: sp.Symbol  # l, the rod
