@@ -40,6 +40,15 @@ def _unformatted(path: Path) -> str:
 @pytest.mark.parametrize("path", CHAPTERS, ids=lambda p: p.stem)
 def test_the_chapters_code_is_formatted_to_the_column(path):
     assert _unformatted(path) == ""
+    assert _wider_than_the_column(json.loads(path.read_text())) == []  # strings ruff cannot split
+
+
+def _wider_than_the_column(notebook: dict) -> list[str]:
+    """Code lines longer than the book's column (notebooks/ruff.toml's line length)."""
+    from springlab.workbench.site import CODE_COLUMN
+
+    return [line for cell in notebook["cells"] if cell["cell_type"] == "code"
+            for line in "".join(cell["source"]).splitlines() if len(line) > CODE_COLUMN]
 
 
 @pytest.mark.skipif(shutil.which("ruff") is None and not (Path(sys.prefix) / "bin" / "ruff").exists(),
@@ -51,6 +60,8 @@ def test_the_format_check_catches_a_line_wider_than_the_column(tmp_path):
     control = tmp_path / "control.ipynb"
     control.write_text(json.dumps(notebook, indent=1))
     assert "key11" in _unformatted(control)
+    cell["source"] = ['print("' + "a string ruff will not split " * 4 + '")\n']  # 130 characters
+    assert len(_wider_than_the_column(notebook)) == 1
 
 
 def test_the_book_sets_code_at_the_width_it_is_formatted_to():

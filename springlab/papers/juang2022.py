@@ -171,10 +171,10 @@ def printed_eq27() -> dict:
 
 def table4_table(results) -> Table:
     """Table 4 beside ours: ``results`` holds, per entry of :func:`table4_entries`, (spring label, name,
-    the paper's value, ours, ours minus the paper's, status)."""
-    return Table(["spring", "", "paper", "ours", "difference", "status"],
-                 [(label, name, paper, f"{ours:.5g}", f"{diff:+.2g}", status)
-                  for label, name, paper, ours, diff, status in results])
+    (the paper's value, its printed decimals), ours, ours minus the paper's, status)."""
+    return Table(["spring", "quantity", "paper", "ours", "difference", "status"],
+                 [(label, name, f"{paper:.{decimals}f}", f"{ours:.5g}", f"{diff:+.2g}", status)
+                  for label, name, (paper, decimals), ours, diff, status in results])
 
 
 def table2_check() -> tuple[Table, dict, dict]:
