@@ -286,3 +286,11 @@ def test_the_chapters_tables_of_paper_003():
     table, designed = paper.configurations_table(setups)
     assert [row[0] for row in table.rows] == ["Λ1", "Λ2", "Λ3-1", "Λ3-2"] and table.rows[0][5] == "1.0000"
     assert set(designed) == set(setups)
+
+
+def test_a_workspaces_grid_poses_are_every_combination_of_its_joints_grids():
+    poses = paper.WORKSPACE.grid_poses(20)
+    assert poses.shape == (paper.WORKSPACE.grid_size(20), 3)
+    axes = paper.WORKSPACE.grid(20)
+    assert np.array_equal(poses[1], [axes[0][0], axes[1][0], axes[2][1]])  # the last joint varies fastest
+    assert len({tuple(p) for p in poses}) == len(poses)  # every combination once

@@ -134,11 +134,21 @@ def derived_conditions(*, k1: bool = False) -> dict[str, sp.Expr]:
             for name, pair in (("x1.x0", (x0, x1)), ("x2.x0", (x0, x2)), ("x1.x2", (x1, x2)))}
 
 
+def _one_link_symbols():
+    """sympy symbols of 004 Eqs. (1)-(7): m, g, h, k, a, b."""
+    return sp.symbols("m g h k a b", real=True)
+
+
+def _two_link_symbols():
+    """sympy symbols of 004 Eqs. (8)-(10): m1, m2, g, h1, h2, l1, k1, k2, a1, b1, a2, b2."""
+    return sp.symbols("m1 m2 g h1 h2 l1 k1 k2 a1 b1 a2 b2", real=True)
+
+
 def one_link_condition() -> tuple[sp.Expr, sp.Expr]:
     """004 Eqs. (1)-(7) derived: one link (mass m, COM h along x_1) and one zero-free-length spring k
     from P = a x_0 to Q = b x_1. Returns the total energy and its coefficient of x_1.x_0, which must
     vanish (004 Eq. 7: k a b = m g h)."""
-    m, g, h, k, a, b = sp.symbols("m g h k a b", real=True)
+    m, g, h, k, a, b = _one_link_symbols()
     energy = sp.expand(m * g * h * expand_vectors_dot({1: 1}, {0: 1})  # 004 Eq. (4)
                        + k / 2 * expand_vectors_dot({0: a, 1: -b}, {0: a, 1: -b}))  # 004 Eq. (5)
     return energy, energy.coeff(dot_symbol(0, 1))  # 004 Eq. (6)
@@ -146,7 +156,7 @@ def one_link_condition() -> tuple[sp.Expr, sp.Expr]:
 
 def printed_eq7() -> sp.Expr:
     """004 Eq. (7) as printed, typed in: m g h - k a b (= 0)."""
-    m, g, h, k, a, b = sp.symbols("m g h k a b", real=True)
+    m, g, h, k, a, b = _one_link_symbols()
     return m * g * h - k * a * b  # 004 Eq. (7)
 
 
@@ -154,7 +164,7 @@ def two_link_conditions() -> list[sp.Expr]:
     """004 Eqs. (8)-(10) derived: two links, spring k1 from a1 x_0 to b1 x_1 and, through the
     parallelogram of Fig. 2, spring k2 from a2 x_0 to b2 x_2. The coefficients of x_1.x_0 and
     x_2.x_0 in the total energy, which must vanish (004 Eq. 10)."""
-    m1, m2, g, h1, h2, l1, k1, k2, a1, b1, a2, b2 = sp.symbols("m1 m2 g h1 h2 l1 k1 k2 a1 b1 a2 b2", real=True)
+    m1, m2, g, h1, h2, l1, k1, k2, a1, b1, a2, b2 = _two_link_symbols()
     energy = sp.expand(m1 * g * expand_vectors_dot({1: h1}, {0: 1})
                        + m2 * g * expand_vectors_dot({1: l1, 2: h2}, {0: 1})
                        + k1 / 2 * expand_vectors_dot({0: a1, 1: -b1}, {0: a1, 1: -b1})
@@ -164,7 +174,7 @@ def two_link_conditions() -> list[sp.Expr]:
 
 def printed_eq10() -> list[sp.Expr]:
     """004 Eq. (10) as printed, typed in (each = 0)."""
-    m1, m2, g, h1, h2, l1, k1, k2, a1, b1, a2, b2 = sp.symbols("m1 m2 g h1 h2 l1 k1 k2 a1 b1 a2 b2", real=True)
+    m1, m2, g, h1, h2, l1, k1, k2, a1, b1, a2, b2 = _two_link_symbols()
     return [m1 * g * h1 + m2 * g * l1 - k1 * a1 * b1, m2 * g * h2 - k2 * a2 * b2]  # 004 Eq. (10)
 
 

@@ -236,7 +236,7 @@ def configurations_table(setups: dict, step: float = 5.0) -> tuple[Table, dict]:
     for name, (a, w, choice) in setups.items():
         springs = design(a, name, choice)
         designed[name] = (a, w, springs)
-        grid = np.stack(np.meshgrid(*w.grid(step), indexing="ij"), -1).reshape(-1, a.n - 1)
+        grid = w.grid_poses(step)
         means = ", ".join(f"{s.label} {spring_efficiency(a, s, grid).mean():.3f}" for s in springs)
         rows.append((name, a.n - 1, len(springs), sum(s.j - s.i for s in springs), f"{sum(s.k for s in springs):.0f}",
                      f"{efficiency_index(a, springs, w, step=step):.4f}", means))

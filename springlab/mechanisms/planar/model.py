@@ -315,6 +315,10 @@ class Workspace:
             axes.append(np.radians(a + step * np.arange(count)))
         return axes
 
+    def grid_poses(self, step: float) -> np.ndarray:
+        """Every pose of :meth:`grid` (rad), (points, joints), the last joint varying fastest."""
+        return np.stack(np.meshgrid(*self.grid(step), indexing="ij"), -1).reshape(-1, self.joints)
+
     def grid_size(self, step: float) -> int:
         """Points of :meth:`grid`, counted without building it (exact, a Python int)."""
         step = _checks.positive("step", step, unit="deg")
