@@ -60,6 +60,67 @@ def test_a_piece_wholly_inside_a_mesh_is_caught_although_it_touches_no_triangle(
     assert clearances(ur5, [tiny], q).worst(0)[0] < 0
 
 
+def _measured_everywhere(model, piece, q):
+    """Each body's exact clearance from the piece at every pose (N, bodies): coal's full distance for every shape
+    and pose, with no screen and no lower bound."""
+    import coal
+
+    from springlab.design import collision
+
+    R, o = body_frames(model, q)
+    out = np.full((q.shape[0], model.n + 1), np.inf)
+    own = {body: (end, allowance) for body, end, allowance in piece.bodies}
+    for item in collision._items(model):
+        shapes = collision._piece_capsules(coal, piece.a, piece.b, piece.radius, own.get(item.body))
+        for p in range(q.shape[0]):
+            if shapes[p] is None:
+                continue
+            solid, Rs, c = shapes[p]
+            Ri, ti = collision._placed(R, o, item, p)
+            gap = collision._signed(coal, item, collision._transform(coal, Ri, ti), solid,
+                                    collision._transform(coal, Rs, c), c, np.inf)
+            out[p, item.body] = min(out[p, item.body], gap)
+    return out
+
+
+@pytest.mark.parametrize("every", [False, True])
+def test_the_nearest_approach_and_the_poses_within_the_margin_are_those_of_measuring_everything(ur5, every):
+    """The check measures a mesh exactly only below the margin, or below the smallest clearance it knows, and
+    settles the rest by lower bounds: its worst (value, link, pose) and, measuring ``every`` pose, which poses
+    come within the margin, must be those of measuring every shape at every pose."""
+    q = np.random.default_rng(7).uniform(-np.pi, np.pi, (40, ur5.n))
+    body = ur5.bodies.index("upper_arm_link")
+    mesh = next(s for s in ur5.solids[body] if s.kind == "mesh")
+    v = mesh.vertices @ mesh.frame[:3, :3].T + mesh.frame[:3, 3]  # the link's frame
+    along = np.linalg.svd(v - v.mean(axis=0), full_matrices=False)[2]  # its long axis, then two across it
+    reach = np.max(np.abs((v - v.mean(axis=0)) @ along[1]))
+    R, o = body_frames(ur5, q)
+
+    def cable(d):  # a cable along the link, d m beside its side: through it at d < 0
+        ends = [v.mean(axis=0) + (reach + d) * along[1] + s * 0.05 * along[0] for s in (-1, 1)]
+        return Piece("S9 cable", *(world_points(R, o, body, e) for e in ends), 0.0006)
+
+    pieces = [cable(d) for d in (-0.03, 0.003, 0.02, 0.06, 0.3)]
+    found = clearances(ur5, pieces, q, every=every)
+    truth = [_measured_everywhere(ur5, piece, q) for piece in pieces]
+    worst = []
+    for k, exact in enumerate(truth):
+        pose, body = np.unravel_index(int(np.argmin(exact)), exact.shape)
+        links = found.gaps[k][:, :-1]  # the mounting plane, last, is a height: not measured by coal
+        pose_found, body_found = np.unravel_index(int(np.argmin(links)), links.shape)
+        gap = links[pose_found, body_found]
+        assert gap == exact[pose, body] and (body_found, pose_found) == (body, pose)
+        assert np.all(links <= exact + 1e-6)  # never larger than the truth, to coal's GJK tolerance (1e-6 m)
+        worst.append(gap)
+    assert min(worst) < 0 < MARGIN < max(worst)  # a piece through the link, and one clear of it
+    if every:  # the pieces beside the link (the first runs into it at every pose)
+        found = clearances(ur5, pieces[1:], q, every=True)
+        plane = found.gaps[:, :, -1].min(axis=0)
+        near = (np.min([np.min(t, axis=1) for t in truth[1:]], axis=0) < MARGIN) | (plane < MARGIN)
+        assert np.array_equal(found.within(), near)
+        assert near.any() and not near.all()
+
+
 def test_the_workspace_leaves_out_poses_in_collision_and_below_the_mount(ur5):
     ranges = workspace_ranges(ur5)
     rng = np.random.default_rng(3)

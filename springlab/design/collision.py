@@ -48,6 +48,11 @@ ALWAYS = 0.95
 limits' poses touches by construction (a shell around a motor, a base on its plate) and is not checked,
 as MoveIt's setup assistant disables 'always in collision' pairs."""
 
+SLACK = 1e-6
+"""m: a mesh's triangles are measured exactly wherever coal's collision test, with a security margin this much
+beyond the one asked for, finds one within it: a margin of coal's own tolerance, so that a pose its distance
+would put within the margin (or below the smallest clearance found) is never settled by a lower bound."""
+
 _CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
@@ -254,19 +259,32 @@ def _piece_capsules(coal, a, b, radius, trim=None) -> list:
 
 def _signed(coal, item: _Item, Ti, shape, Ts, centre, margin: float) -> float:
     """The signed distance (m) from the shape to the item, never larger than the truth (see the module
-    docstring); exact where it is below ``margin``."""
+    docstring); exact where it is below ``margin``. Above a finite ``margin``, a mesh whose triangles coal's
+    collision test (its security margin ``margin`` + :data:`SLACK`) finds none within it returns a lower
+    bound: the hull's distance, or that security margin if larger."""
     request = coal.DistanceRequest()
     hull = coal.distance(item.convex, Ti, shape, Ts, request, coal.DistanceResult())
     if item.mesh is None or hull >= margin:
         return float(hull)
+    if np.isfinite(margin):  # whether any triangle comes within the margin (or touches) first: coal's collision
+        near = coal.CollisionRequest()  # test with that security margin, 20 times quicker than their distance
+        near.security_margin = max(float(margin), 0.0) + SLACK
+        if not coal.collide(item.mesh, Ti, shape, Ts, near, coal.CollisionResult()):  # all farther than that
+            if hull < 0.0 and _inside(coal, item, Ti, centre):
+                return float(hull)  # inside the solid: its depth into the hull
+            return max(float(hull), near.security_margin)  # outside it, or in a hollow: a lower bound
     tris = coal.distance(item.mesh, Ti, shape, Ts, request, coal.DistanceResult())
     if tris <= 0.0:  # it touches the mesh: its depth into the hull, at least as deep as into the mesh
         return float(min(hull, tris))
     if hull >= 0.0:  # outside the hull, where the triangles give the true distance
         return float(tris)
+    return float(hull) if _inside(coal, item, Ti, centre) else float(tris)
+
+
+def _inside(coal, item: _Item, Ti, centre) -> bool:
+    """Whether the point ``centre`` (base frame) lies inside the mesh placed at ``Ti``: by its winding number."""
     R, t = Ti.getRotation(), Ti.getTranslation()
-    local = R.T @ (np.asarray(centre) - t)
-    return float(hull) if _winding(item.triangles, local) > 0.5 else float(tris)
+    return _winding(item.triangles, R.T @ (np.asarray(centre) - t)) > 0.5
 
 
 @dataclass(frozen=True)
@@ -320,7 +338,7 @@ class Clearances:
 
 def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN, every: bool = False) -> Clearances:
     """Each piece's clearance from each of the model's bodies at the poses ``q`` (N, n) rad: exact at each
-    piece's nearest approach (:meth:`Clearances.worst`) and wherever it was measured; elsewhere a lower
+    piece's nearest approach (:meth:`Clearances.worst`) and wherever coal found it below the ``margin``; elsewhere a lower
     bound (capsules that hold the piece and the shape screen the poses in numpy; coal measures the poses
     in the order of those bounds, until no pose left can come nearer than one measured, or than the
     ``margin``). With ``every``, coal measures every pose whose bound is below the ``margin`` and which no piece
@@ -379,11 +397,15 @@ def clearances(model: RevoluteChain, pieces, q, *, margin: float = MARGIN, every
                 known[i, p] = G[i, p] < margin
                 hit[p] |= known[i, p]
                 best = min(best, G[i, p])
+        lowest = float(np.min(G[known])) if known.any() else np.inf  # the smallest value known exactly
         while G.size:  # the smallest made exact: its value, link and pose are the piece's worst
             i, p = np.unravel_index(int(np.argmin(G)), G.shape)
             if known[i, p] or not np.isfinite(G[i, p]):
                 break
-            G[i, p], known[i, p] = exact(i, p, np.inf), True
+            # exact up to the slack above the smallest known: beyond, a lower bound settles the pose (coal's distance
+            # to a mesh's triangles takes a millisecond, whether they come within it a twentieth of that)
+            G[i, p], known[i, p] = exact(i, p, lowest + SLACK), True
+            lowest = min(lowest, float(G[i, p]))  # a lower bound lies above it by the slack at least
         for i, item in enumerate(items):
             gaps[k, :, item.body] = np.minimum(gaps[k, :, item.body], G[i])
     return Clearances(pieces, gaps, (*model.bodies, "the mounting plane"))
