@@ -459,3 +459,18 @@ def test_committed_animations_fill_the_column(gif):
 
     with Image.open(gif) as im:
         assert 700 <= im.size[0] <= 760, im.size
+
+
+def test_a_real_arms_spring_names_overlap_nothing_and_stay_in_their_panels(ur5_two_point, styled):
+    """The UR5's six springs in three views: no name on another or on a legend, none out of its panel, every
+    spring named in some view; its names tried farther from the zigzags than a paper's chain's."""
+    import matplotlib.pyplot as plt
+
+    from springlab.workbench.plotting import ARM_LABEL_CLEAR, real_arm_figure
+
+    fig = real_arm_figure(ur5_two_point, title="UR5")
+    assert overlapping_texts(fig) == [] and outside_texts(fig) == []
+    named = {t.get_text() for ax in fig.axes for t in ax.texts}
+    assert named == set(ur5_two_point.names) and len(named) == 6
+    assert ARM_LABEL_CLEAR[0] == 3.0 and max(ARM_LABEL_CLEAR) > 3.0
+    plt.close(fig)

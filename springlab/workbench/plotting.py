@@ -238,7 +238,14 @@ def real_arm_figure(design, pose=None, *, title: str = "", hardware: bool = Fals
     turned = np.degrees(np.angle(np.exp(1j * q[0])))  # (-180, 180]: 324 deg is drawn, and read, as -36
     angles = ", ".join(f"{v:.0f}" for v in np.round(turned) + 0.0)  # + 0.0: no "-0"
     return mechanism_figure(scene, [0], views=("front", "side", "top"), columns=2,
-                            titles=[f"{design.model.name} at ({angles}) deg"], title=title)
+                            titles=[f"{design.model.name} at ({angles}) deg"], title=title,
+                            label_style={"clear": ARM_LABEL_CLEAR})
+
+
+ARM_LABEL_CLEAR = (3.0, 9.0, 16.0)
+"""px: how far from its zigzag a spring's name is tried on a real arm's drawing, nearest first: a real arm's
+springs run close together (the Panda's five in a 0.1 m wide side view), and a name that finds no place
+clear of the other springs 3 px away takes one farther out before it sits on one."""
 
 
 def moment_figure(phi, curves: dict, *, title: str, ylabel: str = "moment (N m)", styles: dict | None = None):
