@@ -76,6 +76,19 @@ def test_only_the_product_mu_sigma_is_physical():
         subs.combined_subsystems(ARM, mu=np.zeros(ARM.n))
 
 
+def test_the_chapters_normalisations_share_one_energy_and_one_spring_product():
+    """001 Eq. (16)'s K l_CA l_CB = mu~ g |sigma~| is the same under every normalisation, and so is the energy;
+    a normalisation's mu~_2 and |sigma~_2| are not (the control: the table would not show three of them)."""
+    q = random_poses(50)
+    own = np.where(ARM.m + ARM.m_hat + ARM.m_star > 0, ARM.m + ARM.m_hat + ARM.m_star, 1.0)
+    table, energy = paper.normalisations(ARM, q, {"Eq. (24)": None, "own": own, "1 kg": np.ones(ARM.n)})
+    assert [r[0] for r in table.rows] == ["Eq. (24)", "own", "1 kg"]
+    assert len({r[3] for r in table.rows}) == 1 and len({r[4] for r in table.rows}) == 1
+    assert len({r[1] for r in table.rows}) == 3 and len({r[2] for r in table.rows}) == 3
+    assert max(np.ptp(energy[k] - energy["Eq. (24)"]) for k in energy) < 1e-9
+    assert float(table.rows[0][3]) == pytest.approx(263.4730, abs=5e-5)  # Table 3's S2 need, as the chapter prints it
+
+
 @pytest.mark.parametrize("seed", [0, 3, 4])
 def test_designed_springs_balance_and_rounded_ones_do_not(seed):
     arm = ARM if seed == 0 else random_arm(seed)

@@ -23,7 +23,7 @@ from springlab.mechanisms.pseudobase.model import (
     attachment_a,
     aux_offset_from_dh,
 )
-from springlab.mechanisms.pseudobase.subsystems import combined_subsystems
+from springlab.mechanisms.pseudobase.subsystems import combined_subsystems, subsystem_energy
 from springlab.rounding import half_unit, propagated_rounding
 from springlab.tables import Table
 
@@ -216,6 +216,24 @@ def table3_table(results) -> Table:
                  [(r["spring"], f"{r['printed']:.2f}", f"{r['need']:.2f}", f"{100 * (r['printed'] / r['need'] - 1):+.1f} %",
                    f"{r['paper']:.2f}", f"{r['ours']:.4f}", np.round(r["b"], 4).tolist(), status)
                   for r, status in results])
+
+
+def normalisations(arm, q, splits: dict) -> tuple[Table, dict]:
+    """001 Eq. (5)'s subsystems under each normalisation of the masses (``splits``: label -> mu, as
+    :func:`~springlab.mechanisms.pseudobase.subsystems.combined_subsystems` takes it, None for 001
+    Eq. (24)'s): a table of subsystem 2's mu~ (kg), abs(sigma~) (m), its spring's K l_CA l_CB = mu~ g
+    abs(sigma~) (N m, 001 Eq. 16) and the energy at the last pose of ``q`` (rad, (N, n)) (J), a row per label;
+    and the subsystems' energy along ``q`` (J, (N,)) by label."""
+    rows, energy = [], {}
+    for label, mu in splits.items():
+        mu_i, sigma_i = combined_subsystems(arm, mu=mu)
+        energy[label] = subsystem_energy(arm, q, mu_i, sigma_i)
+        size = float(np.linalg.norm(sigma_i[1]))
+        rows.append((label, f"{mu_i[1]:.3f}", f"{size:.5f}", f"{mu_i[1] * arm.g * size:.4f}",  # 001 Eq. (16)
+                     f"{energy[label][-1]:.6f}"))
+    table = Table(["normalisation", "mu~_2 (kg)", "abs(sigma~_2) (m)", "K l_CA l_CB (N m)", "energy at the end (J)"],
+                  rows)
+    return table, energy
 
 
 def endpoint_table(jumps) -> Table:
