@@ -103,3 +103,29 @@ def test_a_narrower_workspace_found_is_printed_and_written_as_workspace_takes_it
     assert record["clears"] is False and len(record["narrowed_workspaces"]) == len(found)
     assert record["narrowed_workspaces"][-1]["workspace_argument"] == found[-1].workspace(d.model)
     assert _collision_line(d) == ""  # the control: springs that clear say nothing of it
+
+
+def test_each_spring_that_does_not_clear_says_at_what_share_of_the_poses(pendulum_belts):
+    """The share of the first check poses at which a spring comes within the margin, as the clearance reports it,
+    is the share found by measuring each of those poses alone (its nearest approach, exact, at that pose); the
+    flag and the JSON carry it. The control: at the default 5 mm margin the same springs clear, with no share."""
+    from springlab.design.collision import clearances
+    from springlab.design.hardware import WITHIN_POSES, spring_clearance, spring_pieces
+
+    d = pendulum_belts
+    found = spring_clearance(d.model, d.realised, d.kinds, d.coils, d.realised_names, d.q, margin=MARGIN)
+    assert found.within and set(found.within) == {r[0] for r in found.failing()}
+    q = d.q[:WITHIN_POSES]
+    pieces = spring_pieces(d.model, d.realised, d.kinds, d.coils, d.realised_names, q)
+    for spring, share in found.within.items():
+        own = [p for p in pieces if p.name.partition(" ")[0] == spring]
+        near = [any(clearances(d.model, [replace(p, a=p.a[[i]], b=p.b[[i]],
+                                                 axis=None if p.axis is None else p.axis[[i]])], q[[i]],
+                               margin=MARGIN).worst(0)[0] < MARGIN for p in own) for i in range(len(q))]
+        assert share == pytest.approx(np.mean(near), abs=1e-12) and 0 < share < 1
+    design = replace(d, clearance=found)
+    flags = [f for f in design.flags() if "cannot be mounted" in f]
+    assert flags and all(f"of {len(q)} check poses" in f for f in flags)
+    shares = [r.get("share_of_poses_within_margin") for r in design.as_dict()["realised"]]
+    assert sorted(s for s in shares if s) == sorted(found.within.values())
+    assert spring_clearance(d.model, d.realised, d.kinds, d.coils, d.realised_names, d.q).within == {}

@@ -54,6 +54,7 @@ from springlab.design.buildable import (
 from springlab.design.collision import MARGIN, Sampler, has_geometry
 from springlab.design.hardware import (
     HOOK_GAP,
+    WITHIN_POSES,
     balanced_body,
     block_room,
     coil_ends,
@@ -480,8 +481,13 @@ class ArmDesign:
         for spring, piece, link, pose, gap in (self.clearance.failing() if self.clearance is not None else ()):
             depth = (f"runs {1e3 * -gap:.0f} mm into {link}" if gap < 0 else
                      f"comes within {1e3 * gap:.1f} mm of {link}, less than the {1e3 * self.clearance.margin:g} mm margin")
+            share = self.clearance.within.get(spring)
+            counted = min(WITHIN_POSES, self.clearance.poses)
+            share = ("" if share is None else "; the spring comes within the margin of a link or the table at "
+                     + (f"{_percent(share)} of {counted} check poses" if share > 0 else
+                        f"none of the first {counted} check poses (a rare pose)"))
             out.append(f"the realised spring {spring}'s {piece} {depth} (at {np.round(np.degrees(self.q[pose]), 1).tolist()} "
-                       "deg): it cannot be mounted as drawn")
+                       f"deg){share}: it cannot be mounted as drawn")
         gravity = np.max(np.abs(gravity_torques(self.designed_for, self.q)), axis=0)
         floor = 1e-9 * max(float(np.max(gravity)), 1e-300)
         for which in ("ideal", "realised"):
@@ -786,7 +792,8 @@ class ArmDesign:
         hardware = [{"mass_kg": fit.coil.mass, "coil_outer_diameter": fit.coil.outer_diameter, "block_ratio": fit.ratio,
                      "cable": None if fit.cable is None else fit.cable.as_dict()} | end
                     | ({"clearance_m": near[n][4], "nearest_link": near[n][2], "nearest_piece": near[n][1],
-                        "nearest_pose": self.q[near[n][3]].tolist()} if n in near else {})
+                        "nearest_pose": self.q[near[n][3]].tolist(),
+                        "share_of_poses_within_margin": self.clearance.within.get(n, 0.0)} if n in near else {})
                     for n, fit, end in zip(self.realised_names, self.coils, ends, strict=True)]
         listed = [p.as_dict() for p in parts(self.model, self.realised, self.kinds, self.coils, self.realised_names,
                                                self.q)] if self.realised else []
@@ -894,6 +901,18 @@ def _reach_note(model: RevoluteChain, reach) -> str:
     return (f"spring ends lie within each body's outline (the bounding box of its URDF geometry) and "
             f"{100 * bracket:.3g} cm beyond it; for {missing}, which {'has' if missing.count(',') == 0 else 'have'} "
             f"no geometry, within {box} (--reach)")
+
+
+def _percent(share: float) -> str:
+    """A share (0 to 1) as a percentage to two significant digits, "< 0.1 %" and "> 99.9 %" at the ends but for
+    none and all: 0.3625 -> '36 %'."""
+    if share in (0.0, 1.0):
+        return f"{100 * share:.0f} %"
+    if share < 0.001:
+        return "< 0.1 %"
+    if share > 0.999:
+        return "> 99.9 %"
+    return f"{float(f'{100 * share:.2g}'):g} %"
 
 
 def design_model(model: RevoluteChain, *, workspace=None, samples: int = 2000, fit_poses: int = 300, seed: int = 1,
