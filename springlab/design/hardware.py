@@ -205,7 +205,8 @@ def _same_place(one, other) -> bool:
 
 WITHIN_POSES = 500
 """How many of the check poses (the first: random draws of the workspace) the share of poses at which a spring
-that does not clear comes within the margin is counted on (coal at each; a share of 0.5 to about 2 %)."""
+that does not clear comes within the margin is counted on, coal measuring each: a share counted so is within
+about 2 points of the workspace's (its standard error, at most sqrt(0.25 / 500), at a share of one half)."""
 
 
 def _poses(piece, sample: slice):
