@@ -220,8 +220,8 @@ def table3_table(results) -> Table:
 
 def normalisations(arm, q, splits: dict) -> tuple[Table, dict]:
     """001 Eq. (5)'s subsystems under each normalisation of the masses (``splits``: label -> mu, as
-    :func:`~springlab.mechanisms.pseudobase.subsystems.combined_subsystems` takes it, None for 001
-    Eq. (24)'s): a table of subsystem 2's mu~ (kg), abs(sigma~) (m), its spring's K l_CA l_CB = mu~ g
+    :func:`~springlab.mechanisms.pseudobase.subsystems.combined_subsystems` takes it; None for
+    001 Eq. (24)'s): a table of subsystem 2's mu~ (kg), abs(sigma~) (m), its spring's K l_CA l_CB = mu~ g
     abs(sigma~) (N m, 001 Eq. 16) and the energy at the last pose of ``q`` (rad, (N, n)) (J), a row per label;
     and the subsystems' energy along ``q`` (J, (N,)) by label."""
     rows, energy = [], {}
