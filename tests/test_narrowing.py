@@ -110,7 +110,7 @@ def test_each_spring_that_does_not_clear_says_at_what_share_of_the_poses(pendulu
     is the share found by measuring each of those poses alone (its nearest approach, exact, at that pose); the
     flag and the JSON carry it. The control: at the default 5 mm margin the same springs clear, with no share."""
     from springlab.design.collision import clearances
-    from springlab.design.hardware import WITHIN_POSES, spring_clearance, spring_pieces
+    from springlab.design.hardware import WITHIN_POSES, _poses, spring_clearance, spring_pieces
 
     d = pendulum_belts
     found = spring_clearance(d.model, d.realised, d.kinds, d.coils, d.realised_names, d.q, margin=MARGIN)
@@ -119,9 +119,8 @@ def test_each_spring_that_does_not_clear_says_at_what_share_of_the_poses(pendulu
     pieces = spring_pieces(d.model, d.realised, d.kinds, d.coils, d.realised_names, q)
     for spring, share in found.within.items():
         own = [p for p in pieces if p.name.partition(" ")[0] == spring]
-        near = [any(clearances(d.model, [replace(p, a=p.a[[i]], b=p.b[[i]],
-                                                 axis=None if p.axis is None else p.axis[[i]])], q[[i]],
-                               margin=MARGIN).worst(0)[0] < MARGIN for p in own) for i in range(len(q))]
+        near = [any(clearances(d.model, [_poses(p, slice(i, i + 1))], q[[i]], margin=MARGIN).worst(0)[0] < MARGIN
+                    for p in own) for i in range(len(q))]
         assert share == pytest.approx(np.mean(near), abs=1e-12) and 0 < share < 1
     design = replace(d, clearance=found)
     flags = [f for f in design.flags() if "cannot be mounted" in f]
